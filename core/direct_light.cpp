@@ -1,0 +1,122 @@
+#include "core/direct_light.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "core/sampling.h"
+
+namespace ilp {
+namespace {
+
+// Keeps the part of polygon `in` where (v - point) . normal > 0 (Sutherland-Hodgman).
+std::vector<Eigen::Vector3d> clip_to_hemisphere(const std::vector<Eigen::Vector3d>& in,
+                                                const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
+  std::vector<Eigen::Vector3d> out;
+  const std::size_t n = in.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector3d& a = in[k];
+    const Eigen::Vector3d& b = in[(k + 1) % n];
+    const double da = (a - point).dot(normal), db = (b - point).dot(normal);
+    if (da > 0.0) out.push_back(a);
+    if ((da > 0.0) != (db > 0.0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+}  // namespace
+
+double point_to_triangle_form_factor(const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
+                                     const Patch& emitter) {
+  if ((point - emitter.centroid_m).dot(emitter.normal) <= 0.0) return 0.0;  // behind the emitting side
+  const std::vector<Eigen::Vector3d> polygon = clip_to_hemisphere(
+      {emitter.vertices_m[0], emitter.vertices_m[1], emitter.vertices_m[2]}, point, normal);
+  if (polygon.size() < 3) return 0.0;
+  // Lambert: F = 1/(2 pi) sum_k angle_k (n . unit(a_k x a_k+1)), a_k = v_k - point.
+  double sum = 0.0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Eigen::Vector3d a = (polygon[k] - point).normalized();
+    const Eigen::Vector3d b = (polygon[(k + 1) % polygon.size()] - point).normalized();
+    const Eigen::Vector3d c = a.cross(b);
+    const double sin_angle = c.norm();
+    if (sin_angle <= 0.0) continue;
+    const double angle = std::atan2(sin_angle, a.dot(b));
+    sum += angle * normal.dot(c / sin_angle);
+  }
+  return std::abs(sum) / (2.0 * std::numbers::pi);
+}
+
+Eigen::MatrixXd compute_emitter_form_factors(const Scene& scene, const RayCaster& caster,
+                                             std::span<const int> receivers, std::span<const int> emitters,
+                                             const DirectLightOptions& options) {
+  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(receivers.size()),
+                                            static_cast<Eigen::Index>(emitters.size()));
+  const double offset = caster.ray_offset_m();
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, receivers.size(), 16), [&](const auto& range) {
+      RayCaster::prepare_thread();
+      for (std::size_t r = range.begin(); r != range.end(); ++r) {
+        const Patch& receiver = scene.patches[receivers[r]];
+        const RotatedHalton4 points(options.seed, static_cast<std::uint64_t>(receivers[r]));
+        for (std::size_t e = 0; e < emitters.size(); ++e) {
+          const Patch& emitter = scene.patches[emitters[e]];
+          const RotatedHalton4 targets(options.seed ^ 0xD1B54A32D192ED03ull,
+                                       static_cast<std::uint64_t>(receivers[r]) * 0x9E3779B1u + emitters[e]);
+          double sum = 0.0;
+          for (int s = 0; s < options.receiver_points; ++s) {
+            const auto u = points.point(static_cast<std::uint32_t>(s));
+            const Eigen::Vector3d x = sample_triangle(receiver.vertices_m[0], receiver.vertices_m[1],
+                                                      receiver.vertices_m[2], u[0], u[1]);
+            const double unoccluded = point_to_triangle_form_factor(x, receiver.normal, emitter);
+            if (unoccluded == 0.0) continue;
+            int visible = 0;
+            for (int k = 0; k < options.shadow_rays; ++k) {
+              const auto v = targets.point(static_cast<std::uint32_t>(s * options.shadow_rays + k));
+              const Eigen::Vector3d y = sample_triangle(emitter.vertices_m[0], emitter.vertices_m[1],
+                                                        emitter.vertices_m[2], v[0], v[1]);
+              if (!caster.occluded(x + receiver.normal * offset, y + emitter.normal * offset)) ++visible;
+            }
+            sum += unoccluded * visible / options.shadow_rays;
+          }
+          F(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(e)) = sum / options.receiver_points;
+        }
+      }
+    });
+  });
+  return F;
+}
+
+std::vector<int> luminaire_patches(const Scene& scene) {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < scene.patches.size(); ++i)
+    if (scene.surfaces[scene.patches[i].surface].is_luminaire) out.push_back(static_cast<int>(i));
+  return out;
+}
+
+void replace_emitter_columns(const Scene& scene, const RayCaster& caster, std::span<const int> emitters,
+                             const DirectLightOptions& options, FormFactorRows& rows) {
+  if (emitters.empty()) return;
+  const Eigen::MatrixXd exact = compute_emitter_form_factors(scene, caster, rows.row_patches, emitters, options);
+  std::vector<int> emitter_slot(scene.patches.size(), -1);
+  for (std::size_t e = 0; e < emitters.size(); ++e) emitter_slot[emitters[e]] = static_cast<int>(e);
+
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<std::size_t>(rows.F.nonZeros()) + static_cast<std::size_t>(exact.count()));
+  for (Eigen::Index r = 0; r < rows.F.rows(); ++r) {
+    for (SparseRows::InnerIterator it(rows.F, r); it; ++it)
+      if (emitter_slot[it.col()] < 0) entries.emplace_back(static_cast<int>(r), static_cast<int>(it.col()), it.value());
+    for (std::size_t e = 0; e < emitters.size(); ++e)
+      if (exact(r, static_cast<Eigen::Index>(e)) > 0.0)
+        entries.emplace_back(static_cast<int>(r), emitters[e], exact(r, static_cast<Eigen::Index>(e)));
+  }
+  SparseRows F(rows.F.rows(), rows.F.cols());
+  F.setFromTriplets(entries.begin(), entries.end());
+  rows.F = std::move(F);
+}
+
+}  // namespace ilp

@@ -1,0 +1,46 @@
+// The whole exact reference pipeline for one scene: BVH, every form-factor row by
+// ray casting, luminaire columns from the closed-form direct term, then the
+// Gauss-Seidel radiosity solve. Timings and ray counts come back in the summary.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+
+#include "core/direct_light.h"
+#include "core/form_factors.h"
+#include "core/progress.h"
+#include "core/radiosity.h"
+#include "core/scene.h"
+
+namespace ilp {
+
+struct ExactSolveOptions {
+  FormFactorOptions form_factors;
+  DirectLightOptions direct_light;
+  RadiosityOptions radiosity;
+};
+
+struct ExactSolveSummary {
+  std::size_t patches = 0;
+  double bvh_seconds = 0.0;
+  double form_factor_seconds = 0.0;
+  double direct_light_seconds = 0.0;
+  double solve_seconds = 0.0;
+  std::uint64_t rays_cast = 0;           // form-factor rays (not counting shadow rays)
+  double rays_per_second = 0.0;          // form-factor rays / form_factor_seconds
+  double mean_escaped_fraction = 0.0;    // area-weighted: light leaving the scene
+  double mean_back_hit_fraction = 0.0;   // area-weighted: light absorbed by back faces
+  int iterations = 0;
+  double relative_residual = 0.0;
+};
+
+struct ExactSolution {
+  RadiositySolution radiosity;
+  ExactSolveSummary summary;
+};
+
+ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, const ProgressCallback& progress = {});
+
+std::ostream& operator<<(std::ostream& os, const ExactSolveSummary& summary);
+
+}  // namespace ilp

@@ -1,0 +1,118 @@
+#include "core/form_factors.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <numeric>
+#include <stdexcept>
+
+#include "core/sampling.h"
+
+namespace ilp {
+namespace {
+
+struct RowResult {
+  std::vector<std::pair<int, int>> hits;  // (patch, count), sorted by patch
+  int escaped = 0;
+  int back_hits = 0;
+};
+
+RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch, const FormFactorOptions& options,
+                    std::vector<int>& scratch) {
+  const Patch& p = scene.patches[patch];
+  Eigen::Vector3d t, s;
+  orthonormal_basis(p.normal, t, s);
+  const RotatedHalton4 sequence(options.seed, static_cast<std::uint64_t>(patch));
+  const Eigen::Vector3d offset = p.normal * caster.ray_offset_m();
+  RowResult row;
+  scratch.clear();
+  for (int r = 0; r < options.rays_per_patch; ++r) {
+    const auto u = sequence.point(static_cast<std::uint32_t>(r));
+    const Eigen::Vector3d origin = sample_triangle(p.vertices_m[0], p.vertices_m[1], p.vertices_m[2], u[0], u[1]);
+    const Eigen::Vector3d direction = sample_cosine_hemisphere(p.normal, t, s, u[2], u[3]);
+    const RayHit hit = caster.first_hit(origin + offset, direction);
+    if (hit.patch < 0) ++row.escaped;
+    else if (!hit.front) ++row.back_hits;
+    else scratch.push_back(hit.patch);
+  }
+  std::sort(scratch.begin(), scratch.end());
+  for (std::size_t k = 0; k < scratch.size();) {
+    std::size_t e = k;
+    while (e < scratch.size() && scratch[e] == scratch[k]) ++e;
+    row.hits.emplace_back(scratch[k], static_cast<int>(e - k));
+    k = e;
+  }
+  return row;
+}
+
+}  // namespace
+
+bool FormFactorOptions::is_valid(std::string* error) const {
+  if (rays_per_patch < 1) {
+    if (error) *error = "rays_per_patch = " + std::to_string(rays_per_patch) + ": must be >= 1";
+    return false;
+  }
+  if (threads < 0) {
+    if (error) *error = "threads = " + std::to_string(threads) + ": must be >= 0 (0 = all cores)";
+    return false;
+  }
+  return true;
+}
+
+FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster,
+                                        std::span<const int> patches, const FormFactorOptions& options,
+                                        const ProgressCallback& progress) {
+  std::string error;
+  if (!options.is_valid(&error)) throw std::invalid_argument("FormFactorOptions::" + error);
+  const auto start = std::chrono::steady_clock::now();
+  FormFactorRows out;
+  if (patches.empty()) {
+    out.row_patches.resize(scene.patches.size());
+    std::iota(out.row_patches.begin(), out.row_patches.end(), 0);
+  } else {
+    out.row_patches.assign(patches.begin(), patches.end());
+  }
+  const std::size_t rows = out.row_patches.size();
+  std::vector<RowResult> results(rows);
+  std::atomic<std::size_t> done{0};
+  constexpr std::size_t kChunk = 64;
+
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, kChunk), [&](const tbb::blocked_range<std::size_t>& range) {
+      RayCaster::prepare_thread();
+      std::vector<int> scratch;
+      scratch.reserve(options.rays_per_patch);
+      for (std::size_t r = range.begin(); r != range.end(); ++r)
+        results[r] = trace_row(scene, caster, out.row_patches[r], options, scratch);
+      const std::size_t now = done.fetch_add(range.size()) + range.size();
+      if (progress) progress("form factors", now, rows);
+    });
+  });
+
+  // Assemble in row order, so the result is the same whatever ran where.
+  const double inv_rays = 1.0 / options.rays_per_patch;
+  std::size_t nnz = 0;
+  for (const RowResult& r : results) nnz += r.hits.size();
+  out.F.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(scene.patches.size()));
+  out.F.reserve(static_cast<Eigen::Index>(nnz));
+  out.escaped_fraction.resize(static_cast<Eigen::Index>(rows));
+  out.back_hit_fraction.resize(static_cast<Eigen::Index>(rows));
+  for (std::size_t r = 0; r < rows; ++r) {
+    out.F.startVec(static_cast<Eigen::Index>(r));
+    for (const auto& [patch, count] : results[r].hits)
+      out.F.insertBack(static_cast<Eigen::Index>(r), patch) = count * inv_rays;
+    out.escaped_fraction[static_cast<Eigen::Index>(r)] = results[r].escaped * inv_rays;
+    out.back_hit_fraction[static_cast<Eigen::Index>(r)] = results[r].back_hits * inv_rays;
+  }
+  out.F.finalize();
+  out.rays_cast = static_cast<std::uint64_t>(rows) * options.rays_per_patch;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace ilp

@@ -1,0 +1,103 @@
+#include "core/job.h"
+
+#include <map>
+#include <sstream>
+
+namespace ilp {
+namespace {
+
+std::string fmt_rgb(const Eigen::Vector3d& v) {
+  std::ostringstream os;
+  if (v[0] == v[1] && v[0] == v[2]) os << v[0];
+  else os << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
+  return os.str();
+}
+
+}  // namespace
+
+JobScene load_job_scene(const JobConfig& job) {
+  JobScene out;
+  TriangleMesh mesh;
+  try {
+    mesh = load_mesh(job.mesh_path, job.mesh_read);
+  } catch (const SceneError& e) {
+    throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
+  }
+
+  std::map<std::string, int> surface_of;
+  for (std::size_t s = 0; s < mesh.surface_names.size(); ++s) surface_of[mesh.surface_names[s]] = static_cast<int>(s);
+  auto require_surface = [&](const std::string& name, const FileLoc& loc, const std::string& key) {
+    auto it = surface_of.find(name);
+    if (it == surface_of.end()) {
+      std::string known;
+      int shown = 0;
+      for (const auto& [n, _] : surface_of) {
+        if (shown++ == 12) { known += ", ..."; break; }
+        known += (known.empty() ? "" : ", ") + n;
+      }
+      throw ConfigError(located(loc, key + ": unknown surface '" + name + "' in " + job.mesh_path +
+                                         " (surfaces: " + known + ")"));
+    }
+    return it->second;
+  };
+
+  // Reflectance per surface from the config, then per triangle.
+  std::vector<std::optional<Eigen::Vector3d>> surface_rho(mesh.surface_names.size());
+  for (const ReflectanceSetting& r : job.reflectance)
+    surface_rho[require_surface(r.surface, r.loc, "scene.reflectance")] = r.rgb;
+  TriangleReflectance rho(mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const int s = mesh.triangle_surface[t];
+    const int m = mesh.triangle_material[t];
+    if (surface_rho[s]) {
+      rho[t] = *surface_rho[s];
+    } else if (m >= 0 && mesh.materials[m].kd) {
+      const Eigen::Vector3d kd = *mesh.materials[m].kd;
+      if ((kd.array() < 0.0).any() || (kd.array() >= 1.0).any())
+        throw SceneError(located(mesh.materials[m].kd_loc, "Kd of material '" + mesh.materials[m].name + "' = " +
+                                                               fmt_rgb(kd) + " is outside [0, 1) (surface '" +
+                                                               mesh.surface_names[s] +
+                                                               "'): set its reflectance in scene.reflectance of " +
+                                                               job.path));
+      rho[t] = kd;
+    } else if (job.default_reflectance) {
+      rho[t] = *job.default_reflectance;
+    } else {
+      throw ConfigError(located(job.mesh_loc, "surface '" + mesh.surface_names[s] +
+                                                  "' has no reflectance: give it in scene.reflectance "
+                                                  "(or scene.default_reflectance), or a Kd in the MTL"));
+    }
+  }
+
+  out.scene = make_scene(mesh, rho, job.scene);
+  Scene& scene = out.scene;
+  {
+    std::ostringstream os;
+    os << "mesh " << job.mesh_path << ": " << scene.stats << " (" << mesh.polygons_split
+       << " polygons fan-triangulated), " << mesh.surface_names.size() << " surfaces";
+    out.log.push_back(os.str());
+  }
+
+  for (const EmitterSetting& e : job.emitting_surfaces)
+    set_surface_exitance(scene, require_surface(e.surface, e.loc, "scene.emitting_surfaces"), e.exitance_lm_per_m2);
+  for (const LuminaireSetting& l : job.luminaires) {
+    if (scene.find_surface(l.name) >= 0)
+      throw ConfigError(located(l.loc, "luminaires.placed: name '" + l.name + "' is already a surface of the mesh"));
+    add_square_luminaire(scene, l.name, l.position_m, job.luminaire_size_m, l.flux_lm);
+  }
+  for (std::size_t k = 0; k < job.report_surfaces.size(); ++k)
+    if (scene.find_surface(job.report_surfaces[k]) < 0)
+      throw ConfigError(located(job.report_surface_locs[k], "report.surfaces: unknown surface '" +
+                                                               job.report_surfaces[k] + "'"));
+
+  std::ostringstream os;
+  os.precision(3);
+  os << std::fixed << "scene: " << scene.patches.size() << " patches, " << scene.total_area_m2() << " m2, bounds ["
+     << scene.bounds_m.min().transpose() << "] .. [" << scene.bounds_m.max().transpose() << "] m, "
+     << (scene.channels == 1 ? "gray (1 channel)" : "coloured (3 channels)") << ", " << job.luminaires.size()
+     << " luminaires";
+  out.log.push_back(os.str());
+  return out;
+}
+
+}  // namespace ilp

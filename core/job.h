@@ -1,0 +1,22 @@
+// From a job configuration to a ready scene: loads the mesh, resolves every
+// triangle's reflectance (config by surface name, else the MTL Kd, else the
+// config's default), builds patches, sets emitting surfaces and adds luminaires.
+// Names in the config that the mesh lacks are ConfigErrors pointing at the config.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/config.h"
+#include "core/scene.h"
+
+namespace ilp {
+
+struct JobScene {
+  Scene scene;
+  std::vector<std::string> log;  // what was done to the input, for the run log
+};
+
+JobScene load_job_scene(const JobConfig& job);
+
+}  // namespace ilp

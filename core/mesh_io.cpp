@@ -1,0 +1,213 @@
+// OBJ/MTL are parsed here because OpenMesh's OBJ reader drops the group, object and
+// material tags that name our surfaces; PLY and OFF go through OpenMesh.
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/mesh.h"
+
+namespace ilp {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string_view> split_ws(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    if (j > i) out.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+std::string rest_of_line(std::string_view line, std::string_view keyword) {
+  std::string_view s = line.substr(line.find(keyword) + keyword.size());
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return std::string(s);
+}
+
+double parse_finite(std::string_view token, const FileLoc& loc, const char* what) {
+  double value = 0.0;
+  const char* first = token.data();
+  if (!token.empty() && token.front() == '+') ++first;
+  auto [end, ec] = std::from_chars(first, token.data() + token.size(), value);
+  if (ec != std::errc() || end != token.data() + token.size())
+    throw SceneError(located(loc, std::string(what) + " '" + std::string(token) + "' is not a number"));
+  if (!std::isfinite(value))
+    throw SceneError(located(loc, std::string(what) + " '" + std::string(token) + "' is not a finite number"));
+  return value;
+}
+
+std::vector<MeshMaterial> load_mtl(const fs::path& path, const FileLoc& referenced_from) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(located(referenced_from, "mtllib: cannot open material file '" + path.string() + "'"));
+  std::vector<MeshMaterial> materials;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    auto tokens = split_ws(line);
+    if (tokens.empty() || tokens[0].front() == '#') continue;
+    const FileLoc loc{path.string(), line_no};
+    if (tokens[0] == "newmtl") {
+      if (tokens.size() < 2) throw SceneError(located(loc, "newmtl without a name"));
+      materials.push_back({rest_of_line(line, "newmtl"), std::nullopt, {}});
+    } else if (tokens[0] == "Kd") {
+      if (materials.empty()) throw SceneError(located(loc, "Kd before any newmtl"));
+      if (tokens.size() < 2) throw SceneError(located(loc, "Kd needs 1 or 3 values"));
+      if (tokens[1] == "spectral" || tokens[1] == "xyz") continue;  // not supported: config must give it
+      Eigen::Vector3d kd;
+      kd.setConstant(parse_finite(tokens[1], loc, "Kd value"));
+      if (tokens.size() >= 4)
+        for (int c = 1; c < 3; ++c) kd[c] = parse_finite(tokens[1 + c], loc, "Kd value");
+      materials.back().kd = kd;
+      materials.back().kd_loc = loc;
+    }
+  }
+  return materials;
+}
+
+// Resolves an OBJ vertex reference ("7", "7/2", "-1//3") to a 0-based index.
+int parse_vertex_ref(std::string_view token, std::size_t vertex_count, const FileLoc& loc) {
+  std::string_view head = token.substr(0, token.find('/'));
+  long index = 0;
+  auto [end, ec] = std::from_chars(head.data(), head.data() + head.size(), index);
+  if (ec != std::errc() || end != head.data() + head.size() || index == 0)
+    throw SceneError(located(loc, "face vertex '" + std::string(token) + "' is not a valid index"));
+  long resolved = index > 0 ? index - 1 : static_cast<long>(vertex_count) + index;
+  if (resolved < 0 || resolved >= static_cast<long>(vertex_count))
+    throw SceneError(located(loc, "face vertex '" + std::string(token) + "' refers to vertex " +
+                                      std::to_string(index) + " but only " + std::to_string(vertex_count) +
+                                      " are defined above this line"));
+  return static_cast<int>(resolved);
+}
+
+TriangleMesh load_obj(const fs::path& path, const MeshReadOptions& options) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(path.string() + ": cannot open mesh file");
+  TriangleMesh mesh;
+  mesh.path = path.string();
+  std::map<std::string, int> surface_index, material_index;
+  std::string group, object, material;
+  int current_material = -1;
+  std::string line;
+  int line_no = 0;
+
+  auto surface_for_face = [&]() {
+    const std::string* tags[3] = {&group, &object, &material};
+    int first = static_cast<int>(options.surface_naming);
+    std::string name = "default";
+    for (int k = first; k < 3; ++k)
+      if (!tags[k]->empty()) { name = *tags[k]; break; }
+    auto [it, inserted] = surface_index.emplace(name, static_cast<int>(mesh.surface_names.size()));
+    if (inserted) mesh.surface_names.push_back(name);
+    return it->second;
+  };
+
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    auto tokens = split_ws(line);
+    if (tokens.empty() || tokens[0].front() == '#') continue;
+    const FileLoc loc{mesh.path, line_no};
+    const std::string_view key = tokens[0];
+    if (key == "v") {
+      if (tokens.size() < 4) throw SceneError(located(loc, "vertex needs 3 coordinates"));
+      mesh.positions.emplace_back(parse_finite(tokens[1], loc, "vertex coordinate"),
+                                  parse_finite(tokens[2], loc, "vertex coordinate"),
+                                  parse_finite(tokens[3], loc, "vertex coordinate"));
+    } else if (key == "f") {
+      if (tokens.size() < 4) throw SceneError(located(loc, "face needs at least 3 vertices"));
+      std::vector<int> ids;
+      for (std::size_t k = 1; k < tokens.size(); ++k)
+        ids.push_back(parse_vertex_ref(tokens[k], mesh.positions.size(), loc));
+      const int surface = surface_for_face();
+      ++mesh.faces_read;
+      if (ids.size() > 3) ++mesh.polygons_split;
+      for (std::size_t k = 1; k + 1 < ids.size(); ++k) {  // fan triangulation
+        mesh.triangles.emplace_back(ids[0], ids[k], ids[k + 1]);
+        mesh.triangle_surface.push_back(surface);
+        mesh.triangle_material.push_back(current_material);
+      }
+    } else if (key == "g") {
+      group = rest_of_line(line, "g");
+    } else if (key == "o") {
+      object = rest_of_line(line, "o");
+    } else if (key == "usemtl") {
+      material = rest_of_line(line, "usemtl");
+      auto [it, inserted] = material_index.emplace(material, static_cast<int>(mesh.materials.size()));
+      if (inserted) mesh.materials.push_back({material, std::nullopt, {}});
+      current_material = it->second;
+    } else if (key == "mtllib") {
+      for (std::size_t k = 1; k < tokens.size(); ++k) {
+        for (MeshMaterial& m : load_mtl(path.parent_path() / std::string(tokens[k]), loc)) {
+          auto [it, inserted] = material_index.emplace(m.name, static_cast<int>(mesh.materials.size()));
+          if (inserted) mesh.materials.push_back(m);
+          else if (!mesh.materials[it->second].kd) mesh.materials[it->second] = m;
+        }
+      }
+    }
+    // vn, vt, s, l, p and other statements carry nothing radiosity uses.
+  }
+  return mesh;
+}
+
+TriangleMesh load_with_openmesh(const fs::path& path) {
+  if (!fs::exists(path)) throw SceneError(path.string() + ": cannot open mesh file");
+  omerr().disable();  // OpenMesh prints to the console otherwise; we report ourselves
+  omlog().disable();
+  OpenMesh::PolyMesh_ArrayKernelT<> poly;
+  if (!OpenMesh::IO::read_mesh(poly, path.string()))
+    throw SceneError(path.string() + ": OpenMesh could not read the mesh");
+  TriangleMesh mesh;
+  mesh.path = path.string();
+  mesh.surface_names.push_back(path.stem().string());
+  for (auto vh : poly.vertices()) {
+    const auto& p = poly.point(vh);
+    Eigen::Vector3d v(p[0], p[1], p[2]);
+    if (!v.allFinite())
+      throw SceneError(path.string() + ": vertex " + std::to_string(vh.idx()) + " has a non-finite coordinate");
+    mesh.positions.push_back(v);
+  }
+  for (auto fh : poly.faces()) {
+    std::vector<int> ids;
+    for (auto vh : poly.fv_range(fh)) ids.push_back(vh.idx());
+    ++mesh.faces_read;
+    if (ids.size() > 3) ++mesh.polygons_split;
+    for (std::size_t k = 1; k + 1 < ids.size(); ++k) {
+      mesh.triangles.emplace_back(ids[0], ids[k], ids[k + 1]);
+      mesh.triangle_surface.push_back(0);
+      mesh.triangle_material.push_back(-1);
+    }
+  }
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::string& path_string, const MeshReadOptions& options) {
+  const fs::path path(path_string);
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  TriangleMesh mesh;
+  if (ext == ".obj") mesh = load_obj(path, options);
+  else if (ext == ".ply" || ext == ".off") mesh = load_with_openmesh(path);
+  else throw SceneError(path_string + ": unsupported mesh format '" + ext + "' (use .obj, .ply or .off)");
+  if (mesh.triangles.empty()) throw SceneError(path_string + ": the mesh has no faces");
+  return mesh;
+}
+
+}  // namespace ilp

@@ -1,0 +1,154 @@
+#include "core/scene.h"
+
+#include <cmath>
+#include <ostream>
+
+namespace ilp {
+namespace {
+
+// A triangle whose doubled area is below this fraction of the squared scene
+// diagonal cannot be told from a line in float ray casting.
+constexpr double kDegenerateRelArea = 1e-14;
+
+Eigen::Vector3d to_z_up_metres(const Eigen::Vector3d& p, const SceneOptions& options) {
+  Eigen::Vector3d q = p * options.scale_to_m;
+  if (options.up_axis == UpAxis::y) return {q.x(), -q.z(), q.y()};  // rotate +90 deg about x
+  return q;
+}
+
+Patch make_patch(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                 int surface, const Eigen::Vector3d& reflectance) {
+  Patch p;
+  p.vertices_m = {a, b, c};
+  const Eigen::Vector3d cross = (b - a).cross(c - a);
+  p.area_m2 = 0.5 * cross.norm();
+  p.normal = cross.normalized();
+  p.centroid_m = (a + b + c) / 3.0;
+  p.surface = surface;
+  p.reflectance = reflectance;
+  return p;
+}
+
+}  // namespace
+
+int Scene::find_surface(const std::string& name) const {
+  for (std::size_t s = 0; s < surfaces.size(); ++s)
+    if (surfaces[s].name == name) return static_cast<int>(s);
+  return -1;
+}
+
+double Scene::surface_area_m2(int surface) const {
+  double area = 0.0;
+  for (const Patch& p : patches)
+    if (p.surface == surface) area += p.area_m2;
+  return area;
+}
+
+double Scene::total_area_m2() const {
+  double area = 0.0;
+  for (const Patch& p : patches) area += p.area_m2;
+  return area;
+}
+
+Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectance,
+                 const SceneOptions& options) {
+  Scene scene;
+  for (const std::string& name : mesh.surface_names) scene.surfaces.push_back({name});
+  scene.stats.faces_read = mesh.faces_read;
+  scene.stats.triangles_read = mesh.triangles.size();
+
+  std::vector<Eigen::Vector3d> positions;
+  positions.reserve(mesh.positions.size());
+  Eigen::AlignedBox3d bounds;
+  for (const Eigen::Vector3d& p : mesh.positions) positions.push_back(to_z_up_metres(p, options));
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) bounds.extend(positions[t[k]]);
+  const double diagonal2 = bounds.isEmpty() ? 0.0 : bounds.diagonal().squaredNorm();
+
+  // Keep the non-degenerate triangles and count the patches they will make.
+  std::vector<std::size_t> kept;
+  std::vector<int> divisions;
+  std::size_t patch_count = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    const Eigen::Vector3d &a = positions[tri[0]], &b = positions[tri[1]], &c = positions[tri[2]];
+    const double doubled_area = (b - a).cross(c - a).norm();
+    if (!(doubled_area > kDegenerateRelArea * diagonal2)) {
+      ++scene.stats.degenerate_dropped;
+      continue;
+    }
+    int m = 1;
+    if (options.max_patch_edge_m > 0.0) {
+      const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+      m = std::max(1, static_cast<int>(std::ceil(longest / options.max_patch_edge_m - 1e-9)));
+    }
+    patch_count += static_cast<std::size_t>(m) * m;
+    if (patch_count > options.max_patches)
+      throw SceneError(mesh.path + ": meshing with max_patch_edge_m = " + std::to_string(options.max_patch_edge_m) +
+                       " would make more than " + std::to_string(options.max_patches) + " patches");
+    kept.push_back(t);
+    divisions.push_back(m);
+  }
+  if (kept.empty())
+    throw SceneError(mesh.path + ": no usable faces (" + std::to_string(scene.stats.degenerate_dropped) +
+                     " degenerate faces dropped)");
+
+  // Uniform subdivision: every edge of triangle t is cut into m equal pieces, so each
+  // sub-triangle's edges are parallel to the parent's and 1/m as long; areas are equal.
+  scene.patches.reserve(patch_count);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const std::size_t t = kept[k];
+    const auto& tri = mesh.triangles[t];
+    const Eigen::Vector3d &a = positions[tri[0]], &b = positions[tri[1]], &c = positions[tri[2]];
+    const int m = divisions[k];
+    const int surface = mesh.triangle_surface[t];
+    const Eigen::Vector3d& rho = reflectance[t];
+    auto grid = [&](int i, int j) -> Eigen::Vector3d {
+      return a + (b - a) * (static_cast<double>(i) / m) + (c - a) * (static_cast<double>(j) / m);
+    };
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i + j < m; ++i) {
+        scene.patches.push_back(make_patch(grid(i, j), grid(i + 1, j), grid(i, j + 1), surface, rho));
+        if (i + j + 2 <= m)
+          scene.patches.push_back(make_patch(grid(i + 1, j), grid(i + 1, j + 1), grid(i, j + 1), surface, rho));
+      }
+  }
+
+  scene.channels = 1;
+  for (const Patch& p : scene.patches)
+    if (p.reflectance[0] != p.reflectance[1] || p.reflectance[0] != p.reflectance[2]) scene.channels = 3;
+  scene.bounds_m = bounds;
+  scene.stats.patches = scene.patches.size();
+  return scene;
+}
+
+int add_square_luminaire(Scene& scene, const std::string& name, const Eigen::Vector3d& position_m,
+                         double size_m, double flux_lm) {
+  const int surface = static_cast<int>(scene.surfaces.size());
+  scene.surfaces.push_back({name, flux_lm / (size_m * size_m), true});
+  const double h = 0.5 * size_m;
+  const Eigen::Vector3d v00 = position_m + Eigen::Vector3d(-h, -h, 0), v01 = position_m + Eigen::Vector3d(-h, h, 0),
+                        v11 = position_m + Eigen::Vector3d(h, h, 0), v10 = position_m + Eigen::Vector3d(h, -h, 0);
+  // Clockwise seen from above, so the front (emitting) side faces down.
+  for (Patch p : {make_patch(v00, v01, v11, surface, Eigen::Vector3d::Zero()),
+                  make_patch(v00, v11, v10, surface, Eigen::Vector3d::Zero())}) {
+    p.exitance_lm_per_m2 = scene.surfaces[surface].exitance_lm_per_m2;
+    scene.patches.push_back(p);
+    scene.bounds_m.extend(p.vertices_m[0]).extend(p.vertices_m[1]).extend(p.vertices_m[2]);
+  }
+  scene.stats.patches = scene.patches.size();
+  return surface;
+}
+
+void set_surface_exitance(Scene& scene, int surface, double exitance_lm_per_m2) {
+  scene.surfaces[surface].exitance_lm_per_m2 = exitance_lm_per_m2;
+  for (Patch& p : scene.patches)
+    if (p.surface == surface) p.exitance_lm_per_m2 = exitance_lm_per_m2;
+}
+
+std::ostream& operator<<(std::ostream& os, const SceneStats& s) {
+  return os << s.faces_read << " faces read, " << s.triangles_read << " triangles, " << s.degenerate_dropped
+            << " degenerate dropped, " << s.patches << " patches";
+}
+
+}  // namespace ilp

@@ -1,0 +1,91 @@
+// The radiosity scene: planar triangular patches in metres (z up), each with a
+// surface, a reflectance per colour channel and an emitted exitance. Built from a
+// TriangleMesh by transforming to metres, dropping degenerate faces and subdividing
+// until no patch edge exceeds a length. Luminaires are added as emitting patches.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace ilp {
+
+enum class UpAxis { y, z };
+
+// Linear-sRGB luminance weights: the photometric (lux) value of an RGB quantity
+// whose channels each carry the emitted white light.
+inline const Eigen::Vector3d kLuminanceWeights(0.2126, 0.7152, 0.0722);
+
+struct Surface {
+  std::string name;
+  double exitance_lm_per_m2 = 0.0;  // emitted, Lambertian, from the front side
+  bool is_luminaire = false;        // a square luminaire added from the job, not from the mesh
+};
+
+struct Patch {
+  std::array<Eigen::Vector3d, 3> vertices_m;  // counter-clockwise seen from the front
+  Eigen::Vector3d centroid_m;
+  Eigen::Vector3d normal;           // unit, front side
+  double area_m2 = 0.0;
+  int surface = -1;                 // index into Scene::surfaces
+  Eigen::Vector3d reflectance;      // per channel, each in [0, 1); equal channels = gray
+  double exitance_lm_per_m2 = 0.0;  // emitted from the front side
+};
+
+struct SceneStats {
+  std::size_t faces_read = 0;            // polygons in the mesh file
+  std::size_t triangles_read = 0;        // after fan triangulation
+  std::size_t degenerate_dropped = 0;    // zero-area or collinear triangles
+  std::size_t patches = 0;               // after subdivision (luminaires included)
+};
+
+struct Scene {
+  std::vector<Surface> surfaces;
+  std::vector<Patch> patches;
+  int channels = 1;                 // 1 when every reflectance is gray, else 3
+  Eigen::AlignedBox3d bounds_m;
+  SceneStats stats;
+
+  // Index of the surface with this name, or -1.
+  int find_surface(const std::string& name) const;
+  double surface_area_m2(int surface) const;
+  double total_area_m2() const;
+  // Reflectance of a patch in one channel (channel 0 for gray scenes).
+  double reflectance(int patch, int channel) const { return patches[patch].reflectance[channel]; }
+};
+
+struct SceneOptions {
+  UpAxis up_axis = UpAxis::z;
+  double scale_to_m = 1.0;        // metres per file unit, > 0
+  double max_patch_edge_m = 0.0;  // 0: no subdivision
+  std::size_t max_patches = 5'000'000;  // refuse meshing that would exceed this
+};
+
+// Reflectance of each mesh triangle, already resolved from config and MTL.
+using TriangleReflectance = std::vector<Eigen::Vector3d>;
+
+// Transforms to metres with z up, drops degenerate triangles (counted in stats),
+// subdivides each triangle uniformly so that every patch edge is at most
+// max_patch_edge_m, and sets channels (3 if any reflectance is coloured).
+// Throws SceneError when no face survives or meshing would exceed max_patches.
+Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectance,
+                 const SceneOptions& options);
+
+// Adds a square Lambertian luminaire of side size_m centred at position_m, facing
+// down (-z), emitting flux_lm from its lower face: one surface, two patches,
+// reflectance 0. Returns the surface index.
+int add_square_luminaire(Scene& scene, const std::string& name, const Eigen::Vector3d& position_m,
+                         double size_m, double flux_lm);
+
+// Sets the exitance of every patch of a surface.
+void set_surface_exitance(Scene& scene, int surface, double exitance_lm_per_m2);
+
+std::ostream& operator<<(std::ostream& os, const SceneStats& stats);
+
+}  // namespace ilp
