@@ -13,7 +13,7 @@
 namespace ilp {
 namespace {
 
-// Keeps the part of polygon `in` where (v - point) . normal > 0 (Sutherland-Hodgman).
+// Keeps the part of polygon `in` where (v - point) . normal >= 0 (Sutherland-Hodgman).
 std::vector<Eigen::Vector3d> clip_to_hemisphere(const std::vector<Eigen::Vector3d>& in,
                                                 const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
   std::vector<Eigen::Vector3d> out;
@@ -22,8 +22,9 @@ std::vector<Eigen::Vector3d> clip_to_hemisphere(const std::vector<Eigen::Vector3
     const Eigen::Vector3d& a = in[k];
     const Eigen::Vector3d& b = in[(k + 1) % n];
     const double da = (a - point).dot(normal), db = (b - point).dot(normal);
-    if (da > 0.0) out.push_back(a);
-    if ((da > 0.0) != (db > 0.0)) out.push_back(a + (b - a) * (da / (da - db)));
+    const bool a_inside = da >= 0.0, b_inside = db >= 0.0;
+    if (a_inside) out.push_back(a);
+    if (a_inside != b_inside) out.push_back(a + (b - a) * (da / (da - db)));
   }
   return out;
 }

@@ -29,12 +29,13 @@ struct Surface {
 };
 
 struct Patch {
-  std::array<Eigen::Vector3d, 3> vertices_m;  // counter-clockwise seen from the front
-  Eigen::Vector3d centroid_m;
-  Eigen::Vector3d normal;           // unit, front side
+  std::array<Eigen::Vector3d, 3> vertices_m{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                            Eigen::Vector3d::Zero()};  // counter-clockwise seen from the front
+  Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit, front side
   double area_m2 = 0.0;
-  int surface = -1;                 // index into Scene::surfaces
-  Eigen::Vector3d reflectance;      // per channel, each in [0, 1); equal channels = gray
+  int surface = -1;                                   // index into Scene::surfaces
+  Eigen::Vector3d reflectance = Eigen::Vector3d::Zero();  // per channel, each in [0, 1); equal channels = gray
   double exitance_lm_per_m2 = 0.0;  // emitted from the front side
 };
 

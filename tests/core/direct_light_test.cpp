@@ -1,0 +1,100 @@
+// The closed-form direct term against Howell's point-to-rectangle factor, and its
+// shadow rays against blockers of known size.
+#include "core/direct_light.h"
+
+#include <gtest/gtest.h>
+
+#include "core/ray_caster.h"
+#include "tests/core/test_scenes.h"
+
+namespace ilp {
+namespace {
+
+using V = Eigen::Vector3d;
+
+// An a x b emitting rectangle facing down at height c, corner above the origin.
+Scene rectangle_above_origin(double a, double b, double c) {
+  return test::make_quad_scene({{"emitter", V(0, 0, c), V(0, b, c), V(a, b, c), V(a, 0, c)}}, 0.0);
+}
+
+TEST(DirectLight, PointToTriangleFormFactorsSumToTheRectangleClosedForm) {
+  for (double c : {0.25, 1.0, 3.0}) {
+    const Scene scene = rectangle_above_origin(1.0, 0.5, c);
+    double sum = 0.0;
+    for (const Patch& p : scene.patches) sum += point_to_triangle_form_factor(V::Zero(), V::UnitZ(), p);
+    EXPECT_NEAR(sum, test::point_to_corner_rectangle_form_factor(1.0, 0.5, c), 1e-12) << "height " << c;
+  }
+}
+
+TEST(DirectLight, ClipsToTheReceiversHemisphereAndIgnoresTheEmittersBack) {
+  const Scene scene = rectangle_above_origin(1.0, 1.0, 1.0);
+  double facing_away = 0.0, below_emitter_back = 0.0, tilted = 0.0, tilted_expected = 0.0;
+  for (const Patch& p : scene.patches) {
+    facing_away += point_to_triangle_form_factor(V::Zero(), -V::UnitZ(), p);
+    below_emitter_back += point_to_triangle_form_factor(V(0.5, 0.5, 2.0), V::UnitZ(), p);  // above: sees its back
+    // A vertical receiver at x = 0.5 facing +x sees exactly the half x > 0.5: by
+    // symmetry of the rectangle [0.5, 1] x [0, 1] whose edge is straight above it.
+    tilted += point_to_triangle_form_factor(V(0.5, 0.0, 0.0), V::UnitX(), p);
+  }
+  // Clipping the whole rectangle to the vertical receiver's hemisphere must give the
+  // factor of the half x >= 0.5 computed without clipping.
+  const Scene half = test::make_quad_scene({{"half", V(0.5, 0, 1), V(0.5, 1, 1), V(1, 1, 1), V(1, 0, 1)}}, 0.0);
+  for (const Patch& p : half.patches) tilted_expected += point_to_triangle_form_factor(V(0.5, 0.0, 0.0), V::UnitX(), p);
+  EXPECT_EQ(facing_away, 0.0);
+  EXPECT_EQ(below_emitter_back, 0.0);
+  EXPECT_GT(tilted, 0.0);
+  EXPECT_NEAR(tilted, tilted_expected, 1e-12);
+}
+
+TEST(DirectLight, PatchToSquareMatchesParallelPlatesClosedForm) {
+  // Receiver: unit square at z = 0 facing up; emitter: unit square at z = 1 facing down.
+  const Scene scene = test::make_quad_scene({{"receiver", V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)},
+                                             {"emitter", V(0, 0, 1), V(0, 1, 1), V(1, 1, 1), V(1, 0, 1)}},
+                                            0.0);
+  const RayCaster caster(scene);
+  DirectLightOptions options;
+  options.receiver_points = 256;
+  const auto receivers = test::patches_of(scene, "receiver");
+  const auto emitters = test::patches_of(scene, "emitter");
+  const Eigen::MatrixXd F = compute_emitter_form_factors(scene, caster, receivers, emitters, options);
+  double weighted = 0.0, area = 0.0;
+  for (std::size_t r = 0; r < receivers.size(); ++r) {
+    weighted += scene.patches[receivers[r]].area_m2 * F.row(static_cast<Eigen::Index>(r)).sum();
+    area += scene.patches[receivers[r]].area_m2;
+  }
+  // Only the quadrature over receiver points is approximate: no rays are blocked.
+  EXPECT_NEAR(weighted / area, 0.199825, 2e-3);
+}
+
+TEST(DirectLight, ShadowRaysSeeBlockersOfKnownSize) {
+  // A small receiver under a unit emitter; a blocker between them covering all of
+  // the emitter as seen from the receiver, then one covering exactly half of it.
+  auto scene_with_blocker = [](double blocker_x1) {
+    return test::make_quad_scene(
+        {{"receiver", V(0.49, 0.49, 0), V(0.51, 0.49, 0), V(0.51, 0.51, 0), V(0.49, 0.51, 0)},
+         {"emitter", V(0, 0, 1), V(0, 1, 1), V(1, 1, 1), V(1, 0, 1)},
+         {"blocker", V(-1, -1, 0.5), V(blocker_x1, -1, 0.5), V(blocker_x1, 2, 0.5), V(-1, 2, 0.5)}},
+        0.0);
+  };
+  DirectLightOptions options;
+  options.receiver_points = 4;
+  options.shadow_rays = 256;
+  auto direct = [&](const Scene& scene) {
+    const RayCaster caster(scene);
+    const auto receivers = test::patches_of(scene, "receiver");
+    const auto emitters = test::patches_of(scene, "emitter");
+    return compute_emitter_form_factors(scene, caster, receivers, emitters, options).sum();
+  };
+  EXPECT_EQ(direct(scene_with_blocker(2.0)), 0.0);
+  // Blocker edge at x = 0.5 straight above the receiver: the rays to x < 0.5 are
+  // blocked, half of the emitter's points; the unoccluded factor stays the whole square's.
+  const double half = direct(scene_with_blocker(0.5));
+  const double open = direct(test::make_quad_scene(
+      {{"receiver", V(0.49, 0.49, 0), V(0.51, 0.49, 0), V(0.51, 0.51, 0), V(0.49, 0.51, 0)},
+       {"emitter", V(0, 0, 1), V(0, 1, 1), V(1, 1, 1), V(1, 0, 1)}},
+      0.0));
+  EXPECT_NEAR(half / open, 0.5, 0.05);
+}
+
+}  // namespace
+}  // namespace ilp

@@ -1,0 +1,132 @@
+// The exact reference solver against conservation laws and closed forms.
+#include "core/radiosity.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/exact_solver.h"
+#include "core/ray_caster.h"
+#include "tests/core/test_scenes.h"
+
+namespace ilp {
+namespace {
+
+using V = Eigen::Vector3d;
+
+ExactSolveOptions exact_options(int rays) {
+  ExactSolveOptions options;
+  options.form_factors.rays_per_patch = rays;
+  options.radiosity.relative_residual = 1e-10;
+  return options;
+}
+
+// Furnace: a closed box with uniform reflectance and uniform emission has
+// B = E / (1 - rho) on every patch, whatever the form factors, because every row sums to 1.
+TEST(Radiosity, FurnaceClosedCubeGivesEOverOneMinusRho) {
+  for (double rho : {0.5, 0.9, 0.99}) {
+    Scene scene = test::make_closed_box(V::Zero(), V(1, 1, 1), rho, 0.25);
+    const double E = 100.0;
+    for (std::size_t s = 0; s < scene.surfaces.size(); ++s) set_surface_exitance(scene, static_cast<int>(s), E);
+    const ExactSolution solution = solve_exact(scene, exact_options(128));
+    for (Eigen::Index i = 0; i < solution.radiosity.radiosity_lm_per_m2.rows(); ++i)
+      ASSERT_NEAR(solution.radiosity.radiosity_lm_per_m2(i, 0), E / (1 - rho), 1e-3 * E / (1 - rho))
+          << "rho " << rho << ", patch " << i;
+    EXPECT_LE(solution.radiosity.relative_residual, 1e-10);
+  }
+}
+
+// In any closed scene of uniform reflectance, all emitted flux is eventually absorbed:
+// sum A_i B_i = sum A_i E_i / (1 - rho). Emission here is far from uniform.
+TEST(Radiosity, ClosedSceneConservesEnergyWithLocalisedEmission) {
+  const double rho = 0.7;
+  Scene scene = test::make_closed_box(V::Zero(), V(4, 3, 2.5), rho, 0.5);
+  set_surface_exitance(scene, scene.find_surface("wall_x0"), 500.0);
+  const ExactSolution solution = solve_exact(scene, exact_options(1024));
+  double emitted = 0.0, leaving = 0.0;
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    emitted += scene.patches[i].area_m2 * scene.patches[i].exitance_lm_per_m2;
+    leaving += scene.patches[i].area_m2 * solution.radiosity.radiosity_lm_per_m2(static_cast<Eigen::Index>(i), 0);
+  }
+  // Reciprocity holds only to Monte Carlo noise; 1024 rays per patch keep it under 1 %.
+  EXPECT_NEAR(leaving, emitted / (1 - rho), 0.01 * emitted / (1 - rho));
+}
+
+TEST(Radiosity, AllReflectancesZeroGiveExactlyTheDirectLight) {
+  Scene scene = test::make_closed_box(V::Zero(), V(4, 3, 3), 0.0, 0.5);
+  add_square_luminaire(scene, "lamp", V(2, 1.5, 2.9), 0.6, 3000.0);
+  set_surface_exitance(scene, scene.find_surface("wall_y0"), 50.0);
+  const ExactSolution solution = solve_exact(scene, exact_options(64));
+  const RadiositySolution& r = solution.radiosity;
+  for (Eigen::Index i = 0; i < r.total_lux.size(); ++i) {
+    ASSERT_EQ(r.radiosity_lm_per_m2(i, 0), scene.patches[i].exitance_lm_per_m2) << "patch " << i;
+    ASSERT_EQ(r.total_lux[i], r.direct_lux[i]) << "patch " << i;
+  }
+  EXPECT_GT(r.direct_lux.maxCoeff(), 0.0);
+}
+
+// Under a square Lambertian luminaire of exitance M at height h, a small floor patch
+// receives E = M * F(point -> square), the closed form for a parallel rectangle.
+TEST(Radiosity, IlluminanceUnderALuminaireMatchesClosedForm) {
+  Scene scene = test::make_quad_scene({{"floor", V(-0.02, -0.02, 0), V(0.02, -0.02, 0), V(0.02, 0.02, 0),
+                                        V(-0.02, 0.02, 0)}},
+                                      0.0);
+  const double size = 0.6, flux = 3600.0, height = 2.0;
+  add_square_luminaire(scene, "lamp", V(0, 0, height), size, flux);
+  ExactSolveOptions options = exact_options(16);
+  options.direct_light.receiver_points = 64;
+  const ExactSolution solution = solve_exact(scene, options);
+  const double exitance = flux / (size * size);
+  const double expected = exitance * 4.0 * test::point_to_corner_rectangle_form_factor(size / 2, size / 2, height);
+  for (int i : test::patches_of(scene, "floor"))
+    EXPECT_NEAR(solution.radiosity.total_lux[i], expected, 2e-3 * expected) << "patch " << i;
+  // Far-field check of the units: E ~ I cos / d^2 with I = flux / pi for a Lambertian panel.
+  EXPECT_NEAR(expected, flux / std::numbers::pi / (height * height), 0.03 * expected);
+}
+
+TEST(Radiosity, ResidualReportedIsTheResidualOfTheAnswer) {
+  Scene scene = test::make_closed_box(V::Zero(), V(2, 2, 2), 0.8, 0.5);
+  set_surface_exitance(scene, scene.find_surface("ceiling"), 1000.0);
+  const RayCaster caster(scene);
+  FormFactorOptions ff;
+  ff.rays_per_patch = 128;
+  const FormFactorRows rows = compute_form_factor_rows(scene, caster, {}, ff);
+  RadiosityOptions options;
+  options.relative_residual = 1e-9;
+  const RadiositySolution solution = solve_radiosity(scene, rows.F, options);
+  Eigen::VectorXd E(scene.patches.size()), rho(scene.patches.size());
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    E[static_cast<Eigen::Index>(i)] = scene.patches[i].exitance_lm_per_m2;
+    rho[static_cast<Eigen::Index>(i)] = scene.patches[i].reflectance[0];
+  }
+  const Eigen::VectorXd B = solution.radiosity_lm_per_m2.col(0);
+  const double residual = (E - (B - rho.cwiseProduct(rows.F * B))).norm() / E.norm();
+  EXPECT_LE(residual, 1e-9);
+  EXPECT_NEAR(residual, solution.relative_residual, 1e-12);
+  EXPECT_TRUE((solution.illuminance_lux.col(0) - rows.F * B).isZero(1e-9));
+}
+
+TEST(Radiosity, NonConvergenceIsANumericalError) {
+  Scene scene = test::make_closed_box(V::Zero(), V(1, 1, 1), 0.99, 0.5);
+  set_surface_exitance(scene, scene.find_surface("floor"), 100.0);
+  ExactSolveOptions options = exact_options(64);
+  options.radiosity.max_iterations = 3;
+  EXPECT_THROW(solve_exact(scene, options), NumericalError);
+}
+
+TEST(Radiosity, ColouredReflectanceSolvesEachChannel) {
+  Scene scene = test::make_closed_box(V::Zero(), V(1, 1, 1), 0.5, 0.5);
+  for (Patch& p : scene.patches) p.reflectance = V(0.2, 0.5, 0.8);
+  scene.channels = 3;
+  for (std::size_t s = 0; s < scene.surfaces.size(); ++s) set_surface_exitance(scene, static_cast<int>(s), 10.0);
+  const ExactSolution solution = solve_exact(scene, exact_options(64));
+  for (int c = 0; c < 3; ++c) {
+    const double rho = V(0.2, 0.5, 0.8)[c];
+    EXPECT_NEAR(solution.radiosity.radiosity_lm_per_m2(0, c), 10.0 / (1 - rho), 1e-6);
+  }
+  // Photometric value: luminance-weighted channels (all channels carry white light).
+  const Eigen::RowVectorXd h = solution.radiosity.illuminance_lux.row(0);
+  EXPECT_NEAR(solution.radiosity.total_lux[0], h.dot(kLuminanceWeights.transpose()), 1e-9);
+}
+
+}  // namespace
+}  // namespace ilp

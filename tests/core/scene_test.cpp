@@ -1,0 +1,107 @@
+// Meshing: units and axes, degenerate faces, subdivision, luminaires.
+#include "core/scene.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/core/test_scenes.h"
+
+namespace ilp {
+namespace {
+
+using V = Eigen::Vector3d;
+
+TriangleMesh one_surface_mesh(std::vector<V> positions, std::vector<Eigen::Vector3i> triangles) {
+  TriangleMesh mesh;
+  mesh.path = "<test>";
+  mesh.positions = std::move(positions);
+  mesh.triangles = std::move(triangles);
+  mesh.surface_names = {"s"};
+  mesh.triangle_surface.assign(mesh.triangles.size(), 0);
+  mesh.triangle_material.assign(mesh.triangles.size(), -1);
+  mesh.faces_read = mesh.triangles.size();
+  return mesh;
+}
+
+TEST(Scene, SubdivisionBoundsEdgesAndKeepsAreaSurfaceAndOrientation) {
+  const TriangleMesh mesh = one_surface_mesh({V(0, 0, 0), V(5, 0, 0), V(0, 3, 0), V(5, 3, 1)},
+                                             {{0, 1, 2}, {1, 3, 2}});
+  SceneOptions options;
+  options.max_patch_edge_m = 0.3;
+  const Scene scene = make_scene(mesh, {V::Constant(0.5), V::Constant(0.5)}, options);
+  double area = 0.0;
+  for (const Patch& p : scene.patches) {
+    for (int k = 0; k < 3; ++k)
+      ASSERT_LE((p.vertices_m[k] - p.vertices_m[(k + 1) % 3]).norm(), 0.3 + 1e-12);
+    ASSERT_EQ(p.surface, 0);
+    area += p.area_m2;
+  }
+  const double expected = 0.5 * 15.0 + 0.5 * (V(5, 3, 1) - V(5, 0, 0)).cross(V(0, 3, 0) - V(5, 0, 0)).norm();
+  EXPECT_NEAR(area, expected, 1e-9 * expected);
+  // The first triangle's patches all face +z, like their parent.
+  EXPECT_TRUE(scene.patches.front().normal.isApprox(V::UnitZ()));
+  EXPECT_EQ(scene.stats.patches, scene.patches.size());
+}
+
+TEST(Scene, DropsAndCountsDegenerateFaces) {
+  const TriangleMesh mesh = one_surface_mesh({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(2, 0, 0)},
+                                             {{0, 1, 2}, {0, 1, 3}, {0, 0, 2}});  // collinear, repeated vertex
+  const Scene scene = make_scene(mesh, TriangleReflectance(3, V::Constant(0.5)), {});
+  EXPECT_EQ(scene.stats.degenerate_dropped, 2u);
+  EXPECT_EQ(scene.patches.size(), 1u);
+  // A tiny but real triangle is kept.
+  const TriangleMesh sliver = one_surface_mesh({V(0, 0, 0), V(10, 0, 0), V(0, 10, 0), V(1e-5, 0, 0), V(0, 1e-5, 0)},
+                                               {{0, 1, 2}, {0, 3, 4}});
+  EXPECT_EQ(make_scene(sliver, TriangleReflectance(2, V::Constant(0.5)), {}).patches.size(), 2u);
+}
+
+TEST(Scene, NoUsableFaceIsAnError) {
+  const TriangleMesh mesh = one_surface_mesh({V(0, 0, 0), V(1, 0, 0), V(2, 0, 0)}, {{0, 1, 2}});
+  EXPECT_THROW(make_scene(mesh, {V::Constant(0.5)}, {}), SceneError);
+}
+
+TEST(Scene, YUpMillimetresBecomeZUpMetres) {
+  // A 2000 x 1000 mm floor in the xz plane, facing +y (up in a Y-up file).
+  const TriangleMesh mesh = one_surface_mesh({V(0, 0, 0), V(0, 0, 1000), V(2000, 0, 1000), V(2000, 0, 0)},
+                                             {{0, 1, 2}, {0, 2, 3}});
+  SceneOptions options;
+  options.up_axis = UpAxis::y;
+  options.scale_to_m = 0.001;
+  const Scene scene = make_scene(mesh, TriangleReflectance(2, V::Constant(0.5)), options);
+  EXPECT_NEAR(scene.total_area_m2(), 2.0, 1e-12);
+  for (const Patch& p : scene.patches) EXPECT_TRUE(p.normal.isApprox(V::UnitZ())) << p.normal.transpose();
+  EXPECT_NEAR(scene.bounds_m.sizes().x(), 2.0, 1e-12);
+  EXPECT_NEAR(scene.bounds_m.sizes().y(), 1.0, 1e-12);
+}
+
+TEST(Scene, LuminaireIsADownwardSquareEmittingItsFlux) {
+  Scene scene = test::make_closed_box(V::Zero(), V(2, 2, 2), 0.5, 0.0);
+  const int s = add_square_luminaire(scene, "L1", V(1, 1, 1.9), 0.6, 3600.0);
+  double flux = 0.0, area = 0.0;
+  for (const Patch& p : scene.patches) {
+    if (p.surface != s) continue;
+    EXPECT_TRUE(p.normal.isApprox(-V::UnitZ()));
+    EXPECT_EQ(p.reflectance, V::Zero());
+    flux += p.area_m2 * p.exitance_lm_per_m2;
+    area += p.area_m2;
+  }
+  EXPECT_NEAR(area, 0.36, 1e-12);
+  EXPECT_NEAR(flux, 3600.0, 1e-9);
+  EXPECT_TRUE(scene.surfaces[s].is_luminaire);
+}
+
+TEST(Scene, ChannelsFollowTheReflectances) {
+  const TriangleMesh mesh = one_surface_mesh({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)}, {{0, 1, 2}});
+  EXPECT_EQ(make_scene(mesh, {V::Constant(0.4)}, {}).channels, 1);
+  EXPECT_EQ(make_scene(mesh, {V(0.4, 0.5, 0.4)}, {}).channels, 3);
+}
+
+TEST(Scene, RefusesMeshingBeyondThePatchLimit) {
+  const TriangleMesh mesh = one_surface_mesh({V(0, 0, 0), V(100, 0, 0), V(0, 100, 0)}, {{0, 1, 2}});
+  SceneOptions options;
+  options.max_patch_edge_m = 0.01;
+  options.max_patches = 1000;
+  EXPECT_THROW(make_scene(mesh, {V::Constant(0.5)}, options), SceneError);
+}
+
+}  // namespace
+}  // namespace ilp
