@@ -9,6 +9,9 @@
 #include <iomanip>
 #include <iostream>
 #include <mutex>
+#include <string>
+
+#include <unistd.h>
 
 #include "core/config.h"
 #include "core/exact_solver.h"
@@ -17,26 +20,46 @@
 
 namespace {
 
-// Prints "phase: NN %" to stderr at most every 10 %, from any thread.
+// On a terminal: one line per phase, rewritten in place. Elsewhere (logs, CI): a
+// line at every quarter, so long runs still show they are moving.
 ilp::ProgressCallback make_progress(bool quiet) {
   if (quiet) return {};
-  auto state = std::make_shared<std::pair<std::mutex, int>>();
-  return [state](std::string_view phase, std::size_t done, std::size_t total) {
-    const int percent = total ? static_cast<int>(100 * done / total) : 100;
-    std::lock_guard lock(state->first);
-    if (percent / 10 > state->second / 10 || (percent == 100 && state->second != 100)) {
-      state->second = percent;
-      std::cerr << "  " << phase << ": " << percent << " %\n";
-    }
-    if (done == 0) state->second = 0;
+  struct State {
+    std::mutex mutex;
+    std::string phase;
+    int shown = -1;
   };
+  auto state = std::make_shared<State>();
+  const bool tty = isatty(STDERR_FILENO);
+  return [state, tty](std::string_view phase, std::size_t done, std::size_t total) {
+    const int percent = total ? static_cast<int>(100 * done / total) : 100;
+    std::lock_guard lock(state->mutex);
+    if (phase != state->phase) {
+      state->phase = phase;
+      state->shown = -1;
+    }
+    const int step = tty ? 1 : 25;
+    if (percent / step == state->shown / step && percent != 100) return;
+    if (percent == state->shown) return;
+    state->shown = percent;
+    if (tty) std::cerr << "\r  " << phase << ": " << percent << " %" << (percent == 100 ? "\n" : "") << std::flush;
+    else std::cerr << "  " << phase << ": " << percent << " %\n";
+  };
+}
+
+// A CSV field: quoted (quotes doubled) when it holds a comma, quote or line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
 }
 
 // Writes the per-patch results to `path` through a temporary file, so that a
 // failure never leaves a half-written file behind.
 void write_patch_csv(const std::string& path, const ilp::Scene& scene, const ilp::RadiositySolution& solution) {
   const std::string tmp = path + ".tmp";
-  {
+  try {
     std::ofstream out(tmp);
     if (!out) throw ilp::IlpError(path + ": cannot write");
     out << std::setprecision(9);
@@ -45,14 +68,19 @@ void write_patch_csv(const std::string& path, const ilp::Scene& scene, const ilp
     for (std::size_t i = 0; i < scene.patches.size(); ++i) {
       const ilp::Patch& p = scene.patches[i];
       const auto row = static_cast<Eigen::Index>(i);
-      out << i << ',' << scene.surfaces[p.surface].name << ',' << p.centroid_m.x() << ',' << p.centroid_m.y() << ','
-          << p.centroid_m.z() << ',' << p.normal.x() << ',' << p.normal.y() << ',' << p.normal.z() << ','
-          << p.area_m2 << ',' << solution.direct_lux[row] << ',' << solution.total_lux[row] << ','
-          << ilp::photometric(solution.radiosity_lm_per_m2.row(row)) << '\n';
+      out << i << ',' << csv_field(scene.surfaces[p.surface].name) << ',' << p.centroid_m.x() << ','
+          << p.centroid_m.y() << ',' << p.centroid_m.z() << ',' << p.normal.x() << ',' << p.normal.y() << ','
+          << p.normal.z() << ',' << p.area_m2 << ',' << solution.direct_lux[row] << ',' << solution.total_lux[row]
+          << ',' << ilp::photometric(solution.radiosity_lm_per_m2.row(row)) << '\n';
     }
     if (!out.flush()) throw ilp::IlpError(path + ": write failed");
+    out.close();
+    std::filesystem::rename(tmp, path);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
   }
-  std::filesystem::rename(tmp, path);
 }
 
 int run_solve(const std::string& config_path, const std::string& csv_path, int threads, bool quiet) {
@@ -64,7 +92,7 @@ int run_solve(const std::string& config_path, const std::string& csv_path, int t
 
   ilp::ExactSolveOptions options{job.form_factors, job.direct_light, job.radiosity};
   const ilp::ExactSolution solution = ilp::solve_exact(loaded.scene, options, make_progress(quiet));
-  std::cerr << "exact solve: " << solution.summary << "\n";
+  std::cerr << solution.summary << "\n";
 
   if (!csv_path.empty()) write_patch_csv(csv_path, loaded.scene, solution.radiosity);
 
@@ -90,7 +118,7 @@ int main(int argc, char** argv) {
   bool quiet = false;
   CLI::App* solve = app.add_subcommand("solve", "Solve a job's scene exactly (full form factors, Gauss-Seidel) "
                                                 "and print illuminance per surface in lux");
-  solve->add_option("config", config, "job file (YAML)")->required()->check(CLI::ExistingFile);
+  solve->add_option("config", config, "job file (YAML)")->required();
   solve->add_option("--csv", csv, "also write per-patch results (centroid, area, direct and total lux) to this CSV");
   solve->add_option("--threads", threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
       ->check(CLI::NonNegativeNumber);

@@ -95,12 +95,26 @@ class Value {
   const std::string& file_;
 };
 
+// yaml-cpp keeps repeated keys and lets lookups see the first: refuse them instead.
+void reject_duplicate_keys(const Value& map) {
+  std::set<std::string> seen;
+  for (const auto& item : map.node()) {
+    const std::string name = item.first.Scalar();
+    if (!seen.insert(name).second) {
+      const YAML::Mark mark = item.first.Mark();
+      const std::string key = map.key().empty() ? name : map.key() + "." + name;
+      throw ConfigError(located({map.loc().file, mark.line + 1, mark.column + 1}, "duplicate key '" + key + "'"));
+    }
+  }
+}
+
 // A YAML map whose keys must all be known.
 class Map {
  public:
   Map(const Value& value, std::initializer_list<const char*> allowed) : value_(value) {
     if (!value.node().IsMap()) value.fail("must be a map of keys");
     std::set<std::string> known(allowed.begin(), allowed.end());
+    reject_duplicate_keys(value);
     for (const auto& item : value.node()) {
       const std::string name = item.first.Scalar();
       if (!known.count(name)) {
@@ -143,7 +157,10 @@ void read_scene(const Map& scene, JobConfig& job) {
     else v->fail("must be y or z");
   }
   if (auto v = scene.get("scale_to_m")) job.scene.scale_to_m = v->positive();
-  if (auto v = scene.get("max_patch_edge_m")) job.scene.max_patch_edge_m = v->positive();
+  if (auto v = scene.get("max_patch_edge_m")) {
+    job.scene.max_patch_edge_m = v->positive();
+    job.max_patch_edge_loc = v->loc();
+  }
   if (auto v = scene.get("surfaces_from")) {
     const std::string from = Value::lower(v->text());
     if (from == "group") job.mesh_read.surface_naming = SurfaceNaming::group;
@@ -153,6 +170,7 @@ void read_scene(const Map& scene, JobConfig& job) {
   }
   if (auto v = scene.get("reflectance")) {
     if (!v->node().IsMap()) v->fail("must map surface names to reflectances");
+    reject_duplicate_keys(*v);
     for (const auto& item : v->node()) {
       const std::string surface = item.first.Scalar();
       const Value rho(item.second, v->key() + "." + surface, job.path);
@@ -179,7 +197,12 @@ void read_luminaires(const Map& luminaires, JobConfig& job) {
     for (const Value& item : v->list()) {
       const Map lum(item, {"name", "position_m", "flux_lm"});
       LuminaireSetting setting;
-      setting.name = lum.get("name") ? lum.require("name").text() : "L" + std::to_string(job.luminaires.size() + 1);
+      if (auto name = lum.get("name")) {
+        setting.name = name->text();
+      } else {
+        setting.name = "L";  // (not "L" + ...: GCC 12 warns falsely on operator+(const char*, string&&))
+        setting.name += std::to_string(job.luminaires.size() + 1);
+      }
       if (!names.insert(setting.name).second) item.fail("luminaire name '" + setting.name + "' is used twice");
       setting.position_m = lum.require("position_m").vector3();
       const Value flux = lum.require("flux_lm");

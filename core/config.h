@@ -44,6 +44,7 @@ struct JobConfig {
   FileLoc mesh_loc;
   MeshReadOptions mesh_read;
   SceneOptions scene;
+  FileLoc max_patch_edge_loc;           // where max_patch_edge_m was set (if it was)
   std::vector<ReflectanceSetting> reflectance;
   std::optional<Eigen::Vector3d> default_reflectance;
   std::vector<EmitterSetting> emitting_surfaces;

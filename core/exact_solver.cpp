@@ -1,6 +1,7 @@
 #include "core/exact_solver.h"
 
 #include <chrono>
+#include <iomanip>
 #include <ostream>
 
 #include "core/ray_caster.h"
@@ -52,12 +53,18 @@ ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, 
 
 std::ostream& operator<<(std::ostream& os, const ExactSolveSummary& s) {
   const auto flags = os.flags();
-  os << s.patches << " patches; BVH " << s.bvh_seconds << " s; form factors " << s.form_factor_seconds << " s ("
-     << s.rays_cast << " rays, " << s.rays_per_second / 1e6 << " M rays/s); direct light " << s.direct_light_seconds
-     << " s; Gauss-Seidel " << s.solve_seconds << " s (" << s.iterations << " sweeps, relative residual "
-     << s.relative_residual << "); escaped " << 100.0 * s.mean_escaped_fraction << " %, back faces "
-     << 100.0 * s.mean_back_hit_fraction << " %";
+  const auto precision = os.precision();
+  os << std::fixed << std::setprecision(3);
+  os << "BVH: " << s.patches << " patches in " << s.bvh_seconds << " s\n"
+     << "form factors: " << s.rays_cast << " rays in " << s.form_factor_seconds << " s ("
+     << std::setprecision(2) << s.rays_per_second / 1e6 << " M rays/s)\n"
+     << std::setprecision(3) << "direct light (luminaires): " << s.direct_light_seconds << " s\n"
+     << "Gauss-Seidel: " << s.iterations << " sweeps in " << s.solve_seconds << " s, relative residual "
+     << std::scientific << std::setprecision(1) << s.relative_residual << "\n"
+     << std::fixed << std::setprecision(4) << "light escaping the scene: " << 100.0 * s.mean_escaped_fraction
+     << " %, absorbed by back faces: " << 100.0 * s.mean_back_hit_fraction << " % (area-weighted)";
   os.flags(flags);
+  os.precision(precision);
   return os;
 }
 

@@ -44,7 +44,7 @@ JobScene load_job_scene(const JobConfig& job) {
   // Reflectance per surface from the config, then per triangle.
   std::vector<std::optional<Eigen::Vector3d>> surface_rho(mesh.surface_names.size());
   for (const ReflectanceSetting& r : job.reflectance)
-    surface_rho[require_surface(r.surface, r.loc, "scene.reflectance")] = r.rgb;
+    surface_rho[require_surface(r.surface, r.loc, "scene.reflectance." + r.surface)] = r.rgb;
   TriangleReflectance rho(mesh.triangles.size());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const int s = mesh.triangle_surface[t];
@@ -69,7 +69,14 @@ JobScene load_job_scene(const JobConfig& job) {
     }
   }
 
-  out.scene = make_scene(mesh, rho, job.scene);
+  try {
+    out.scene = make_scene(mesh, rho, job.scene);
+  } catch (const PatchLimitError& e) {
+    const FileLoc& loc = job.max_patch_edge_loc.file.empty() ? job.mesh_loc : job.max_patch_edge_loc;
+    throw ConfigError(located(loc, std::string("scene.max_patch_edge_m: ") + e.what()));
+  } catch (const SceneError& e) {
+    throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
+  }
   Scene& scene = out.scene;
   {
     std::ostringstream os;
@@ -78,8 +85,11 @@ JobScene load_job_scene(const JobConfig& job) {
     out.log.push_back(os.str());
   }
 
-  for (const EmitterSetting& e : job.emitting_surfaces)
-    set_surface_exitance(scene, require_surface(e.surface, e.loc, "scene.emitting_surfaces"), e.exitance_lm_per_m2);
+  for (std::size_t k = 0; k < job.emitting_surfaces.size(); ++k) {
+    const EmitterSetting& e = job.emitting_surfaces[k];
+    const std::string key = "scene.emitting_surfaces[" + std::to_string(k) + "].surface";
+    set_surface_exitance(scene, require_surface(e.surface, e.loc, key), e.exitance_lm_per_m2);
+  }
   for (const LuminaireSetting& l : job.luminaires) {
     if (scene.find_surface(l.name) >= 0)
       throw ConfigError(located(l.loc, "luminaires.placed: name '" + l.name + "' is already a surface of the mesh"));

@@ -19,7 +19,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Splits at white space, ignoring everything from a '#' on (a comment).
 std::vector<std::string_view> split_ws(std::string_view line) {
+  line = line.substr(0, line.find('#'));
   std::vector<std::string_view> out;
   std::size_t i = 0;
   while (i < line.size()) {
@@ -32,7 +34,9 @@ std::vector<std::string_view> split_ws(std::string_view line) {
   return out;
 }
 
+// The text after `keyword` up to a comment, trimmed: names may contain spaces.
 std::string rest_of_line(std::string_view line, std::string_view keyword) {
+  line = line.substr(0, line.find('#'));
   std::string_view s = line.substr(line.find(keyword) + keyword.size());
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
@@ -44,6 +48,8 @@ double parse_finite(std::string_view token, const FileLoc& loc, const char* what
   const char* first = token.data();
   if (!token.empty() && token.front() == '+') ++first;
   auto [end, ec] = std::from_chars(first, token.data() + token.size(), value);
+  if (ec == std::errc::result_out_of_range)
+    throw SceneError(located(loc, std::string(what) + " '" + std::string(token) + "' is out of range"));
   if (ec != std::errc() || end != token.data() + token.size())
     throw SceneError(located(loc, std::string(what) + " '" + std::string(token) + "' is not a number"));
   if (!std::isfinite(value))
@@ -60,15 +66,16 @@ std::vector<MeshMaterial> load_mtl(const fs::path& path, const FileLoc& referenc
   while (std::getline(in, line)) {
     ++line_no;
     auto tokens = split_ws(line);
-    if (tokens.empty() || tokens[0].front() == '#') continue;
+    if (tokens.empty()) continue;
     const FileLoc loc{path.string(), line_no};
     if (tokens[0] == "newmtl") {
       if (tokens.size() < 2) throw SceneError(located(loc, "newmtl without a name"));
       materials.push_back({rest_of_line(line, "newmtl"), std::nullopt, {}});
     } else if (tokens[0] == "Kd") {
       if (materials.empty()) throw SceneError(located(loc, "Kd before any newmtl"));
-      if (tokens.size() < 2) throw SceneError(located(loc, "Kd needs 1 or 3 values"));
-      if (tokens[1] == "spectral" || tokens[1] == "xyz") continue;  // not supported: config must give it
+      if (tokens.size() >= 2 && (tokens[1] == "spectral" || tokens[1] == "xyz")) continue;  // config must give it
+      if (tokens.size() != 2 && tokens.size() != 4)
+        throw SceneError(located(loc, "Kd needs 1 or 3 values, found " + std::to_string(tokens.size() - 1)));
       Eigen::Vector3d kd;
       kd.setConstant(parse_finite(tokens[1], loc, "Kd value"));
       if (tokens.size() >= 4)
@@ -121,7 +128,7 @@ TriangleMesh load_obj(const fs::path& path, const MeshReadOptions& options) {
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     auto tokens = split_ws(line);
-    if (tokens.empty() || tokens[0].front() == '#') continue;
+    if (tokens.empty()) continue;
     const FileLoc loc{mesh.path, line_no};
     const std::string_view key = tokens[0];
     if (key == "v") {
@@ -165,13 +172,63 @@ TriangleMesh load_obj(const fs::path& path, const MeshReadOptions& options) {
   return mesh;
 }
 
-TriangleMesh load_with_openmesh(const fs::path& path) {
+struct DeclaredCounts {
+  long vertices = -1, faces = -1;  // -1: not known (binary OFF, unusual header)
+  long data_lines = -1;            // ASCII OFF: non-empty, non-comment lines after the header
+};
+
+// What the OFF or PLY header says the file holds, to catch the faces OpenMesh's
+// readers skip or invent without a word (bad indices, truncated files).
+DeclaredCounts declared_counts(const fs::path& path, const std::string& ext) {
+  DeclaredCounts out;
+  std::ifstream in(path);
+  std::string line;
+  if (ext == ".ply") {
+    while (std::getline(in, line)) {
+      auto tokens = split_ws(line);
+      if (tokens.size() == 3 && tokens[0] == "element") {
+        long count = -1;
+        std::from_chars(tokens[2].data(), tokens[2].data() + tokens[2].size(), count);
+        if (tokens[1] == "vertex") out.vertices = count;
+        if (tokens[1] == "face") out.faces = count;
+      }
+      if (line.rfind("end_header", 0) == 0) break;
+    }
+    return out;
+  }
+  std::vector<std::string> header;  // "OFF", vertex count, face count, edge count
+  while (header.size() < 4 && std::getline(in, line)) {
+    for (auto t : split_ws(line)) header.emplace_back(t);
+    if (!header.empty() && header[0].find("OFF") == std::string::npos) return out;
+    if (header.size() >= 2 && header[1] == "BINARY") return out;
+  }
+  if (header.size() < 3) return out;
+  std::from_chars(header[1].data(), header[1].data() + header[1].size(), out.vertices);
+  std::from_chars(header[2].data(), header[2].data() + header[2].size(), out.faces);
+  out.data_lines = 0;
+  while (std::getline(in, line))
+    if (!split_ws(line).empty()) ++out.data_lines;
+  return out;
+}
+
+TriangleMesh load_with_openmesh(const fs::path& path, const std::string& ext) {
   if (!fs::exists(path)) throw SceneError(path.string() + ": cannot open mesh file");
   omerr().disable();  // OpenMesh prints to the console otherwise; we report ourselves
   omlog().disable();
   OpenMesh::PolyMesh_ArrayKernelT<> poly;
   if (!OpenMesh::IO::read_mesh(poly, path.string()))
     throw SceneError(path.string() + ": OpenMesh could not read the mesh");
+  const DeclaredCounts declared = declared_counts(path, ext);
+  if (declared.data_lines >= 0 && declared.vertices >= 0 && declared.faces >= 0 &&
+      declared.data_lines < declared.vertices + declared.faces)
+    throw SceneError(path.string() + ": the file ends after " + std::to_string(declared.data_lines) +
+                     " data lines, but its header declares " + std::to_string(declared.vertices) + " vertices and " +
+                     std::to_string(declared.faces) + " faces (truncated?)");
+  if (declared.faces >= 0 && static_cast<long>(poly.n_faces()) != declared.faces)
+    throw SceneError(path.string() + ": OpenMesh read " + std::to_string(poly.n_faces()) + " of the " +
+                     std::to_string(declared.faces) +
+                     " faces its header declares (a face with an invalid or repeated vertex index, or a "
+                     "non-numeric or non-finite value, stops or skips faces)");
   TriangleMesh mesh;
   mesh.path = path.string();
   mesh.surface_names.push_back(path.stem().string());
@@ -204,7 +261,7 @@ TriangleMesh load_mesh(const std::string& path_string, const MeshReadOptions& op
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   TriangleMesh mesh;
   if (ext == ".obj") mesh = load_obj(path, options);
-  else if (ext == ".ply" || ext == ".off") mesh = load_with_openmesh(path);
+  else if (ext == ".ply" || ext == ".off") mesh = load_with_openmesh(path, ext);
   else throw SceneError(path_string + ": unsupported mesh format '" + ext + "' (use .obj, .ply or .off)");
   if (mesh.triangles.empty()) throw SceneError(path_string + ": the mesh has no faces");
   return mesh;

@@ -84,7 +84,7 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
     }
     patch_count += static_cast<std::size_t>(m) * m;
     if (patch_count > options.max_patches)
-      throw SceneError(mesh.path + ": meshing with max_patch_edge_m = " + std::to_string(options.max_patch_edge_m) +
+      throw PatchLimitError(mesh.path + ": meshing with max_patch_edge_m = " + std::to_string(options.max_patch_edge_m) +
                        " would make more than " + std::to_string(options.max_patches) + " patches");
     kept.push_back(t);
     divisions.push_back(m);

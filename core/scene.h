@@ -68,13 +68,20 @@ struct SceneOptions {
   std::size_t max_patches = 5'000'000;  // refuse meshing that would exceed this
 };
 
+// Meshing would make more patches than SceneOptions::max_patches allows.
+class PatchLimitError : public SceneError {
+ public:
+  using SceneError::SceneError;
+};
+
 // Reflectance of each mesh triangle, already resolved from config and MTL.
 using TriangleReflectance = std::vector<Eigen::Vector3d>;
 
 // Transforms to metres with z up, drops degenerate triangles (counted in stats),
 // subdivides each triangle uniformly so that every patch edge is at most
 // max_patch_edge_m, and sets channels (3 if any reflectance is coloured).
-// Throws SceneError when no face survives or meshing would exceed max_patches.
+// Throws SceneError when no face survives, PatchLimitError when meshing would
+// exceed max_patches.
 Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectance,
                  const SceneOptions& options);
 

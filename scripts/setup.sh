@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs the Debian packages ilp builds with (as root, on Debian 12), then
+# configures and builds a Release tree in build/. Safe to run again: it installs
+# only what is missing and rebuilds incrementally.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(g++ cmake make pkg-config
+          libeigen3-dev libembree-dev libnlopt-cxx-dev libnlopt-dev libopenmesh-dev libyaml-cpp-dev
+          libtbb-dev libcli11-dev libgtest-dev libbenchmark-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "setup: installing packages needs root (run as root or with sudo)" >&2
+    exit 1
+  fi
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}" > /dev/null
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON > /dev/null
+cmake --build build -j"$(nproc)"
