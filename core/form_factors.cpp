@@ -1,6 +1,7 @@
 #include "core/form_factors.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -21,31 +22,42 @@ struct RowResult {
   int back_hits = 0;
 };
 
-RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch, const FormFactorOptions& options,
-                    std::vector<int>& scratch) {
+// Per-thread scratch: a hit counter per patch (all zero between rows) and the
+// patches a row touched. Counting beats sorting the hits of every row.
+struct RowScratch {
+  std::vector<int> count;
+  std::vector<int> touched;
+};
+
+RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch,
+                    const std::vector<std::array<double, 4>>& halton, const FormFactorOptions& options,
+                    RowScratch& scratch) {
   const Patch& p = scene.patches[patch];
   Eigen::Vector3d t, s;
   orthonormal_basis(p.normal, t, s);
   const RotatedHalton4 sequence(options.seed, static_cast<std::uint64_t>(patch));
   const Eigen::Vector3d offset = p.normal * caster.ray_offset_m();
   RowResult row;
-  scratch.clear();
   for (int r = 0; r < options.rays_per_patch; ++r) {
-    const auto u = sequence.point(static_cast<std::uint32_t>(r));
+    const auto u = sequence.rotate(halton[static_cast<std::size_t>(r)]);
     const Eigen::Vector3d origin = sample_triangle(p.vertices_m[0], p.vertices_m[1], p.vertices_m[2], u[0], u[1]);
     const Eigen::Vector3d direction = sample_cosine_hemisphere(p.normal, t, s, u[2], u[3]);
     const RayHit hit = caster.first_hit(origin + offset, direction);
-    if (hit.patch < 0) ++row.escaped;
-    else if (!hit.front) ++row.back_hits;
-    else scratch.push_back(hit.patch);
+    if (hit.patch < 0) {
+      ++row.escaped;
+    } else if (!hit.front) {
+      ++row.back_hits;
+    } else if (scratch.count[hit.patch]++ == 0) {
+      scratch.touched.push_back(hit.patch);
+    }
   }
-  std::sort(scratch.begin(), scratch.end());
-  for (std::size_t k = 0; k < scratch.size();) {
-    std::size_t e = k;
-    while (e < scratch.size() && scratch[e] == scratch[k]) ++e;
-    row.hits.emplace_back(scratch[k], static_cast<int>(e - k));
-    k = e;
+  std::sort(scratch.touched.begin(), scratch.touched.end());
+  row.hits.reserve(scratch.touched.size());
+  for (int j : scratch.touched) {
+    row.hits.emplace_back(j, scratch.count[j]);
+    scratch.count[j] = 0;
   }
+  scratch.touched.clear();
   return row;
 }
 
@@ -78,6 +90,8 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
   }
   const std::size_t rows = out.row_patches.size();
   std::vector<RowResult> results(rows);
+  const auto halton = halton4_points(static_cast<std::uint32_t>(options.rays_per_patch));
+  tbb::enumerable_thread_specific<RowScratch> scratches;
   std::atomic<std::size_t> done{0};
   constexpr std::size_t kChunk = 64;
 
@@ -85,10 +99,10 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, kChunk), [&](const tbb::blocked_range<std::size_t>& range) {
       RayCaster::prepare_thread();
-      std::vector<int> scratch;
-      scratch.reserve(options.rays_per_patch);
+      RowScratch& scratch = scratches.local();
+      if (scratch.count.empty()) scratch.count.assign(scene.patches.size(), 0);
       for (std::size_t r = range.begin(); r != range.end(); ++r)
-        results[r] = trace_row(scene, caster, out.row_patches[r], options, scratch);
+        results[r] = trace_row(scene, caster, out.row_patches[r], halton, options, scratch);
       const std::size_t now = done.fetch_add(range.size()) + range.size();
       if (progress) progress("form factors", now, rows);
     });

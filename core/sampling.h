@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace ilp {
 
@@ -35,6 +36,18 @@ inline double radical_inverse(std::uint32_t i, std::uint32_t base) {
   return result;
 }
 
+// The first n points of the 4-D Halton sequence (bases 2, 3, 5, 7). Every row of a
+// form-factor computation uses the same points under its own rotation, so they are
+// computed once: the radical inverses would otherwise cost as much as the rays.
+inline std::vector<std::array<double, 4>> halton4_points(std::uint32_t n) {
+  static constexpr std::uint32_t kBases[4] = {2, 3, 5, 7};
+  std::vector<std::array<double, 4>> points(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+    for (int d = 0; d < 4; ++d) points[i][d] = radical_inverse(i, kBases[d]);
+  return points;
+}
+
+// A Cranley-Patterson rotation of the Halton sequence, drawn from (seed, stream).
 class RotatedHalton4 {
  public:
   RotatedHalton4(std::uint64_t seed, std::uint64_t stream) {
@@ -48,8 +61,13 @@ class RotatedHalton4 {
   std::array<double, 4> point(std::uint32_t i) const {
     static constexpr std::uint32_t kBases[4] = {2, 3, 5, 7};
     std::array<double, 4> u;
+    for (int d = 0; d < 4; ++d) u[d] = radical_inverse(i, kBases[d]);
+    return rotate(u);
+  }
+  // A precomputed Halton point (halton4_points), rotated: the same as point(i).
+  std::array<double, 4> rotate(std::array<double, 4> u) const {
     for (int d = 0; d < 4; ++d) {
-      u[d] = radical_inverse(i, kBases[d]) + shift_[d];
+      u[d] += shift_[d];
       if (u[d] >= 1.0) u[d] -= 1.0;
     }
     return u;
@@ -91,7 +109,8 @@ inline Eigen::Vector3d sample_cosine_hemisphere(const Eigen::Vector3d& n, const 
       phi = 2.0 * kQuarterPi - kQuarterPi * (a / b);
     }
   }
-  const double x = r * std::cos(phi), y = r * std::sin(phi);
+  // Float trigonometry: directions end up in float rays anyway, and it halves the cost.
+  const double x = r * std::cos(static_cast<float>(phi)), y = r * std::sin(static_cast<float>(phi));
   const double z = std::sqrt(std::max(0.0, 1.0 - x * x - y * y));
   return t * x + s * y + n * z;
 }
