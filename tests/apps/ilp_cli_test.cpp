@@ -5,56 +5,27 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "tests/test_support.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("ilp_cli_test_") + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" +
-                       info->name();
-    std::replace(name.begin(), name.end(), '/', '_');
-    path_ = fs::temp_directory_path() / name;
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
+using ilp::test::read_file;
+using ilp::test::TempDir;
 
-  std::string write(const std::string& name, const std::string& content) const {
-    const fs::path p = path_ / name;
-    std::ofstream out(p, std::ios::binary);
-    out << content;
-    return p.string();
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
+// For EXPECT_TRUE: what the program wrote contains `part`.
+::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
+  return ilp::test::Contains(text, part, "output");
 }
 
 std::string quoted(const std::string& s) {
@@ -84,11 +55,6 @@ RunResult run_ilp(const TempDir& dir, const std::vector<std::string>& args) {
   return r;
 }
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "output\n  \"" << text << "\"\ndoes not contain\n  \"" << part << "\"";
-}
-
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> out;
   std::istringstream in(text);
@@ -115,6 +81,15 @@ void expect_clean_failure(const RunResult& r, const std::string& located, const 
   EXPECT_TRUE(Contains(r.err, "error: " + located)) << "location must come first";
   EXPECT_FALSE(fs::exists(csv)) << csv;
   EXPECT_FALSE(fs::exists(csv + ".tmp")) << csv << ".tmp";
+}
+
+// Runs `ilp solve <yaml> --csv <dir>/out.csv`, which must fail cleanly with the
+// error located at `located` (see expect_clean_failure).
+RunResult solve_fails_cleanly(const TempDir& dir, const std::string& yaml, const std::string& located) {
+  const std::string csv = dir.file("out.csv");
+  const RunResult r = run_ilp(dir, {"solve", yaml, "--csv", csv});
+  expect_clean_failure(r, located, csv);
+  return r;
 }
 
 // A closed 2 m cube, every face towards the inside (counter-clockwise seen from
@@ -169,9 +144,7 @@ TEST(IlpCli, BadReflectanceFailsCleanly) {
                                      "    floor: 1.5\n"
                                      "    ceiling: 0.5\n"
                                      "    walls: 0.5\n");
-  const std::string csv = dir.file("out.csv");
-  const RunResult r = run_ilp(dir, {"solve", yaml, "--csv", csv});
-  expect_clean_failure(r, yaml + ":4:", csv);
+  const RunResult r = solve_fails_cleanly(dir, yaml, yaml + ":4:");
   EXPECT_TRUE(Contains(r.err, "scene.reflectance.floor"));
   EXPECT_TRUE(Contains(r.err, "[0, 1)"));
 }
@@ -183,9 +156,7 @@ TEST(IlpCli, MissingMeshFailsCleanly) {
                                      "scene:\n"
                                      "  mesh: gone.obj\n"
                                      "  default_reflectance: 0.5\n");
-  const std::string csv = dir.file("out.csv");
-  const RunResult r = run_ilp(dir, {"solve", yaml, "--csv", csv});
-  expect_clean_failure(r, yaml + ":3:", csv);
+  const RunResult r = solve_fails_cleanly(dir, yaml, yaml + ":3:");
   EXPECT_TRUE(Contains(r.err, "scene.mesh"));
   EXPECT_TRUE(Contains(r.err, dir.file("gone.obj")));
 }
@@ -194,9 +165,7 @@ TEST(IlpCli, BadMeshLineFailsCleanly) {
   TempDir dir;
   const std::string obj = dir.write("box.obj", std::string(kBoxObj) + "v 1 nan 1\n");
   const std::string yaml = dir.write("job.yaml", kBoxYaml);
-  const std::string csv = dir.file("out.csv");
-  const RunResult r = run_ilp(dir, {"solve", yaml, "--csv", csv});
-  expect_clean_failure(r, yaml + ":2:", csv);
+  const RunResult r = solve_fails_cleanly(dir, yaml, yaml + ":2:");
   EXPECT_TRUE(Contains(r.err, obj + ":19:"));
 }
 

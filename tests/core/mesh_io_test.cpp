@@ -3,72 +3,32 @@
 // defects that must be SceneErrors naming file and line.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include "core/mesh.h"
+#include "tests/test_support.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("ilp_mesh_io_test_") + std::to_string(::getpid()) + "_" + info->test_suite_name() +
-                       "_" + info->name();
-    std::replace(name.begin(), name.end(), '/', '_');
-    path_ = fs::temp_directory_path() / name;
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  // Writes `content` byte for byte and returns the full path.
-  std::string write(const std::string& name, const std::string& content) const {
-    const fs::path p = path_ / name;
-    std::ofstream out(p, std::ios::binary);
-    out << content;
-    return p.string();
-  }
-
- private:
-  fs::path path_;
-};
-
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "message\n  \"" << text << "\"\ndoes not contain\n  \"" << part << "\"";
-}
-
-::testing::AssertionResult StartsWith(const std::string& text, const std::string& prefix) {
-  if (text.rfind(prefix, 0) == 0) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "message\n  \"" << text << "\"\ndoes not start with\n  \"" << prefix << "\"";
-}
+using ilp::test::Contains;
+using ilp::test::StartsWith;
+using ilp::test::TempDir;
 
 // load_mesh must throw a SceneError; returns its message.
 std::string mesh_error(const std::string& path, const ilp::MeshReadOptions& options = {}) {
-  try {
-    (void)ilp::load_mesh(path, options);
-  } catch (const ilp::SceneError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw the wrong exception type (" << typeid(e).name() << "): " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "load_mesh(" << path << ") did not throw";
-  return {};
+  return ilp::test::error_of<ilp::SceneError>([&] { (void)ilp::load_mesh(path, options); },
+                                              "load_mesh(" + path + ")");
+}
+
+// load_mesh(path) must throw a SceneError whose message starts with `start` and
+// contains each of `says`.
+void expect_mesh_error(const std::string& path, const std::string& start, const std::vector<std::string>& says) {
+  ilp::test::expect_message(mesh_error(path), start, says);
 }
 
 // Surface name of every triangle, in file order.
@@ -273,9 +233,7 @@ TEST(MeshIoObj, CrlfLineEndings) {
 TEST(MeshIoObj, CrlfErrorLineNumbers) {
   TempDir dir;
   const std::string path = dir.write("crlf.obj", "v 0 0 0\r\nv 1 0 0\r\n\r\nf 1 2 3\r\n");
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path + ":4:"));
-  EXPECT_TRUE(Contains(msg, "'3'"));
+  expect_mesh_error(path, path + ":4:", {"'3'"});
 }
 
 // ---------------------------------------------------------------------------------
@@ -345,37 +303,28 @@ TEST(MeshIoMtl, MtllibAfterUsemtlStillGivesKd) {
 TEST(MeshIoMtl, MissingMtlFile) {
   TempDir dir;
   const std::string obj = dir.write("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nmtllib gone.mtl\nf 1 2 3\n");
-  const std::string msg = mesh_error(obj);
-  EXPECT_TRUE(StartsWith(msg, obj + ":4:"));
-  EXPECT_TRUE(Contains(msg, "gone.mtl"));
-  EXPECT_TRUE(Contains(msg, "cannot open"));
+  expect_mesh_error(obj, obj + ":4:", {"gone.mtl", "cannot open"});
+}
+
+// An OBJ whose m.mtl holds `mtl_text`: loading it must fail naming line `line` of
+// the MTL and saying `says`.
+void expect_mtl_error(const std::string& mtl_text, int line, const std::string& says) {
+  TempDir dir;
+  const std::string mtl = dir.write("m.mtl", mtl_text);
+  const std::string obj = dir.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  expect_mesh_error(obj, mtl + ":" + std::to_string(line) + ":", {says});
 }
 
 TEST(MeshIoMtl, BadKdNamesMtlLine) {
-  TempDir dir;
-  const std::string mtl = dir.write("m.mtl", "newmtl a\nKd 0.5 0.5 0.5\nnewmtl b\nKd 0.5 abc 0.5\n");
-  const std::string obj = dir.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const std::string msg = mesh_error(obj);
-  EXPECT_TRUE(StartsWith(msg, mtl + ":4:"));
-  EXPECT_TRUE(Contains(msg, "'abc'"));
+  expect_mtl_error("newmtl a\nKd 0.5 0.5 0.5\nnewmtl b\nKd 0.5 abc 0.5\n", 4, "'abc'");
 }
 
 TEST(MeshIoMtl, NanKdNamesMtlLine) {
-  TempDir dir;
-  const std::string mtl = dir.write("m.mtl", "newmtl a\n\nKd nan\n");
-  const std::string obj = dir.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const std::string msg = mesh_error(obj);
-  EXPECT_TRUE(StartsWith(msg, mtl + ":3:"));
-  EXPECT_TRUE(Contains(msg, "not a finite number"));
+  expect_mtl_error("newmtl a\n\nKd nan\n", 3, "not a finite number");
 }
 
 TEST(MeshIoMtl, KdBeforeNewmtl) {
-  TempDir dir;
-  const std::string mtl = dir.write("m.mtl", "# header\nKd 0.5 0.5 0.5\nnewmtl a\n");
-  const std::string obj = dir.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const std::string msg = mesh_error(obj);
-  EXPECT_TRUE(StartsWith(msg, mtl + ":2:"));
-  EXPECT_TRUE(Contains(msg, "before any newmtl"));
+  expect_mtl_error("# header\nKd 0.5 0.5 0.5\nnewmtl a\n", 2, "before any newmtl");
 }
 
 // ---------------------------------------------------------------------------------
@@ -397,9 +346,7 @@ TEST_P(MeshIoBadObj, NamesFileAndLine) {
   const std::string text = p.text;
   const std::string path = dir.write("bad.obj", text);
   const int line = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path + ":" + std::to_string(line) + ": "));
-  EXPECT_TRUE(Contains(msg, p.says));
+  expect_mesh_error(path, path + ":" + std::to_string(line) + ": ", {p.says});
 }
 
 #define TRI "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
@@ -422,48 +369,68 @@ INSTANTIATE_TEST_SUITE_P(
 
 #undef TRI
 
-TEST(MeshIoErrors, MissingObj) {
-  TempDir dir;
-  const std::string path = (fs::temp_directory_path() / "ilp_mesh_io_test_no_such_dir" / "x.obj").string();
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path + ": "));
-  EXPECT_TRUE(Contains(msg, "cannot open mesh file"));
-}
-
-TEST(MeshIoErrors, ObjWithNoFaces) {
-  TempDir dir;
-  const std::string path = dir.write("verts.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng floor\n");
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path + ": "));
-  EXPECT_TRUE(Contains(msg, "no faces"));
-}
-
-TEST(MeshIoErrors, EmptyObj) {
-  TempDir dir;
-  const std::string path = dir.write("empty.obj", "");
-  EXPECT_TRUE(Contains(mesh_error(path), "no faces"));
-}
-
-TEST(MeshIoErrors, UnsupportedExtension) {
-  TempDir dir;
-  const std::string path = dir.write("mesh.stl", "solid x\nendsolid x\n");
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path + ": "));
-  EXPECT_TRUE(Contains(msg, "unsupported mesh format '.stl'"));
-  EXPECT_TRUE(Contains(msg, ".obj, .ply or .off"));
-}
-
-TEST(MeshIoErrors, NoExtension) {
-  TempDir dir;
-  const std::string path = dir.write("mesh", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  EXPECT_TRUE(Contains(mesh_error(path), "unsupported mesh format ''"));
-}
-
 TEST(MeshIoErrors, UppercaseObjExtensionIsAccepted) {
   TempDir dir;
   const ilp::TriangleMesh mesh = ilp::load_mesh(dir.write("MESH.OBJ", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
   EXPECT_EQ(mesh.triangles.size(), 1u);
 }
+
+// ---------------------------------------------------------------------------------
+// Files refused as a whole (OBJ, and PLY and OFF through OpenMesh)
+
+struct BadFile {
+  const char* name;
+  const char* file;   // written into the test's folder
+  const char* text;   // content of `file`; nullptr: `file` is looked for in a folder that does not exist
+  const char* after;  // the message starts with the path and then this; nullptr: its start is not checked
+  std::vector<std::string> says;  // texts the message must contain
+};
+
+void PrintTo(const BadFile& v, std::ostream* os) { *os << v.name; }
+
+class MeshIoBadFile : public ::testing::TestWithParam<BadFile> {};
+
+TEST_P(MeshIoBadFile, NamesTheFile) {
+  const BadFile& p = GetParam();
+  TempDir dir;
+  const std::string path =
+      p.text ? dir.write(p.file, p.text)
+             : (fs::temp_directory_path() / "ilp_mesh_io_test_no_such_dir" / p.file).string();
+  const std::string msg = mesh_error(path);
+  if (p.after) {
+    EXPECT_TRUE(StartsWith(msg, path + p.after));
+  }
+  for (const std::string& part : p.says) EXPECT_TRUE(Contains(msg, part));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    MeshIoErrors, MeshIoBadFile,
+    ::testing::Values(
+        BadFile{"MissingObj", "x.obj", nullptr, ": ", {"cannot open mesh file"}},
+        BadFile{"ObjWithNoFaces", "verts.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng floor\n", ": ", {"no faces"}},
+        BadFile{"EmptyObj", "empty.obj", "", nullptr, {"no faces"}},
+        BadFile{"UnsupportedExtension", "mesh.stl", "solid x\nendsolid x\n", ": ",
+                {"unsupported mesh format '.stl'", ".obj, .ply or .off"}},
+        BadFile{"NoExtension", "mesh", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", nullptr,
+                {"unsupported mesh format ''"}}),
+    [](const ::testing::TestParamInfo<BadFile>& info) { return std::string(info.param.name); });
+
+INSTANTIATE_TEST_SUITE_P(
+    MeshIoOpenMesh, MeshIoBadFile,
+    ::testing::Values(
+        BadFile{"MissingFile", "x.ply", nullptr, ": ", {"cannot open mesh file"}},
+        BadFile{"GarbagePly", "junk.ply", "this is not a ply file\n", ": ", {"could not read"}},
+        BadFile{"OffWithNoFaces", "points.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", ": ", {"no faces"}},
+        // OpenMesh drops a face with an out-of-range index without a word, and makes up
+        // a face (a copy of the previous one) when the file ends early: the loader checks
+        // the header's counts to catch both.
+        BadFile{"OffFaceIndexOutOfRangeIsAnError", "bad.off",
+                "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 9\n", "", {}},
+        BadFile{"TruncatedOffIsAnError", "short.off",
+                "OFF\n4 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n", "", {}},
+        BadFile{"OffNanCoordinateIsNamed", "nan.off", "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", "",
+                {"finite"}}),  // today: "the mesh has no faces"
+    [](const ::testing::TestParamInfo<BadFile>& info) { return std::string(info.param.name); });
 
 // ---------------------------------------------------------------------------------
 // PLY and OFF (OpenMesh)
@@ -583,55 +550,6 @@ TEST(MeshIoOpenMesh, NonManifoldEdgeKeepsEveryFace) {
     EXPECT_EQ(mesh.positions.at(static_cast<std::size_t>(tri[1])), Eigen::Vector3d(1, 0, 0)) << t;
     EXPECT_EQ(mesh.positions.at(static_cast<std::size_t>(tri[2])), third_vertex[t]) << t;
   }
-}
-
-TEST(MeshIoOpenMesh, MissingFile) {
-  TempDir dir;
-  const std::string path = (fs::temp_directory_path() / "ilp_mesh_io_test_no_such_dir" / "x.ply").string();
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path + ": "));
-  EXPECT_TRUE(Contains(msg, "cannot open mesh file"));
-}
-
-TEST(MeshIoOpenMesh, GarbagePly) {
-  TempDir dir;
-  const std::string path = dir.write("junk.ply", "this is not a ply file\n");
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path + ": "));
-  EXPECT_TRUE(Contains(msg, "could not read"));
-}
-
-TEST(MeshIoOpenMesh, OffWithNoFaces) {
-  TempDir dir;
-  const std::string path = dir.write("points.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n");
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path + ": "));
-  EXPECT_TRUE(Contains(msg, "no faces"));
-}
-
-// Known gaps, kept to be switched on once load_with_openmesh checks what OpenMesh
-// skipped: OpenMesh drops a face with an out-of-range index without a word, and
-// makes up a face (a copy of the previous one) when the file ends early.
-TEST(MeshIoOpenMesh, OffFaceIndexOutOfRangeIsAnError) {
-  TempDir dir;
-  const std::string path = dir.write("bad.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 9\n");
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path));
-}
-
-TEST(MeshIoOpenMesh, TruncatedOffIsAnError) {
-  TempDir dir;
-  const std::string path = dir.write("short.off", "OFF\n4 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path));
-}
-
-TEST(MeshIoOpenMesh, OffNanCoordinateIsNamed) {
-  TempDir dir;
-  const std::string path = dir.write("nan.off", "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n");
-  const std::string msg = mesh_error(path);
-  EXPECT_TRUE(StartsWith(msg, path));
-  EXPECT_TRUE(Contains(msg, "finite"));  // today: "the mesh has no faces"
 }
 
 }  // namespace

@@ -105,6 +105,19 @@ TEST(Radiosity, ResidualReportedIsTheResidualOfTheAnswer) {
   EXPECT_TRUE((solution.illuminance_lux.col(0) - rows.F * B).isZero(1e-9));
 }
 
+TEST(Radiosity, ExactSolveIsBitIdenticalWithOneAndTwoThreads) {
+  Scene scene = test::make_closed_box(V::Zero(), V(3, 2, 2.5), 0.6, 0.4);
+  add_square_luminaire(scene, "lamp", V(1.5, 1, 2.4), 0.6, 3000.0);
+  auto solve_with = [&](int threads) {
+    ExactSolveOptions options = exact_options(64);
+    options.form_factors.threads = options.direct_light.threads = threads;
+    return solve_exact(scene, options).radiosity.total_lux;
+  };
+  const Eigen::VectorXd one = solve_with(1), two = solve_with(2);
+  ASSERT_EQ(one.size(), two.size());
+  for (Eigen::Index i = 0; i < one.size(); ++i) ASSERT_EQ(one[i], two[i]) << "patch " << i;
+}
+
 TEST(Radiosity, NonConvergenceIsANumericalError) {
   Scene scene = test::make_closed_box(V::Zero(), V(1, 1, 1), 0.99, 0.5);
   set_surface_exitance(scene, scene.find_surface("floor"), 100.0);
