@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/ray_caster.h"
-#include "tests/core/test_scenes.h"
+#include "core/reference_scenes.h"
 
 namespace ilp {
 namespace {
@@ -14,7 +14,7 @@ using V = Eigen::Vector3d;
 
 // An a x b emitting rectangle facing down at height c, corner above the origin.
 Scene rectangle_above_origin(double a, double b, double c) {
-  return test::make_quad_scene({{"emitter", V(0, 0, c), V(0, b, c), V(a, b, c), V(a, 0, c)}}, 0.0);
+  return reference::make_quad_scene({{"emitter", V(0, 0, c), V(0, b, c), V(a, b, c), V(a, 0, c)}}, 0.0);
 }
 
 TEST(DirectLight, PointToTriangleFormFactorsSumToTheRectangleClosedForm) {
@@ -22,7 +22,7 @@ TEST(DirectLight, PointToTriangleFormFactorsSumToTheRectangleClosedForm) {
     const Scene scene = rectangle_above_origin(1.0, 0.5, c);
     double sum = 0.0;
     for (const Patch& p : scene.patches) sum += point_to_triangle_form_factor(V::Zero(), V::UnitZ(), p);
-    EXPECT_NEAR(sum, test::point_to_corner_rectangle_form_factor(1.0, 0.5, c), 1e-12) << "height " << c;
+    EXPECT_NEAR(sum, reference::point_to_corner_rectangle_form_factor(1.0, 0.5, c), 1e-12) << "height " << c;
   }
 }
 
@@ -38,7 +38,7 @@ TEST(DirectLight, ClipsToTheReceiversHemisphereAndIgnoresTheEmittersBack) {
   }
   // Clipping the whole rectangle to the vertical receiver's hemisphere must give the
   // factor of the half x >= 0.5 computed without clipping.
-  const Scene half = test::make_quad_scene({{"half", V(0.5, 0, 1), V(0.5, 1, 1), V(1, 1, 1), V(1, 0, 1)}}, 0.0);
+  const Scene half = reference::make_quad_scene({{"half", V(0.5, 0, 1), V(0.5, 1, 1), V(1, 1, 1), V(1, 0, 1)}}, 0.0);
   for (const Patch& p : half.patches) tilted_expected += point_to_triangle_form_factor(V(0.5, 0.0, 0.0), V::UnitX(), p);
   EXPECT_EQ(facing_away, 0.0);
   EXPECT_EQ(below_emitter_back, 0.0);
@@ -48,14 +48,14 @@ TEST(DirectLight, ClipsToTheReceiversHemisphereAndIgnoresTheEmittersBack) {
 
 TEST(DirectLight, PatchToSquareMatchesParallelPlatesClosedForm) {
   // Receiver: unit square at z = 0 facing up; emitter: unit square at z = 1 facing down.
-  const Scene scene = test::make_quad_scene({{"receiver", V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)},
+  const Scene scene = reference::make_quad_scene({{"receiver", V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)},
                                              {"emitter", V(0, 0, 1), V(0, 1, 1), V(1, 1, 1), V(1, 0, 1)}},
                                             0.0);
   const RayCaster caster(scene);
   DirectLightOptions options;
   options.receiver_points = 256;
-  const auto receivers = test::patches_of(scene, "receiver");
-  const auto emitters = test::patches_of(scene, "emitter");
+  const auto receivers = reference::patches_of(scene, "receiver");
+  const auto emitters = reference::patches_of(scene, "emitter");
   const Eigen::MatrixXd F = compute_emitter_form_factors(scene, caster, receivers, emitters, options);
   double weighted = 0.0, area = 0.0;
   for (std::size_t r = 0; r < receivers.size(); ++r) {
@@ -70,7 +70,7 @@ TEST(DirectLight, ShadowRaysSeeBlockersOfKnownSize) {
   // A small receiver under a unit emitter; a blocker between them covering all of
   // the emitter as seen from the receiver, then one covering exactly half of it.
   auto scene_with_blocker = [](double blocker_x1) {
-    return test::make_quad_scene(
+    return reference::make_quad_scene(
         {{"receiver", V(0.49, 0.49, 0), V(0.51, 0.49, 0), V(0.51, 0.51, 0), V(0.49, 0.51, 0)},
          {"emitter", V(0, 0, 1), V(0, 1, 1), V(1, 1, 1), V(1, 0, 1)},
          {"blocker", V(-1, -1, 0.5), V(blocker_x1, -1, 0.5), V(blocker_x1, 2, 0.5), V(-1, 2, 0.5)}},
@@ -81,15 +81,15 @@ TEST(DirectLight, ShadowRaysSeeBlockersOfKnownSize) {
   options.shadow_rays = 256;
   auto direct = [&](const Scene& scene) {
     const RayCaster caster(scene);
-    const auto receivers = test::patches_of(scene, "receiver");
-    const auto emitters = test::patches_of(scene, "emitter");
+    const auto receivers = reference::patches_of(scene, "receiver");
+    const auto emitters = reference::patches_of(scene, "emitter");
     return compute_emitter_form_factors(scene, caster, receivers, emitters, options).sum();
   };
   EXPECT_EQ(direct(scene_with_blocker(2.0)), 0.0);
   // Blocker edge at x = 0.5 straight above the receiver: the rays to x < 0.5 are
   // blocked, half of the emitter's points; the unoccluded factor stays the whole square's.
   const double half = direct(scene_with_blocker(0.5));
-  const double open = direct(test::make_quad_scene(
+  const double open = direct(reference::make_quad_scene(
       {{"receiver", V(0.49, 0.49, 0), V(0.51, 0.49, 0), V(0.51, 0.51, 0), V(0.49, 0.51, 0)},
        {"emitter", V(0, 0, 1), V(0, 1, 1), V(1, 1, 1), V(1, 0, 1)}},
       0.0));

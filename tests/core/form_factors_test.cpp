@@ -7,18 +7,19 @@
 #include <random>
 
 #include "core/ray_caster.h"
-#include "tests/core/test_scenes.h"
+#include "core/reference_scenes.h"
 
 namespace ilp {
 namespace {
 
-using test::QuadSpec;
+using reference::QuadSpec;
 using V = Eigen::Vector3d;
 
 // Tolerance for a surface-to-surface form factor F estimated from `rays` rays:
 // 3 standard deviations of the binomial estimate with independent rays. Our
-// low-discrepancy rays measured 0.2 to 1.5 of that sigma (20 seeds, 64 to 65536
-// rays, docs/foundation.md), so a bias of a sigma or two is caught at 65536 rays.
+// low-discrepancy rays measured an RMS error of 0.2 to 0.7 sigma and a worst of
+// 1.5 sigma (20 seeds, 64 to 65536 rays; build/bench/form_factor_accuracy,
+// docs/foundation.md), so a bias of a sigma or two is caught at 65536 rays.
 double mc_tolerance(double F, double rays) { return 3.0 * std::sqrt(F * (1.0 - F) / rays); }
 
 FormFactorRows all_rows(const Scene& scene, int rays, std::uint64_t seed = 1, int threads = 0) {
@@ -31,7 +32,7 @@ FormFactorRows all_rows(const Scene& scene, int rays, std::uint64_t seed = 1, in
 }
 
 Scene parallel_squares(double side, double separation) {
-  return test::make_quad_scene({{"bottom", V(0, 0, 0), V(side, 0, 0), V(side, side, 0), V(0, side, 0)},
+  return reference::make_quad_scene({{"bottom", V(0, 0, 0), V(side, 0, 0), V(side, side, 0), V(0, side, 0)},
                                 {"top", V(0, 0, separation), V(0, side, separation), V(side, side, separation),
                                  V(side, 0, separation)}},
                                0.0);
@@ -39,39 +40,39 @@ Scene parallel_squares(double side, double separation) {
 
 TEST(FormFactor, ParallelSquaresMatchClosedFormWithinToleranceThatShrinksWithRays) {
   for (double separation : {0.5, 1.0, 2.0}) {
-    const double exact = test::parallel_rectangles_form_factor(1.0, 1.0, separation);
+    const double exact = reference::parallel_rectangles_form_factor(1.0, 1.0, separation);
     const Scene scene = parallel_squares(1.0, separation);
-    const auto source = test::patches_of(scene, "bottom");
+    const auto source = reference::patches_of(scene, "bottom");
     double previous_tolerance = 1.0;
     for (int rays : {64, 1024, 16384, 65536}) {
-      const double estimate = test::surface_form_factor(scene, all_rows(scene, rays), "bottom", "top");
+      const double estimate = reference::surface_form_factor(scene, all_rows(scene, rays), "bottom", "top");
       const double tolerance = mc_tolerance(exact, static_cast<double>(rays) * source.size());
       EXPECT_LT(tolerance, previous_tolerance);
       previous_tolerance = tolerance;
       EXPECT_NEAR(estimate, exact, tolerance) << "separation " << separation << " m, " << rays << " rays per patch";
     }
   }
-  EXPECT_NEAR(test::parallel_rectangles_form_factor(1.0, 1.0, 1.0), 0.199825, 1e-6);  // published value
+  EXPECT_NEAR(reference::parallel_rectangles_form_factor(1.0, 1.0, 1.0), 0.199825, 1e-6);  // published value
 }
 
 TEST(FormFactor, PerpendicularRectanglesSharingAnEdgeMatchClosedForm) {
-  EXPECT_NEAR(test::perpendicular_rectangles_form_factor(1.0, 1.0, 1.0), 0.200044, 1e-6);  // published value
+  EXPECT_NEAR(reference::perpendicular_rectangles_form_factor(1.0, 1.0, 1.0), 0.200044, 1e-6);  // published value
   struct Case { double l, w, h; };
   for (const Case& c : {Case{1.0, 1.0, 1.0}, Case{1.0, 0.5, 2.0}, Case{2.0, 1.0, 0.5}}) {
     // "from" lies in z = 0 (facing up), "to" in x = 0 (facing +x); shared edge along y.
-    const Scene scene = test::make_quad_scene(
+    const Scene scene = reference::make_quad_scene(
         {{"from", V(0, 0, 0), V(c.w, 0, 0), V(c.w, c.l, 0), V(0, c.l, 0)},
          {"to", V(0, 0, 0), V(0, c.l, 0), V(0, c.l, c.h), V(0, 0, c.h)}},
         0.0);
-    const double exact = test::perpendicular_rectangles_form_factor(c.l, c.w, c.h);
+    const double exact = reference::perpendicular_rectangles_form_factor(c.l, c.w, c.h);
     const int rays = 65536;
-    const double estimate = test::surface_form_factor(scene, all_rows(scene, rays), "from", "to");
+    const double estimate = reference::surface_form_factor(scene, all_rows(scene, rays), "from", "to");
     EXPECT_NEAR(estimate, exact, mc_tolerance(exact, 2.0 * rays)) << "l " << c.l << " w " << c.w << " h " << c.h;
   }
 }
 
 TEST(FormFactor, ReciprocityHoldsOnRandomPairs) {
-  const Scene scene = test::make_closed_box(V::Zero(), V(2.0, 1.5, 1.0), 0.5, 0.5);
+  const Scene scene = reference::make_closed_box(V::Zero(), V(2.0, 1.5, 1.0), 0.5, 0.5);
   const int rays = 8192;
   const FormFactorRows rows = all_rows(scene, rays);
   const Eigen::MatrixXd F(rows.F);  // small: dense is fine here
@@ -92,7 +93,7 @@ TEST(FormFactor, ReciprocityHoldsOnRandomPairs) {
 }
 
 TEST(FormFactor, ClosedBoxRowsSumToOne) {
-  const Scene scene = test::make_closed_box(V::Zero(), V(3.0, 2.0, 1.0), 0.5, 0.4);
+  const Scene scene = reference::make_closed_box(V::Zero(), V(3.0, 2.0, 1.0), 0.5, 0.4);
   const FormFactorRows rows = all_rows(scene, 512);
   for (Eigen::Index r = 0; r < rows.F.rows(); ++r) {
     EXPECT_NEAR(rows.F.row(r).sum(), 1.0, 1e-12) << "row " << r;
@@ -108,7 +109,7 @@ TEST(FormFactor, ClosedBoxStaysClosedAtAnyScaleAndPosition) {
   struct Case { V origin, size; };
   for (const Case& c : {Case{V(1e5, -2e5, 3e4), V(3000.0, 2000.0, 1000.0)}, Case{V(100.0, 100.0, 100.0), V(3, 2, 1)},
                        Case{V(0, 0, 0), V(0.03, 0.02, 0.01)}}) {
-    const Scene scene = test::make_closed_box(c.origin, c.size, 0.5, c.size.maxCoeff() / 6.0);
+    const Scene scene = reference::make_closed_box(c.origin, c.size, 0.5, c.size.maxCoeff() / 6.0);
     const FormFactorRows rows = all_rows(scene, 256);
     double worst = 0.0;
     for (Eigen::Index r = 0; r < rows.F.rows(); ++r) {
@@ -117,15 +118,15 @@ TEST(FormFactor, ClosedBoxStaysClosedAtAnyScaleAndPosition) {
     }
     EXPECT_LT(worst, 1.0 / 256 + 1e-12) << "origin " << c.origin.transpose() << " size " << c.size.transpose();
     // The floor-to-ceiling factor does not depend on where the box is or its units.
-    const double exact = test::parallel_rectangles_form_factor(3.0, 2.0, 1.0);
-    const auto floor_rows = test::patches_of(scene, "floor");
-    EXPECT_NEAR(test::surface_form_factor(scene, rows, "floor", "ceiling"), exact,
+    const double exact = reference::parallel_rectangles_form_factor(3.0, 2.0, 1.0);
+    const auto floor_rows = reference::patches_of(scene, "floor");
+    EXPECT_NEAR(reference::surface_form_factor(scene, rows, "floor", "ceiling"), exact,
                 mc_tolerance(exact, 256.0 * floor_rows.size()));
   }
 }
 
 TEST(FormFactor, SameSeedGivesBitIdenticalRowsWithOneAndTwoThreads) {
-  const Scene scene = test::make_closed_box(V::Zero(), V(3.0, 2.0, 1.0), 0.5, 0.3);
+  const Scene scene = reference::make_closed_box(V::Zero(), V(3.0, 2.0, 1.0), 0.5, 0.3);
   const FormFactorRows one = all_rows(scene, 128, 42, 1);
   const FormFactorRows two = all_rows(scene, 128, 42, 2);
   ASSERT_EQ(one.F.nonZeros(), two.F.nonZeros());
@@ -140,7 +141,7 @@ TEST(FormFactor, SameSeedGivesBitIdenticalRowsWithOneAndTwoThreads) {
 }
 
 TEST(FormFactor, RowsForChosenPatchesEqualThoseRowsOfTheFullMatrix) {
-  const Scene scene = test::make_closed_box(V::Zero(), V(2.0, 2.0, 2.0), 0.5, 0.5);
+  const Scene scene = reference::make_closed_box(V::Zero(), V(2.0, 2.0, 2.0), 0.5, 0.5);
   const RayCaster caster(scene);
   FormFactorOptions options;
   options.rays_per_patch = 64;

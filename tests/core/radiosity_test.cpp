@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "core/exact_solver.h"
 #include "core/ray_caster.h"
-#include "tests/core/test_scenes.h"
+#include "core/reference_scenes.h"
 
 namespace ilp {
 namespace {
@@ -24,7 +24,7 @@ ExactSolveOptions exact_options(int rays) {
 // B = E / (1 - rho) on every patch, whatever the form factors, because every row sums to 1.
 TEST(Radiosity, FurnaceClosedCubeGivesEOverOneMinusRho) {
   for (double rho : {0.5, 0.9, 0.99}) {
-    Scene scene = test::make_closed_box(V::Zero(), V(1, 1, 1), rho, 0.25);
+    Scene scene = reference::make_closed_box(V::Zero(), V(1, 1, 1), rho, 0.25);
     const double E = 100.0;
     for (std::size_t s = 0; s < scene.surfaces.size(); ++s) set_surface_exitance(scene, static_cast<int>(s), E);
     const ExactSolution solution = solve_exact(scene, exact_options(128));
@@ -39,7 +39,7 @@ TEST(Radiosity, FurnaceClosedCubeGivesEOverOneMinusRho) {
 // sum A_i B_i = sum A_i E_i / (1 - rho). Emission here is far from uniform.
 TEST(Radiosity, ClosedSceneConservesEnergyWithLocalisedEmission) {
   const double rho = 0.7;
-  Scene scene = test::make_closed_box(V::Zero(), V(4, 3, 2.5), rho, 0.5);
+  Scene scene = reference::make_closed_box(V::Zero(), V(4, 3, 2.5), rho, 0.5);
   set_surface_exitance(scene, scene.find_surface("wall_x0"), 500.0);
   const ExactSolution solution = solve_exact(scene, exact_options(1024));
   double emitted = 0.0, leaving = 0.0;
@@ -52,7 +52,7 @@ TEST(Radiosity, ClosedSceneConservesEnergyWithLocalisedEmission) {
 }
 
 TEST(Radiosity, AllReflectancesZeroGiveExactlyTheDirectLight) {
-  Scene scene = test::make_closed_box(V::Zero(), V(4, 3, 3), 0.0, 0.5);
+  Scene scene = reference::make_closed_box(V::Zero(), V(4, 3, 3), 0.0, 0.5);
   add_square_luminaire(scene, "lamp", V(2, 1.5, 2.9), 0.6, 3000.0);
   set_surface_exitance(scene, scene.find_surface("wall_y0"), 50.0);
   const ExactSolution solution = solve_exact(scene, exact_options(64));
@@ -67,7 +67,7 @@ TEST(Radiosity, AllReflectancesZeroGiveExactlyTheDirectLight) {
 // Under a square Lambertian luminaire of exitance M at height h, a small floor patch
 // receives E = M * F(point -> square), the closed form for a parallel rectangle.
 TEST(Radiosity, IlluminanceUnderALuminaireMatchesClosedForm) {
-  Scene scene = test::make_quad_scene({{"floor", V(-0.02, -0.02, 0), V(0.02, -0.02, 0), V(0.02, 0.02, 0),
+  Scene scene = reference::make_quad_scene({{"floor", V(-0.02, -0.02, 0), V(0.02, -0.02, 0), V(0.02, 0.02, 0),
                                         V(-0.02, 0.02, 0)}},
                                       0.0);
   const double size = 0.6, flux = 3600.0, height = 2.0;
@@ -76,15 +76,15 @@ TEST(Radiosity, IlluminanceUnderALuminaireMatchesClosedForm) {
   options.direct_light.receiver_points = 64;
   const ExactSolution solution = solve_exact(scene, options);
   const double exitance = flux / (size * size);
-  const double expected = exitance * 4.0 * test::point_to_corner_rectangle_form_factor(size / 2, size / 2, height);
-  for (int i : test::patches_of(scene, "floor"))
+  const double expected = exitance * 4.0 * reference::point_to_corner_rectangle_form_factor(size / 2, size / 2, height);
+  for (int i : reference::patches_of(scene, "floor"))
     EXPECT_NEAR(solution.radiosity.total_lux[i], expected, 2e-3 * expected) << "patch " << i;
   // Far-field check of the units: E ~ I cos / d^2 with I = flux / pi for a Lambertian panel.
   EXPECT_NEAR(expected, flux / std::numbers::pi / (height * height), 0.03 * expected);
 }
 
 TEST(Radiosity, ResidualReportedIsTheResidualOfTheAnswer) {
-  Scene scene = test::make_closed_box(V::Zero(), V(2, 2, 2), 0.8, 0.5);
+  Scene scene = reference::make_closed_box(V::Zero(), V(2, 2, 2), 0.8, 0.5);
   set_surface_exitance(scene, scene.find_surface("ceiling"), 1000.0);
   const RayCaster caster(scene);
   FormFactorOptions ff;
@@ -106,7 +106,7 @@ TEST(Radiosity, ResidualReportedIsTheResidualOfTheAnswer) {
 }
 
 TEST(Radiosity, ExactSolveIsBitIdenticalWithOneAndTwoThreads) {
-  Scene scene = test::make_closed_box(V::Zero(), V(3, 2, 2.5), 0.6, 0.4);
+  Scene scene = reference::make_closed_box(V::Zero(), V(3, 2, 2.5), 0.6, 0.4);
   add_square_luminaire(scene, "lamp", V(1.5, 1, 2.4), 0.6, 3000.0);
   auto solve_with = [&](int threads) {
     ExactSolveOptions options = exact_options(64);
@@ -119,7 +119,7 @@ TEST(Radiosity, ExactSolveIsBitIdenticalWithOneAndTwoThreads) {
 }
 
 TEST(Radiosity, NonConvergenceIsANumericalError) {
-  Scene scene = test::make_closed_box(V::Zero(), V(1, 1, 1), 0.99, 0.5);
+  Scene scene = reference::make_closed_box(V::Zero(), V(1, 1, 1), 0.99, 0.5);
   set_surface_exitance(scene, scene.find_surface("floor"), 100.0);
   ExactSolveOptions options = exact_options(64);
   options.radiosity.max_iterations = 3;
@@ -127,7 +127,7 @@ TEST(Radiosity, NonConvergenceIsANumericalError) {
 }
 
 TEST(Radiosity, ColouredReflectanceSolvesEachChannel) {
-  Scene scene = test::make_closed_box(V::Zero(), V(1, 1, 1), 0.5, 0.5);
+  Scene scene = reference::make_closed_box(V::Zero(), V(1, 1, 1), 0.5, 0.5);
   for (Patch& p : scene.patches) p.reflectance = V(0.2, 0.5, 0.8);
   scene.channels = 3;
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s) set_surface_exitance(scene, static_cast<int>(s), 10.0);

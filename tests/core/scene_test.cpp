@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/core/test_scenes.h"
+#include "core/reference_scenes.h"
 
 namespace ilp {
 namespace {
@@ -74,7 +74,7 @@ TEST(Scene, YUpMillimetresBecomeZUpMetres) {
 }
 
 TEST(Scene, LuminaireIsADownwardSquareEmittingItsFlux) {
-  Scene scene = test::make_closed_box(V::Zero(), V(2, 2, 2), 0.5, 0.0);
+  Scene scene = reference::make_closed_box(V::Zero(), V(2, 2, 2), 0.5, 0.0);
   const int s = add_square_luminaire(scene, "L1", V(1, 1, 1.9), 0.6, 3600.0);
   double flux = 0.0, area = 0.0;
   for (const Patch& p : scene.patches) {

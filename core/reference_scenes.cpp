@@ -1,10 +1,10 @@
-#include "tests/core/test_scenes.h"
+#include "core/reference_scenes.h"
 
 #include <cmath>
 #include <map>
 #include <numbers>
 
-namespace ilp::test {
+namespace ilp::reference {
 
 Scene make_quad_scene(const std::vector<QuadSpec>& quads, double max_patch_edge_m) {
   TriangleMesh mesh;
@@ -89,4 +89,4 @@ double point_to_corner_rectangle_form_factor(double a, double b, double c) {
   return 1.0 / (2.0 * std::numbers::pi) * (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy));
 }
 
-}  // namespace ilp::test
+}  // namespace ilp::reference

@@ -1,5 +1,7 @@
-// Small analytic scenes for tests, built directly (no files), and closed-form
-// form factors from Howell's catalogue (see ../shared/LIGHTING.md).
+// Reference scenes with known answers: small analytic geometry built directly
+// (no files) and closed-form form factors from Howell's catalogue. They are the
+// independent yardsticks the ray-cast form factors and solvers are checked against,
+// in the tests and in the accuracy benchmark.
 #pragma once
 
 #include <Eigen/Core>
@@ -9,7 +11,7 @@
 #include "core/form_factors.h"
 #include "core/scene.h"
 
-namespace ilp::test {
+namespace ilp::reference {
 
 struct QuadSpec {
   std::string surface;
@@ -39,4 +41,4 @@ double perpendicular_rectangles_form_factor(double l, double w, double h);
 // Differential area to a parallel rectangle a x b whose corner lies straight above it at distance c.
 double point_to_corner_rectangle_form_factor(double a, double b, double c);
 
-}  // namespace ilp::test
+}  // namespace ilp::reference
