@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -51,40 +52,79 @@ double point_to_triangle_form_factor(const Eigen::Vector3d& point, const Eigen::
   return std::abs(sum) / (2.0 * std::numbers::pi);
 }
 
+namespace {
+
+// The emitter patches of one surface (one luminaire), which share their shadow rays.
+struct EmitterGroup {
+  int surface = -1;
+  std::vector<std::size_t> slots;    // columns of the result
+  std::vector<double> cumulative_area_m2;
+};
+
+std::vector<EmitterGroup> group_by_surface(const Scene& scene, std::span<const int> emitters) {
+  std::vector<EmitterGroup> groups;
+  for (std::size_t e = 0; e < emitters.size(); ++e) {
+    const Patch& p = scene.patches[emitters[e]];
+    auto it = std::find_if(groups.begin(), groups.end(), [&](const EmitterGroup& g) { return g.surface == p.surface; });
+    if (it == groups.end()) it = groups.insert(groups.end(), EmitterGroup{p.surface, {}, {}});
+    it->slots.push_back(e);
+    it->cumulative_area_m2.push_back((it->cumulative_area_m2.empty() ? 0.0 : it->cumulative_area_m2.back()) + p.area_m2);
+  }
+  return groups;
+}
+
+}  // namespace
+
 Eigen::MatrixXd compute_emitter_form_factors(const Scene& scene, const RayCaster& caster,
                                              std::span<const int> receivers, std::span<const int> emitters,
                                              const DirectLightOptions& options) {
   Eigen::MatrixXd F = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(receivers.size()),
                                             static_cast<Eigen::Index>(emitters.size()));
+  const std::vector<EmitterGroup> groups = group_by_surface(scene, emitters);
   const double offset = caster.ray_offset_m();
+  const auto receiver_points = halton4_points(static_cast<std::uint32_t>(options.receiver_points));
+  const auto target_points = halton4_points(static_cast<std::uint32_t>(options.receiver_points * options.shadow_rays));
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, receivers.size(), 16), [&](const auto& range) {
       RayCaster::prepare_thread();
+      std::vector<double> unoccluded;
       for (std::size_t r = range.begin(); r != range.end(); ++r) {
         const Patch& receiver = scene.patches[receivers[r]];
         const RotatedHalton4 points(options.seed, static_cast<std::uint64_t>(receivers[r]));
-        for (std::size_t e = 0; e < emitters.size(); ++e) {
-          const Patch& emitter = scene.patches[emitters[e]];
+        for (const EmitterGroup& group : groups) {
           const RotatedHalton4 targets(options.seed ^ 0xD1B54A32D192ED03ull,
-                                       static_cast<std::uint64_t>(receivers[r]) * 0x9E3779B1u + emitters[e]);
-          double sum = 0.0;
+                                       static_cast<std::uint64_t>(receivers[r]) * 0x9E3779B1u +
+                                           static_cast<std::uint64_t>(group.surface));
+          const double group_area = group.cumulative_area_m2.back();
           for (int s = 0; s < options.receiver_points; ++s) {
-            const auto u = points.point(static_cast<std::uint32_t>(s));
+            const auto u = points.rotate(receiver_points[static_cast<std::size_t>(s)]);
             const Eigen::Vector3d x = sample_triangle(receiver.vertices_m[0], receiver.vertices_m[1],
                                                       receiver.vertices_m[2], u[0], u[1]);
-            const double unoccluded = point_to_triangle_form_factor(x, receiver.normal, emitter);
-            if (unoccluded == 0.0) continue;
+            unoccluded.assign(group.slots.size(), 0.0);
+            bool any = false;
+            for (std::size_t k = 0; k < group.slots.size(); ++k) {
+              unoccluded[k] = point_to_triangle_form_factor(x, receiver.normal, scene.patches[emitters[group.slots[k]]]);
+              any = any || unoccluded[k] > 0.0;
+            }
+            if (!any) continue;
+            // Visible fraction of the emitter: shadow rays to area-uniform points on it.
             int visible = 0;
             for (int k = 0; k < options.shadow_rays; ++k) {
-              const auto v = targets.point(static_cast<std::uint32_t>(s * options.shadow_rays + k));
+              const auto v = targets.rotate(target_points[static_cast<std::size_t>(s * options.shadow_rays + k)]);
+              const auto pick = std::upper_bound(group.cumulative_area_m2.begin(), group.cumulative_area_m2.end(),
+                                                 v[2] * group_area);
+              const std::size_t slot = std::min<std::size_t>(pick - group.cumulative_area_m2.begin(), group.slots.size() - 1);
+              const Patch& emitter = scene.patches[emitters[group.slots[slot]]];
               const Eigen::Vector3d y = sample_triangle(emitter.vertices_m[0], emitter.vertices_m[1],
                                                         emitter.vertices_m[2], v[0], v[1]);
               if (!caster.occluded(x + receiver.normal * offset, y + emitter.normal * offset)) ++visible;
             }
-            sum += unoccluded * visible / options.shadow_rays;
+            const double visible_fraction = static_cast<double>(visible) / options.shadow_rays;
+            for (std::size_t k = 0; k < group.slots.size(); ++k)
+              F(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(group.slots[k])) +=
+                  unoccluded[k] * visible_fraction / options.receiver_points;
           }
-          F(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(e)) = sum / options.receiver_points;
         }
       }
     });

@@ -32,6 +32,9 @@ double point_to_triangle_form_factor(const Eigen::Vector3d& point, const Eigen::
 // F(i, l) for every receiver i in `receivers` and emitter l in `emitters`:
 // #receivers by #emitters, each entry the fraction of light leaving i diffusely
 // that reaches l directly (reciprocity gives l's light arriving at i: A_l F_li / A_i).
+// The patches of one surface share their shadow rays (one visible fraction per
+// receiver point and surface), which suits emitters small against their distance
+// to the receivers, as luminaires are.
 Eigen::MatrixXd compute_emitter_form_factors(const Scene& scene, const RayCaster& caster,
                                              std::span<const int> receivers, std::span<const int> emitters,
                                              const DirectLightOptions& options);
