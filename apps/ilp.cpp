@@ -93,6 +93,12 @@ int run_solve(const std::string& config_path, const std::string& csv_path, int t
   ilp::ExactSolveOptions options{job.form_factors, job.direct_light, job.radiosity};
   const ilp::ExactSolution solution = ilp::solve_exact(loaded.scene, options, make_progress(quiet));
   std::cerr << solution.summary << "\n";
+  // A closed model with consistent winding absorbs little on back faces; more hints at flipped faces.
+  constexpr double kBackFaceWarning = 0.05;
+  if (solution.summary.mean_back_hit_fraction > kBackFaceWarning)
+    std::cerr << "warning: " << std::fixed << std::setprecision(1) << 100.0 * solution.summary.mean_back_hit_fraction
+              << " % of the light strikes the back of one-sided patches and is absorbed: check the winding of the "
+                 "model's faces\n";
 
   if (!csv_path.empty()) write_patch_csv(csv_path, loaded.scene, solution.radiosity);
 

@@ -14,6 +14,11 @@
 namespace ilp {
 namespace {
 
+// Heights above an emitter's plane below this fraction of the distance (plus the
+// emitter's size) count as in the plane: far above double round-off, far below any
+// real geometry.
+constexpr double kCoplanarRelTolerance = 1e-9;
+
 // Keeps the part of polygon `in` where (v - point) . normal >= 0 (Sutherland-Hodgman).
 std::vector<Eigen::Vector3d> clip_to_hemisphere(const std::vector<Eigen::Vector3d>& in,
                                                 const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
@@ -34,7 +39,11 @@ std::vector<Eigen::Vector3d> clip_to_hemisphere(const std::vector<Eigen::Vector3
 
 double point_to_triangle_form_factor(const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
                                      const Patch& emitter) {
-  if ((point - emitter.centroid_m).dot(emitter.normal) <= 0.0) return 0.0;  // behind the emitting side
+  // Behind the emitting side, or in its plane (a coplanar point, the emitter's own
+  // patches included, exchanges no light; round-off must not make it see a hemisphere).
+  const Eigen::Vector3d from_centroid = point - emitter.centroid_m;
+  if (from_centroid.dot(emitter.normal) <= kCoplanarRelTolerance * (from_centroid.norm() + std::sqrt(emitter.area_m2)))
+    return 0.0;
   const std::vector<Eigen::Vector3d> polygon = clip_to_hemisphere(
       {emitter.vertices_m[0], emitter.vertices_m[1], emitter.vertices_m[2]}, point, normal);
   if (polygon.size() < 3) return 0.0;

@@ -1,5 +1,6 @@
 #include "core/job.h"
 
+#include <iomanip>
 #include <map>
 #include <sstream>
 
@@ -100,12 +101,20 @@ JobScene load_job_scene(const JobConfig& job) {
       throw ConfigError(located(job.report_surface_locs[k], "report.surfaces: unknown surface '" +
                                                                job.report_surfaces[k] + "'"));
 
+  double luminaire_flux_lm = 0.0, surface_flux_lm = 0.0;
+  for (const Patch& p : scene.patches)
+    (scene.surfaces[p.surface].is_luminaire ? luminaire_flux_lm : surface_flux_lm) += p.area_m2 * p.exitance_lm_per_m2;
+  if (luminaire_flux_lm + surface_flux_lm == 0.0)
+    out.log.push_back("warning: nothing emits light, so every illuminance will be 0 lx "
+                      "(add luminaires.placed or scene.emitting_surfaces)");
+
   std::ostringstream os;
   os.precision(3);
   os << std::fixed << "scene: " << scene.patches.size() << " patches, " << scene.total_area_m2() << " m2, bounds ["
      << scene.bounds_m.min().transpose() << "] .. [" << scene.bounds_m.max().transpose() << "] m, "
      << (scene.channels == 1 ? "gray (1 channel)" : "coloured (3 channels)") << ", " << job.luminaires.size()
-     << " luminaires";
+     << " luminaires; emitted flux " << std::setprecision(0) << luminaire_flux_lm << " lm from luminaires, "
+     << surface_flux_lm << " lm from emitting surfaces";
   out.log.push_back(os.str());
   return out;
 }

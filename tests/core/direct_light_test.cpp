@@ -46,6 +46,18 @@ TEST(DirectLight, ClipsToTheReceiversHemisphereAndIgnoresTheEmittersBack) {
   EXPECT_NEAR(tilted, tilted_expected, 1e-12);
 }
 
+TEST(DirectLight, CoplanarPatchesIncludingTheEmitterItselfReceiveNothing) {
+  // A 2 x 2 emitting square far from the origin, meshed into 32 coplanar patches.
+  const Scene scene = reference::make_quad_scene(
+      {{"panel", V(100, 200, 3), V(100, 202, 3), V(102, 202, 3), V(102, 200, 3)}}, 0.5);
+  const RayCaster caster(scene);
+  std::vector<int> all(scene.patches.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  const Eigen::MatrixXd F = compute_emitter_form_factors(scene, caster, all, all, {});
+  EXPECT_EQ(F.cwiseAbs().maxCoeff(), 0.0);
+  for (const Patch& p : scene.patches) EXPECT_EQ(point_to_triangle_form_factor(p.centroid_m, p.normal, p), 0.0);
+}
+
 TEST(DirectLight, PatchToSquareMatchesParallelPlatesClosedForm) {
   // Receiver: unit square at z = 0 facing up; emitter: unit square at z = 1 facing down.
   const Scene scene = reference::make_quad_scene({{"receiver", V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)},
