@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -154,18 +155,31 @@ void replace_emitter_columns(const Scene& scene, const RayCaster& caster, std::s
   const Eigen::MatrixXd exact = compute_emitter_form_factors(scene, caster, rows.row_patches, emitters, options);
   std::vector<int> emitter_slot(scene.patches.size(), -1);
   for (std::size_t e = 0; e < emitters.size(); ++e) emitter_slot[emitters[e]] = static_cast<int>(e);
+  // Emitter columns in ascending order, so each row is a merge of two sorted lists.
+  std::vector<std::size_t> by_column(emitters.size());
+  for (std::size_t e = 0; e < by_column.size(); ++e) by_column[e] = e;
+  std::sort(by_column.begin(), by_column.end(), [&](std::size_t a, std::size_t b) { return emitters[a] < emitters[b]; });
 
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(rows.F.nonZeros()) + static_cast<std::size_t>(exact.count()));
-  for (Eigen::Index r = 0; r < rows.F.rows(); ++r) {
-    for (SparseRows::InnerIterator it(rows.F, r); it; ++it)
-      if (emitter_slot[it.col()] < 0) entries.emplace_back(static_cast<int>(r), static_cast<int>(it.col()), it.value());
-    for (std::size_t e = 0; e < emitters.size(); ++e)
-      if (exact(r, static_cast<Eigen::Index>(e)) > 0.0)
-        entries.emplace_back(static_cast<int>(r), emitters[e], exact(r, static_cast<Eigen::Index>(e)));
-  }
   SparseRows F(rows.F.rows(), rows.F.cols());
-  F.setFromTriplets(entries.begin(), entries.end());
+  F.reserve(rows.F.nonZeros() + static_cast<Eigen::Index>((exact.array() > 0.0).count()));
+  for (Eigen::Index r = 0; r < rows.F.rows(); ++r) {
+    F.startVec(r);
+    SparseRows::InnerIterator it(rows.F, r);
+    std::size_t k = 0;
+    while (it || k < by_column.size()) {
+      const int emitter_column = k < by_column.size() ? emitters[by_column[k]] : std::numeric_limits<int>::max();
+      if (it && it.col() < emitter_column) {
+        if (emitter_slot[it.col()] < 0) F.insertBack(r, it.col()) = it.value();  // gathered hits on emitters are dropped
+        ++it;
+      } else {
+        if (it && it.col() == emitter_column) ++it;
+        const double value = exact(r, static_cast<Eigen::Index>(by_column[k]));
+        if (value > 0.0) F.insertBack(r, emitter_column) = value;
+        ++k;
+      }
+    }
+  }
+  F.finalize();
   rows.F = std::move(F);
 }
 
