@@ -13,6 +13,34 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Fills emitted, absorbed and lost flux. Light leaving a reflecting patch is lost in
+// the fraction of its gathered rays that struck a back face or escaped; a
+// luminaire's light travels through its closed-form column, so what it loses is its
+// flux minus what its column delivers (sum over receivers of A_i F_il E_l).
+void account_flux(const Scene& scene, const FormFactorRows& rows, const RadiositySolution& solution,
+                  ExactSolveSummary& s) {
+  const Eigen::Index n = static_cast<Eigen::Index>(scene.patches.size());
+  Eigen::VectorXd delivered_by_luminaire = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (SparseRows::InnerIterator it(rows.F, i); it; ++it)
+      if (scene.surfaces[scene.patches[it.col()].surface].is_luminaire)
+        delivered_by_luminaire[it.col()] += scene.patches[i].area_m2 * it.value();
+  Eigen::RowVectorXd absorbed = Eigen::RowVectorXd::Zero(scene.channels), lost = absorbed;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Patch& p = scene.patches[i];
+    s.emitted_lm += p.area_m2 * p.exitance_lm_per_m2;
+    for (int c = 0; c < scene.channels; ++c) {
+      absorbed[c] += p.area_m2 * (1.0 - p.reflectance[c]) * solution.illuminance_lux(i, c);
+      if (scene.surfaces[p.surface].is_luminaire)
+        lost[c] += p.exitance_lm_per_m2 * (p.area_m2 - delivered_by_luminaire[i]);
+      else
+        lost[c] += p.area_m2 * solution.radiosity_lm_per_m2(i, c) * (rows.back_hit_fraction[i] + rows.escaped_fraction[i]);
+    }
+  }
+  s.absorbed_lm = photometric(absorbed);
+  s.lost_lm = photometric(lost);
+}
+
 }  // namespace
 
 ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, const ProgressCallback& progress) {
@@ -48,6 +76,7 @@ ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, 
   s.solve_seconds = out.radiosity.seconds;
   s.iterations = out.radiosity.iterations;
   s.relative_residual = out.radiosity.relative_residual;
+  account_flux(scene, rows, out.radiosity, s);
   return out;
 }
 
@@ -62,7 +91,12 @@ std::ostream& operator<<(std::ostream& os, const ExactSolveSummary& s) {
      << "Gauss-Seidel: " << s.iterations << " sweeps in " << s.solve_seconds << " s, relative residual "
      << std::scientific << std::setprecision(1) << s.relative_residual << "\n"
      << std::fixed << std::setprecision(4) << "light escaping the scene: " << 100.0 * s.mean_escaped_fraction
-     << " %, absorbed by back faces: " << 100.0 * s.mean_back_hit_fraction << " % (area-weighted)";
+     << " %, absorbed by back faces: " << 100.0 * s.mean_back_hit_fraction << " % (area-weighted)\n"
+     << std::setprecision(1) << "flux: emitted " << s.emitted_lm << " lm, absorbed " << s.absorbed_lm
+     << " lm, lost on back faces or escaping " << s.lost_lm << " lm";
+  if (s.emitted_lm > 0.0)
+    os << ": balance " << std::showpos << std::setprecision(3)
+       << 100.0 * (s.absorbed_lm + s.lost_lm - s.emitted_lm) / s.emitted_lm << std::noshowpos << " % (ray noise)";
   os.flags(flags);
   os.precision(precision);
   return os;

@@ -32,6 +32,10 @@ struct ExactSolveSummary {
   double mean_back_hit_fraction = 0.0;   // area-weighted: light absorbed by back faces
   int iterations = 0;
   double relative_residual = 0.0;
+  // Where the light goes (photometric lm): emitted = absorbed + lost up to ray noise.
+  double emitted_lm = 0.0;
+  double absorbed_lm = 0.0;              // sum A_i (1 - rho_i) H_i
+  double lost_lm = 0.0;                  // struck back faces or left the scene
 };
 
 struct ExactSolution {

@@ -52,6 +52,11 @@ TEST(Radiosity, ClosedSceneConservesEnergyWithLocalisedEmission) {
   }
   // Reciprocity holds only to Monte Carlo noise; 1024 rays per patch keep it under 1 %.
   EXPECT_NEAR(leaving, emitted / (1 - rho), 0.01 * emitted / (1 - rho));
+  // The solver's own account agrees: a closed box loses nothing and absorbs it all.
+  const ExactSolveSummary& s = solution.summary;
+  EXPECT_NEAR(s.emitted_lm, emitted, 1e-9 * emitted);
+  EXPECT_EQ(s.lost_lm, 0.0);
+  EXPECT_NEAR(s.absorbed_lm, emitted, 0.01 * emitted);
 }
 
 TEST(Radiosity, AllReflectancesZeroGiveExactlyTheDirectLight) {
