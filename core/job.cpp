@@ -47,20 +47,19 @@ JobScene load_job_scene(const JobConfig& job) {
   for (const ReflectanceSetting& r : job.reflectance)
     surface_rho[require_surface(r.surface, r.loc, "scene.reflectance." + r.surface)] = r.rgb;
   TriangleReflectance rho(mesh.triangles.size());
+  std::vector<int> bad_kd_surface(mesh.materials.size(), -1);  // per material: a surface that uses it
+  std::vector<int> bad_kd_order;                               // materials in the order found
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const int s = mesh.triangle_surface[t];
     const int m = mesh.triangle_material[t];
     if (surface_rho[s]) {
       rho[t] = *surface_rho[s];
     } else if (m >= 0 && mesh.materials[m].kd) {
-      const Eigen::Vector3d kd = *mesh.materials[m].kd;
-      if ((kd.array() < 0.0).any() || (kd.array() >= 1.0).any())
-        throw SceneError(located(mesh.materials[m].kd_loc, "Kd of material '" + mesh.materials[m].name + "' = " +
-                                                               fmt_rgb(kd) + " is outside [0, 1) (surface '" +
-                                                               mesh.surface_names[s] +
-                                                               "'): set its reflectance in scene.reflectance of " +
-                                                               job.path));
-      rho[t] = kd;
+      rho[t] = *mesh.materials[m].kd;
+      if (((rho[t].array() < 0.0) || (rho[t].array() >= 1.0)).any() && bad_kd_surface[m] < 0) {
+        bad_kd_surface[m] = s;
+        bad_kd_order.push_back(m);
+      }
     } else if (job.default_reflectance) {
       rho[t] = *job.default_reflectance;
     } else {
@@ -68,6 +67,20 @@ JobScene load_job_scene(const JobConfig& job) {
                                                   "' has no reflectance: give it in scene.reflectance "
                                                   "(or scene.default_reflectance), or a Kd in the MTL"));
     }
+  }
+  // Every material with an unusable Kd at once (real models often carry Kd 1), each
+  // with its line; the error points at the first.
+  if (!bad_kd_order.empty()) {
+    std::string list;
+    for (int m : bad_kd_order) {
+      const MeshMaterial& material = mesh.materials[m];
+      list += std::string(list.empty() ? "" : "; ") + "'" + material.name + "' = " + fmt_rgb(*material.kd) +
+              " (line " + std::to_string(material.kd_loc.line) + ", surface '" + mesh.surface_names[bad_kd_surface[m]] +
+              "')";
+    }
+    throw SceneError(located(mesh.materials[bad_kd_order.front()].kd_loc,
+                             "Kd outside [0, 1) for " + std::to_string(bad_kd_order.size()) + " material(s): " + list +
+                                 ": set their surfaces' reflectance in scene.reflectance of " + job.path));
   }
 
   try {

@@ -489,6 +489,20 @@ TEST(JobSceneErrors, MtlKdNegativeWithoutOverride) {
   expect_message(scene_error<ilp::SceneError>(yaml), dir.file("room.mtl") + ":4:", {"'white'"});
 }
 
+TEST(JobSceneErrors, EveryBadMtlKdIsListedAtOnce) {
+  TempDir dir;
+  write_room_with_mtl(dir, "1.0 1.0 1.0");
+  dir.write("room.mtl",
+            "newmtl white\n"
+            "Kd 1 1 1\n"
+            "newmtl paint\n"
+            "Kd 0.5 1.2 0.5\n");
+  const std::string yaml = dir.write("job.yaml", "scene:\n  mesh: room.obj\n");
+  expect_message(scene_error<ilp::SceneError>(yaml), dir.file("room.mtl") + ":2:",
+                 {"2 material(s)", "'white' = 1 (line 2, surface 'floor')",
+                  "'paint' = [0.5, 1.2, 0.5] (line 4, surface 'wall')"});
+}
+
 TEST(JobScene, ConfigOverridesBadMtlKd) {
   TempDir dir;
   write_room_with_mtl(dir, "1.0 1.0 1.0");
