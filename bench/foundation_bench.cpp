@@ -49,7 +49,7 @@ void BM_FormFactorRows(benchmark::State& state) {
   const ilp::RayCaster caster(f.scene, options.threads);
   std::uint64_t rays = 0;
   for (auto _ : state) {
-    const ilp::FormFactorRows rows = ilp::compute_form_factor_rows(f.scene, caster, {}, options);
+    const ilp::FormFactorRows rows = ilp::compute_form_factor_rows(f.scene, caster, f.scene.all_patches(), options);
     benchmark::DoNotOptimize(rows.F.nonZeros());
     rays += rows.rays_cast;
   }

@@ -52,7 +52,7 @@ ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, 
   const RayCaster caster(scene, options.form_factors.threads);
   s.bvh_seconds = seconds_since(start);
 
-  FormFactorRows rows = compute_form_factor_rows(scene, caster, {}, options.form_factors, progress);
+  FormFactorRows rows = compute_form_factor_rows(scene, caster, scene.all_patches(), options.form_factors, progress);
   s.form_factor_seconds = rows.seconds;
   s.rays_cast = rows.rays_cast;
   s.rays_per_second = rows.seconds > 0.0 ? static_cast<double>(rows.rays_cast) / rows.seconds : 0.0;

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <numeric>
 #include <stdexcept>
 
 #include "core/sampling.h"
@@ -81,13 +80,12 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument("FormFactorOptions::" + error);
   const auto start = std::chrono::steady_clock::now();
+  for (int patch : patches)
+    if (patch < 0 || patch >= static_cast<int>(scene.patches.size()))
+      throw std::invalid_argument("compute_form_factor_rows: patch " + std::to_string(patch) + " is not in the scene (" +
+                                  std::to_string(scene.patches.size()) + " patches)");
   FormFactorRows out;
-  if (patches.empty()) {
-    out.row_patches.resize(scene.patches.size());
-    std::iota(out.row_patches.begin(), out.row_patches.end(), 0);
-  } else {
-    out.row_patches.assign(patches.begin(), patches.end());
-  }
+  out.row_patches.assign(patches.begin(), patches.end());
   const std::size_t rows = out.row_patches.size();
   std::vector<RowResult> results(rows);
   const auto halton = halton4_points(static_cast<std::uint32_t>(options.rays_per_patch));

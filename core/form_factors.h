@@ -36,9 +36,10 @@ struct FormFactorRows {
   double seconds = 0.0;
 };
 
-// Rows for the given patches (all patches when `patches` is empty).
+// Rows for the given patches, in that order (scene.all_patches() for all of them).
 // A ray that hits the back of a one-sided patch is absorbed: counted in
-// back_hit_fraction, not in F. Throws std::invalid_argument on bad options.
+// back_hit_fraction, not in F. Throws std::invalid_argument on bad options or a
+// patch index outside the scene.
 FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster,
                                         std::span<const int> patches, const FormFactorOptions& options,
                                         const ProgressCallback& progress = {});

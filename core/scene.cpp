@@ -1,6 +1,7 @@
 #include "core/scene.h"
 
 #include <cmath>
+#include <numeric>
 #include <ostream>
 
 namespace ilp {
@@ -35,6 +36,12 @@ int Scene::find_surface(const std::string& name) const {
   for (std::size_t s = 0; s < surfaces.size(); ++s)
     if (surfaces[s].name == name) return static_cast<int>(s);
   return -1;
+}
+
+std::vector<int> Scene::all_patches() const {
+  std::vector<int> out(patches.size());
+  std::iota(out.begin(), out.end(), 0);
+  return out;
 }
 
 double Scene::surface_area_m2(int surface) const {

@@ -55,6 +55,8 @@ struct Scene {
 
   // Index of the surface with this name, or -1.
   int find_surface(const std::string& name) const;
+  // 0, 1, ..., #patches - 1: every patch, for functions that take a list of patches.
+  std::vector<int> all_patches() const;
   double surface_area_m2(int surface) const;
   double total_area_m2() const;
   // Reflectance of a patch in one channel (channel 0 for gray scenes).

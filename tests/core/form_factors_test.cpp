@@ -28,7 +28,7 @@ FormFactorRows all_rows(const Scene& scene, int rays, std::uint64_t seed = 1, in
   options.rays_per_patch = rays;
   options.seed = seed;
   options.threads = threads;
-  return compute_form_factor_rows(scene, caster, {}, options);
+  return compute_form_factor_rows(scene, caster, scene.all_patches(), options);
 }
 
 Scene parallel_squares(double side, double separation) {
@@ -145,7 +145,7 @@ TEST(FormFactor, RowsForChosenPatchesEqualThoseRowsOfTheFullMatrix) {
   const RayCaster caster(scene);
   FormFactorOptions options;
   options.rays_per_patch = 64;
-  const FormFactorRows full = compute_form_factor_rows(scene, caster, {}, options);
+  const FormFactorRows full = compute_form_factor_rows(scene, caster, scene.all_patches(), options);
   const std::vector<int> chosen = {5, 0, 17};
   const FormFactorRows some = compute_form_factor_rows(scene, caster, chosen, options);
   ASSERT_EQ(some.F.rows(), 3);
@@ -166,7 +166,11 @@ TEST(FormFactor, RejectsInvalidOptions) {
   const RayCaster caster(scene);
   FormFactorOptions options;
   options.rays_per_patch = 0;
-  EXPECT_THROW(compute_form_factor_rows(scene, caster, {}, options), std::invalid_argument);
+  EXPECT_THROW(compute_form_factor_rows(scene, caster, scene.all_patches(), options), std::invalid_argument);
+  options.rays_per_patch = 16;
+  const std::vector<int> outside = {0, static_cast<int>(scene.patches.size())};
+  EXPECT_THROW(compute_form_factor_rows(scene, caster, outside, options), std::invalid_argument);
+  EXPECT_EQ(compute_form_factor_rows(scene, caster, {}, options).F.rows(), 0);
 }
 
 }  // namespace

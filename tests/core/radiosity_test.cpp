@@ -122,7 +122,7 @@ TEST(Radiosity, OfficeAbsorbsTheFluxItsLuminairesEmit) {
   const RayCaster caster(scene);
   FormFactorOptions ff;
   ff.rays_per_patch = 128;
-  FormFactorRows rows = compute_form_factor_rows(scene, caster, {}, ff);
+  FormFactorRows rows = compute_form_factor_rows(scene, caster, scene.all_patches(), ff);
   replace_emitter_columns(scene, caster, luminaire_patches(scene), DirectLightOptions{}, rows);
   const RadiositySolution solution = solve_radiosity(scene, rows.F, RadiosityOptions{});
   double emitted = 0.0, absorbed = 0.0, lost = 0.0;
@@ -145,7 +145,7 @@ TEST(Radiosity, ResidualReportedIsTheResidualOfTheAnswer) {
   const RayCaster caster(scene);
   FormFactorOptions ff;
   ff.rays_per_patch = 128;
-  const FormFactorRows rows = compute_form_factor_rows(scene, caster, {}, ff);
+  const FormFactorRows rows = compute_form_factor_rows(scene, caster, scene.all_patches(), ff);
   RadiosityOptions options;
   options.relative_residual = 1e-9;
   const RadiositySolution solution = solve_radiosity(scene, rows.F, options);
