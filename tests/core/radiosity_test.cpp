@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
 #include "core/error.h"
 #include "core/exact_solver.h"
 #include "core/config.h"
@@ -172,6 +174,40 @@ TEST(Radiosity, ExactSolveIsBitIdenticalWithOneAndTwoThreads) {
   const Eigen::VectorXd one = solve_with(1), two = solve_with(2);
   ASSERT_EQ(one.size(), two.size());
   for (Eigen::Index i = 0; i < one.size(); ++i) ASSERT_EQ(one[i], two[i]) << "patch " << i;
+}
+
+// Gauss-Seidel against an independent dense LU solve of (I - R F) B = E, on an open,
+// coloured scene with a luminaire and a surface emitter.
+TEST(Radiosity, GaussSeidelAgreesWithDenseLU) {
+  Scene scene = reference::make_quad_scene(
+      {{"floor", V(0, 0, 0), V(2, 0, 0), V(2, 2, 0), V(0, 2, 0), V(0.3, 0.5, 0.7)},
+       {"wall", V(0, 0, 0), V(0, 2, 0), V(0, 2, 2), V(0, 0, 2), V(0.8, 0.6, 0.4)},
+       {"ceiling", V(0, 0, 2), V(0, 2, 2), V(2, 2, 2), V(2, 0, 2), V(0.9, 0.9, 0.9)}},
+      0.5);
+  scene.channels = 3;
+  add_square_luminaire(scene, "lamp", V(1, 1, 1.9), 0.5, 2000.0);
+  set_surface_exitance(scene, scene.find_surface("wall"), 30.0);
+  const RayCaster caster(scene);
+  FormFactorOptions ff;
+  ff.rays_per_patch = 256;
+  FormFactorRows rows = compute_form_factor_rows(scene, caster, scene.all_patches(), ff);
+  replace_emitter_columns(scene, caster, luminaire_patches(scene), DirectLightOptions{}, rows);
+  RadiosityOptions options;
+  options.relative_residual = 1e-12;
+  const RadiositySolution solution = solve_radiosity(scene, rows.F, options);
+
+  const Eigen::MatrixXd F(rows.F);
+  const Eigen::Index n = F.rows();
+  Eigen::VectorXd E(n);
+  for (Eigen::Index i = 0; i < n; ++i) E[i] = scene.patches[i].exitance_lm_per_m2;
+  for (int c = 0; c < 3; ++c) {
+    Eigen::VectorXd rho(n);
+    for (Eigen::Index i = 0; i < n; ++i) rho[i] = scene.patches[i].reflectance[c];
+    const Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n) - rho.asDiagonal() * F;
+    const Eigen::VectorXd B = A.partialPivLu().solve(E);
+    EXPECT_LT((solution.radiosity_lm_per_m2.col(c) - B).norm(), 1e-10 * B.norm()) << "channel " << c;
+    EXPECT_LT((solution.illuminance_lux.col(c) - F * B).norm(), 1e-10 * (F * B).norm()) << "channel " << c;
+  }
 }
 
 TEST(Radiosity, NonConvergenceIsANumericalError) {
