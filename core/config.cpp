@@ -15,7 +15,8 @@ namespace {
 // A YAML node with the dotted key that led to it, for messages that say where.
 class Value {
  public:
-  Value(YAML::Node node, std::string key, const std::string& file) : node_(node), key_(std::move(key)), file_(file) {}
+  Value(YAML::Node node, std::string key, std::string file)
+      : node_(node), key_(std::move(key)), file_(std::move(file)) {}
 
   FileLoc loc() const {
     const YAML::Mark mark = node_.Mark();
@@ -75,7 +76,6 @@ class Value {
     for (int k = 0; k < 3; ++k) v[k] = element(k).number_in(0.0, 1.0, true, "[0, 1)");
     return v;
   }
-  std::size_t size() const { return node_.size(); }
   Value element(std::size_t k) const { return {node_[k], key_ + "[" + std::to_string(k) + "]", file_}; }
   std::vector<Value> list() const {
     if (!node_.IsSequence()) fail("must be a list");
@@ -92,7 +92,7 @@ class Value {
  private:
   YAML::Node node_;
   std::string key_;
-  const std::string& file_;
+  std::string file_;
 };
 
 // yaml-cpp keeps repeated keys and lets lookups see the first: refuse them instead.
@@ -136,13 +136,11 @@ class Map {
     if (!v) throw ConfigError(located(value_.loc(), prefix() + name + ": required key is missing"));
     return *v;
   }
-  const Value& value() const { return value_; }
 
  private:
   std::string prefix() const { return value_.key().empty() ? "" : value_.key() + "."; }
-  const std::string& file() const { return file_of_; }
+  std::string file() const { return value_.loc().file; }
   Value value_;
-  std::string file_of_ = value_.loc().file;
 };
 
 void read_scene(const Map& scene, JobConfig& job) {

@@ -104,7 +104,16 @@ JobScene load_job_scene(const JobConfig& job) {
     const std::string key = "scene.emitting_surfaces[" + std::to_string(k) + "].surface";
     set_surface_exitance(scene, require_surface(e.surface, e.loc, key), e.exitance_lm_per_m2);
   }
+  const Eigen::AlignedBox3d mesh_bounds = scene.bounds_m;
   for (const LuminaireSetting& l : job.luminaires) {
+    // Outside the model is almost always a unit or axis mix-up (mm, y up).
+    if (!mesh_bounds.contains(l.position_m)) {
+      std::ostringstream os;
+      os << "luminaires.placed: '" << l.name << "' at [" << l.position_m.transpose() << "] m lies outside the scene, ["
+         << mesh_bounds.min().transpose() << "] .. [" << mesh_bounds.max().transpose()
+         << "] m (positions are in metres, z up, after scale_to_m and up_axis)";
+      throw ConfigError(located(l.loc, os.str()));
+    }
     if (scene.find_surface(l.name) >= 0)
       throw ConfigError(located(l.loc, "luminaires.placed: name '" + l.name + "' is already a surface of the mesh"));
     add_square_luminaire(scene, l.name, l.position_m, job.luminaire_size_m, l.flux_lm);

@@ -285,6 +285,18 @@ TEST(JobConfigErrors, LuminaireNamedLikeASurface) {
       7, {"luminaires.placed", "'wall'"});
 }
 
+TEST(JobConfigErrors, LuminaireOutsideTheSceneIsAnError) {
+  expect_room_error(
+      "scene:\n"
+      "  mesh: room.obj\n"
+      "  default_reflectance: 0.5\n"
+      "luminaires:\n"
+      "  placed:\n"
+      "    - {name: L1, position_m: [0.5, 0.5, 0.9], flux_lm: 100}\n"
+      "    - {name: L2, position_m: [500, 500, 900], flux_lm: 100}\n",  // millimetres by mistake
+      7, {"luminaires.placed", "'L2'", "outside the scene"});
+}
+
 TEST(JobConfigErrors, DuplicateLuminaireName) {
   expect_config_error(
       "scene:\n"
