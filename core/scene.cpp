@@ -44,13 +44,6 @@ std::vector<int> Scene::all_patches() const {
   return out;
 }
 
-double Scene::surface_area_m2(int surface) const {
-  double area = 0.0;
-  for (const Patch& p : patches)
-    if (p.surface == surface) area += p.area_m2;
-  return area;
-}
-
 double Scene::total_area_m2() const {
   double area = 0.0;
   for (const Patch& p : patches) area += p.area_m2;
@@ -125,7 +118,7 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
   for (const Patch& p : scene.patches)
     if (p.reflectance[0] != p.reflectance[1] || p.reflectance[0] != p.reflectance[2]) scene.channels = 3;
   scene.bounds_m = bounds;
-  scene.stats.patches = scene.patches.size();
+  scene.stats.mesh_patches = scene.patches.size();
   return scene;
 }
 
@@ -143,7 +136,6 @@ int add_square_luminaire(Scene& scene, const std::string& name, const Eigen::Vec
     scene.patches.push_back(p);
     scene.bounds_m.extend(p.vertices_m[0]).extend(p.vertices_m[1]).extend(p.vertices_m[2]);
   }
-  scene.stats.patches = scene.patches.size();
   return surface;
 }
 
@@ -155,7 +147,7 @@ void set_surface_exitance(Scene& scene, int surface, double exitance_lm_per_m2) 
 
 std::ostream& operator<<(std::ostream& os, const SceneStats& s) {
   return os << s.faces_read << " faces read, " << s.triangles_read << " triangles, " << s.degenerate_dropped
-            << " degenerate dropped, " << s.patches << " patches";
+            << " degenerate dropped, " << s.mesh_patches << " patches";
 }
 
 }  // namespace ilp

@@ -43,7 +43,7 @@ struct SceneStats {
   std::size_t faces_read = 0;            // polygons in the mesh file
   std::size_t triangles_read = 0;        // after fan triangulation
   std::size_t degenerate_dropped = 0;    // zero-area or collinear triangles
-  std::size_t patches = 0;               // after subdivision (luminaires included)
+  std::size_t mesh_patches = 0;          // made from the mesh by subdivision (luminaires come on top)
 };
 
 struct Scene {
@@ -57,7 +57,6 @@ struct Scene {
   int find_surface(const std::string& name) const;
   // 0, 1, ..., #patches - 1: every patch, for functions that take a list of patches.
   std::vector<int> all_patches() const;
-  double surface_area_m2(int surface) const;
   double total_area_m2() const;
   // Reflectance of a patch in one channel (channel 0 for gray scenes).
   double reflectance(int patch, int channel) const { return patches[patch].reflectance[channel]; }

@@ -39,7 +39,7 @@ TEST(Scene, SubdivisionBoundsEdgesAndKeepsAreaSurfaceAndOrientation) {
   EXPECT_NEAR(area, expected, 1e-9 * expected);
   // The first triangle's patches all face +z, like their parent.
   EXPECT_TRUE(scene.patches.front().normal.isApprox(V::UnitZ()));
-  EXPECT_EQ(scene.stats.patches, scene.patches.size());
+  EXPECT_EQ(scene.stats.mesh_patches, scene.patches.size());
 }
 
 TEST(Scene, DropsAndCountsDegenerateFaces) {
