@@ -51,6 +51,7 @@ ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, 
   auto start = std::chrono::steady_clock::now();
   const RayCaster caster(scene, options.form_factors.threads);
   s.bvh_seconds = seconds_since(start);
+  s.ray_offset_m = caster.ray_offset_m();
 
   FormFactorRows rows = compute_form_factor_rows(scene, caster, scene.all_patches(), options.form_factors, progress);
   s.form_factor_seconds = rows.seconds;
@@ -84,7 +85,9 @@ std::ostream& operator<<(std::ostream& os, const ExactSolveSummary& s) {
   const auto flags = os.flags();
   const auto precision = os.precision();
   os << std::fixed << std::setprecision(3);
-  os << "BVH: " << s.patches << " patches in " << s.bvh_seconds << " s\n"
+  os << "BVH: " << s.patches << " patches in " << s.bvh_seconds << " s, ray offset " << std::setprecision(1)
+     << s.ray_offset_m * 1e6 << " um\n"
+     << std::setprecision(3)
      << "form factors: " << s.rays_cast << " rays in " << s.form_factor_seconds << " s ("
      << std::setprecision(2) << s.rays_per_second / 1e6 << " M rays/s)\n"
      << std::setprecision(3) << "direct light (luminaires): " << s.direct_light_seconds << " s\n"

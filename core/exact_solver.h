@@ -23,6 +23,7 @@ struct ExactSolveOptions {
 struct ExactSolveSummary {
   std::size_t patches = 0;
   double bvh_seconds = 0.0;
+  double ray_offset_m = 0.0;             // how far ray origins are pushed off their patch
   double form_factor_seconds = 0.0;
   double direct_light_seconds = 0.0;
   double solve_seconds = 0.0;
