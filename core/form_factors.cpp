@@ -28,20 +28,29 @@ struct RowScratch {
   std::vector<int> touched;
 };
 
-RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch,
-                    const std::vector<std::array<double, 4>>& halton, const FormFactorOptions& options,
-                    RowScratch& scratch) {
+// Casts the rays of patch `patch`'s row and calls on_hit(RayHit) for each: the
+// same rays, in the same order, for full rows and for bin counts.
+template <class OnHit>
+void cast_row(const Scene& scene, const RayCaster& caster, int patch, const std::vector<std::array<double, 4>>& halton,
+              const FormFactorOptions& options, OnHit&& on_hit) {
   const Patch& p = scene.patches[patch];
   Eigen::Vector3d t, s;
   orthonormal_basis(p.normal, t, s);
   const RotatedHalton4 sequence(options.seed, static_cast<std::uint64_t>(patch));
   const Eigen::Vector3d offset = p.normal * caster.ray_offset_m();
-  RowResult row;
   for (int r = 0; r < options.rays_per_patch; ++r) {
     const auto u = sequence.rotate(halton[static_cast<std::size_t>(r)]);
     const Eigen::Vector3d origin = sample_triangle(p.vertices_m[0], p.vertices_m[1], p.vertices_m[2], u[0], u[1]);
     const Eigen::Vector3d direction = sample_cosine_hemisphere(p.normal, t, s, u[2], u[3]);
-    const RayHit hit = caster.first_hit(origin + offset, direction);
+    on_hit(caster.first_hit(origin + offset, direction));
+  }
+}
+
+RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch,
+                    const std::vector<std::array<double, 4>>& halton, const FormFactorOptions& options,
+                    RowScratch& scratch) {
+  RowResult row;
+  cast_row(scene, caster, patch, halton, options, [&](const RayHit& hit) {
     if (hit.patch < 0) {
       ++row.escaped;
     } else if (!hit.front) {
@@ -49,7 +58,7 @@ RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch,
     } else if (scratch.count[hit.patch]++ == 0) {
       scratch.touched.push_back(hit.patch);
     }
-  }
+  });
   std::sort(scratch.touched.begin(), scratch.touched.end());
   row.hits.reserve(scratch.touched.size());
   for (int j : scratch.touched) {
@@ -58,6 +67,16 @@ RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch,
   }
   scratch.touched.clear();
   return row;
+}
+
+void check_request(const Scene& scene, std::span<const int> patches, const FormFactorOptions& options,
+                   const char* function) {
+  std::string error;
+  if (!options.is_valid(&error)) throw std::invalid_argument("FormFactorOptions::" + error);
+  for (int patch : patches)
+    if (patch < 0 || patch >= static_cast<int>(scene.patches.size()))
+      throw std::invalid_argument(std::string(function) + ": patch " + std::to_string(patch) +
+                                  " is not in the scene (" + std::to_string(scene.patches.size()) + " patches)");
 }
 
 }  // namespace
@@ -77,13 +96,8 @@ bool FormFactorOptions::is_valid(std::string* error) const {
 FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster,
                                         std::span<const int> patches, const FormFactorOptions& options,
                                         const ProgressCallback& progress) {
-  std::string error;
-  if (!options.is_valid(&error)) throw std::invalid_argument("FormFactorOptions::" + error);
+  check_request(scene, patches, options, "compute_form_factor_rows");
   const auto start = std::chrono::steady_clock::now();
-  for (int patch : patches)
-    if (patch < 0 || patch >= static_cast<int>(scene.patches.size()))
-      throw std::invalid_argument("compute_form_factor_rows: patch " + std::to_string(patch) + " is not in the scene (" +
-                                  std::to_string(scene.patches.size()) + " patches)");
   FormFactorRows out;
   out.row_patches.assign(patches.begin(), patches.end());
   const std::size_t rows = out.row_patches.size();
@@ -125,6 +139,42 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
   out.rays_cast = static_cast<std::uint64_t>(rows) * options.rays_per_patch;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+Eigen::MatrixXd compute_row_bin_fractions(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
+                                          std::span<const int> bin_of_patch, int bins,
+                                          const FormFactorOptions& options, const ProgressCallback& progress) {
+  check_request(scene, patches, options, "compute_row_bin_fractions");
+  if (bin_of_patch.size() != scene.patches.size() || bins < 0)
+    throw std::invalid_argument("compute_row_bin_fractions: need one bin per patch (" +
+                                std::to_string(scene.patches.size()) + "), got " + std::to_string(bin_of_patch.size()));
+  for (int b : bin_of_patch)
+    if (b < -1 || b >= bins) throw std::invalid_argument("compute_row_bin_fractions: bin " + std::to_string(b) + " out of range");
+  const std::size_t rows = patches.size();
+  Eigen::MatrixXd fractions = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows), bins + 2);
+  const auto halton = halton4_points(static_cast<std::uint32_t>(options.rays_per_patch));
+  const double inv_rays = 1.0 / options.rays_per_patch;
+  std::atomic<std::size_t> done{0};
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 64), [&](const tbb::blocked_range<std::size_t>& range) {
+      RayCaster::prepare_thread();
+      std::vector<int> count(static_cast<std::size_t>(bins) + 2);
+      for (std::size_t r = range.begin(); r != range.end(); ++r) {
+        std::fill(count.begin(), count.end(), 0);
+        cast_row(scene, caster, patches[r], halton, options, [&](const RayHit& hit) {
+          if (hit.patch < 0) ++count[static_cast<std::size_t>(bins)];
+          else if (!hit.front) ++count[static_cast<std::size_t>(bins) + 1];
+          else if (const int b = bin_of_patch[static_cast<std::size_t>(hit.patch)]; b >= 0) ++count[static_cast<std::size_t>(b)];
+        });
+        for (int b = 0; b < bins + 2; ++b)
+          fractions(static_cast<Eigen::Index>(r), b) = count[static_cast<std::size_t>(b)] * inv_rays;
+      }
+      const std::size_t now = done.fetch_add(range.size()) + range.size();
+      if (progress) progress("row sums", now, rows);
+    });
+  });
+  return fractions;
 }
 
 }  // namespace ilp

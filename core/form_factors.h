@@ -5,6 +5,7 @@
 // back-hit fractions <= 1, A_i F_ij ~ A_j F_ji.
 #pragma once
 
+#include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <cstdint>
 #include <span>
@@ -43,5 +44,14 @@ struct FormFactorRows {
 FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster,
                                         std::span<const int> patches, const FormFactorOptions& options,
                                         const ProgressCallback& progress = {});
+
+// The same rays as compute_form_factor_rows, counted instead of stored: for each
+// row, the fraction of its rays that struck the front of a patch j in bin
+// bin_of_patch[j] (in [0, bins); -1: not counted), then two more columns, the
+// escaped and the back-hit fractions: #rows by bins + 2. What gives a gather's
+// row sums (METHOD section 3) without keeping n rows in memory.
+Eigen::MatrixXd compute_row_bin_fractions(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
+                                          std::span<const int> bin_of_patch, int bins,
+                                          const FormFactorOptions& options, const ProgressCallback& progress = {});
 
 }  // namespace ilp

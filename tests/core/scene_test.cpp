@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include "core/config.h"
+#include "core/form_factors.h"
+#include "core/job.h"
+#include "core/ray_caster.h"
 #include "core/reference_scenes.h"
 
 namespace ilp {
@@ -101,6 +105,46 @@ TEST(Scene, RefusesMeshingBeyondThePatchLimit) {
   options.max_patch_edge_m = 0.01;
   options.max_patches = 1000;
   EXPECT_THROW(make_scene(mesh, {V::Constant(0.5)}, options), SceneError);
+}
+
+
+// The shipped Cornell box: coloured walls from the MTL, and a closed room (no ray
+// leaves it), which its one-sided, inward-facing walls need to be lit correctly.
+TEST(Scene, ShippedCornellBoxIsColouredAndClosed) {
+  const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/cornell.yaml");
+  const Scene scene = load_job_scene(job).scene;
+  EXPECT_EQ(scene.channels, 3);
+  const int left = scene.find_surface("left_wall");
+  const int right = scene.find_surface("right_wall");
+  ASSERT_GE(left, 0);
+  ASSERT_GE(right, 0);
+  int left_patches = 0, right_patches = 0, wrong_colour = 0;
+  for (const Patch& p : scene.patches) {
+    if (p.surface == left) {
+      ++left_patches;
+      wrong_colour += p.reflectance.x() <= p.reflectance.y();  // must be red
+    } else if (p.surface == right) {
+      ++right_patches;
+      wrong_colour += p.reflectance.y() <= p.reflectance.x();  // must be green
+    }
+  }
+  EXPECT_GT(left_patches, 0);
+  EXPECT_GT(right_patches, 0);
+  EXPECT_EQ(wrong_colour, 0);
+
+  const RayCaster caster(scene, 0);
+  std::vector<int> rows;
+  for (int i = 0; i < static_cast<int>(scene.patches.size()); i += 50) rows.push_back(i);
+  FormFactorOptions options;
+  options.rays_per_patch = 256;
+  const FormFactorRows ff = compute_form_factor_rows(scene, caster, rows, options);
+  ASSERT_EQ(ff.escaped_fraction.size(), static_cast<Eigen::Index>(rows.size()));
+  int leaking = 0, first_leaking = -1;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (ff.escaped_fraction[static_cast<Eigen::Index>(r)] < 1e-3) continue;
+    if (leaking++ == 0) first_leaking = rows[r];
+  }
+  EXPECT_EQ(leaking, 0) << leaking << " of " << rows.size() << " rows leak light, the first from patch " << first_leaking;
 }
 
 }  // namespace

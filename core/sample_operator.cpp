@@ -1,0 +1,462 @@
+#include "core/sample_operator.h"
+
+#include <Eigen/LU>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/radiosity.h"
+
+namespace ilp {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool is_reflecting(const Scene& scene, const Patch& p) {
+  return !scene.surfaces[p.surface].is_luminaire && p.reflectance.maxCoeff() > 0.0;
+}
+
+// Luminaires get closed-form direct light; any other source is gathered by the rows' rays.
+struct SourceTable {
+  std::vector<double> area_m2;          // per source
+  std::vector<int> emitting_index;      // per source: index among gathered sources, -1 for luminaires
+  std::vector<int> gathered;            // source index of each gathered source
+  std::vector<int> luminaire_patches;   // emitter patches for compute_emitter_form_factors
+  std::vector<int> luminaire_patch_source;
+  std::vector<int> gathered_of_patch;   // per scene patch: gathered source index or -1
+};
+
+SourceTable make_source_table(const Scene& scene, std::span<const LightSource> sources) {
+  SourceTable t;
+  std::vector<int> source_of_surface(scene.surfaces.size(), -1);
+  for (std::size_t l = 0; l < sources.size(); ++l) {
+    const int s = sources[l].surface;
+    if (s < 0 || s >= static_cast<int>(scene.surfaces.size()))
+      throw std::invalid_argument("light source '" + sources[l].name + "': surface " + std::to_string(s) +
+                                  " is not in the scene");
+    if (source_of_surface[s] >= 0)
+      throw std::invalid_argument("light source '" + sources[l].name + "': surface listed twice");
+    source_of_surface[s] = static_cast<int>(l);
+    const bool luminaire = scene.surfaces[s].is_luminaire;
+    t.emitting_index.push_back(luminaire ? -1 : static_cast<int>(t.gathered.size()));
+    if (!luminaire) t.gathered.push_back(static_cast<int>(l));
+  }
+  t.area_m2.assign(sources.size(), 0.0);
+  t.gathered_of_patch.assign(scene.patches.size(), -1);
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const int l = source_of_surface[scene.patches[i].surface];
+    if (l < 0) continue;
+    t.area_m2[l] += scene.patches[i].area_m2;
+    if (t.emitting_index[l] < 0) {
+      t.luminaire_patches.push_back(static_cast<int>(i));
+      t.luminaire_patch_source.push_back(l);
+    } else {
+      t.gathered_of_patch[i] = t.emitting_index[l];
+    }
+  }
+  return t;
+}
+
+// Row sums of one row split the way the gather needs them: s_i over the reflecting
+// patches and, per gathered source, the fraction of rays reaching it.
+struct RowSums {
+  Eigen::VectorXd reflecting;   // per row
+  Eigen::MatrixXd gathered;     // rows by #gathered sources
+};
+
+RowSums row_sums_from_rows(const Scene& scene, const SparseRows& F, const SourceTable& sources) {
+  RowSums out{Eigen::VectorXd::Zero(F.rows()),
+              Eigen::MatrixXd::Zero(F.rows(), static_cast<Eigen::Index>(sources.gathered.size()))};
+  for (Eigen::Index r = 0; r < F.rows(); ++r)
+    for (SparseRows::InnerIterator it(F, r); it; ++it) {
+      if (is_reflecting(scene, scene.patches[it.col()])) out.reflecting[r] += it.value();
+      if (const int e = sources.gathered_of_patch[it.col()]; e >= 0) out.gathered(r, e) += it.value();
+    }
+  return out;
+}
+
+// The same sums by counting rays only: bin 0 reflecting, 1 + e gathered source e,
+// 1 + m + e both (a reflecting emitter).
+RowSums row_sums_by_counting(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
+                             const SourceTable& sources, const FormFactorOptions& options,
+                             const ProgressCallback& progress) {
+  const int m = static_cast<int>(sources.gathered.size());
+  std::vector<int> bin(scene.patches.size(), -1);
+  for (std::size_t j = 0; j < scene.patches.size(); ++j) {
+    const bool reflecting = is_reflecting(scene, scene.patches[j]);
+    const int e = sources.gathered_of_patch[j];
+    bin[j] = e >= 0 ? (reflecting ? 1 + m + e : 1 + e) : (reflecting ? 0 : -1);
+  }
+  const Eigen::MatrixXd f = compute_row_bin_fractions(scene, caster, patches, bin, 1 + 2 * m, options, progress);
+  RowSums out{f.col(0), Eigen::MatrixXd::Zero(f.rows(), m)};
+  for (int e = 0; e < m; ++e) {
+    out.reflecting += f.col(1 + m + e);
+    out.gathered.col(e) = f.col(1 + e) + f.col(1 + m + e);
+  }
+  return out;
+}
+
+// D(R,:): illuminance at each receiver per lumen of each source.
+Eigen::MatrixXd direct_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
+                             std::size_t source_count, const SourceTable& sources, const Eigen::MatrixXd& gathered,
+                             const DirectLightOptions& options) {
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(receivers.size()),
+                                            static_cast<Eigen::Index>(source_count));
+  if (!sources.luminaire_patches.empty() && !receivers.empty()) {
+    const Eigen::MatrixXd F = compute_emitter_form_factors(scene, caster, receivers, sources.luminaire_patches, options);
+    for (std::size_t e = 0; e < sources.luminaire_patches.size(); ++e) {
+      const int l = sources.luminaire_patch_source[e];
+      D.col(l) += F.col(static_cast<Eigen::Index>(e)) / sources.area_m2[l];
+    }
+  }
+  for (std::size_t e = 0; e < sources.gathered.size(); ++e) {
+    const int l = sources.gathered[e];
+    if (sources.area_m2[l] > 0.0) D.col(l) = gathered.col(static_cast<Eigen::Index>(e)) / sources.area_m2[l];
+  }
+  return D;
+}
+
+std::string patch_name(const Scene& scene, int patch) {
+  return "patch " + std::to_string(patch) + " (" + scene.surfaces[scene.patches[patch].surface].name + ")";
+}
+
+// A NaN or Inf must never reach the output silently: stop and say where it arose.
+void require_finite(const Eigen::MatrixXd& m, const char* stage, const Scene& scene, std::span<const int> row_patches,
+                    std::span<const LightSource> sources) {
+  for (Eigen::Index c = 0; c < m.cols(); ++c)
+    for (Eigen::Index r = 0; r < m.rows(); ++r)
+      if (!std::isfinite(m(r, c)))
+        throw NumericalError(std::string(stage) + ": non-finite value " + std::to_string(m(r, c)) + " at " +
+                             patch_name(scene, row_patches[static_cast<std::size_t>(r)]) + " for light source '" +
+                             sources[static_cast<std::size_t>(c)].name + "'");
+}
+
+// I - K is an M-matrix, so exact arithmetic gives T >= 0; LU round-off may leave
+// values a few ulps below 0, which are set to 0. Anything clearly negative is a bug.
+void clamp_round_off(Eigen::MatrixXd& T, const Scene& scene, std::span<const int> row_patches,
+                     std::span<const LightSource> sources) {
+  const double tolerance = 1e-9 * std::max(T.cwiseAbs().maxCoeff(), 1e-300);
+  for (Eigen::Index c = 0; c < T.cols(); ++c)
+    for (Eigen::Index r = 0; r < T.rows(); ++r)
+      if (T(r, c) < 0.0) {
+        if (T(r, c) < -tolerance)
+          throw NumericalError("sample operator: negative illuminance " + std::to_string(T(r, c)) + " lux/lm at " +
+                               patch_name(scene, row_patches[static_cast<std::size_t>(r)]) + " for light source '" +
+                               sources[static_cast<std::size_t>(c)].name + "'");
+        T(r, c) = 0.0;
+      }
+}
+
+// F(rows,:) B1 where B1_j = rho_j(channel) D(j,:) is known at the patches in `at`
+// (dense index `slot`): the first reflection gathered through full rows.
+Eigen::MatrixXd gather_first_reflection(const Scene& scene, const SparseRows& F, const std::vector<int>& slot,
+                                        const Eigen::MatrixXd& D_at, int channel) {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(F.rows(), D_at.cols());
+  for (Eigen::Index r = 0; r < F.rows(); ++r)
+    for (SparseRows::InnerIterator it(F, r); it; ++it)
+      if (const int s = slot[it.col()]; s >= 0)
+        out.row(r) += it.value() * scene.reflectance(static_cast<int>(it.col()), channel) * D_at.row(s);
+  return out;
+}
+
+}  // namespace
+
+std::vector<LightSource> scene_light_sources(const Scene& scene) {
+  std::vector<LightSource> out;
+  std::vector<bool> emits(scene.surfaces.size(), false);
+  for (const Patch& p : scene.patches)
+    if (p.exitance_lm_per_m2 > 0.0) emits[p.surface] = true;
+  for (std::size_t s = 0; s < scene.surfaces.size(); ++s)
+    if (scene.surfaces[s].is_luminaire || emits[s]) out.push_back({scene.surfaces[s].name, static_cast<int>(s)});
+  return out;
+}
+
+Eigen::VectorXd source_flux_lm(const Scene& scene, std::span<const LightSource> sources) {
+  Eigen::VectorXd flux = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sources.size()));
+  for (const Patch& p : scene.patches)
+    for (std::size_t l = 0; l < sources.size(); ++l)
+      if (sources[l].surface == p.surface) flux[static_cast<Eigen::Index>(l)] += p.area_m2 * p.exitance_lm_per_m2;
+  return flux;
+}
+
+std::string_view to_string(IndirectMethod method) {
+  return method == IndirectMethod::sample_gather ? "sample_gather" : "exact_second_bounce";
+}
+
+std::optional<IndirectMethod> parse_indirect_method(std::string_view text) {
+  for (IndirectMethod m : {IndirectMethod::sample_gather, IndirectMethod::exact_second_bounce})
+    if (text == to_string(m)) return m;
+  return std::nullopt;
+}
+
+std::vector<int> reflecting_patches(const Scene& scene) {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < scene.patches.size(); ++i)
+    if (is_reflecting(scene, scene.patches[i])) out.push_back(static_cast<int>(i));
+  return out;
+}
+
+GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::span<const int> goal_patches,
+                           std::span<const LightSource> sources, const SampleOperatorOptions& options,
+                           const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  for (int p : goal_patches)
+    if (p < 0 || p >= static_cast<int>(scene.patches.size()))
+      throw std::invalid_argument("compute_goal_rows: patch " + std::to_string(p) + " is not in the scene");
+  const SourceTable table = make_source_table(scene, sources);
+  GoalRows goals;
+  goals.patches.assign(goal_patches.begin(), goal_patches.end());
+  goals.sources.assign(sources.begin(), sources.end());
+  const bool any_reflecting = !reflecting_patches(scene).empty();
+  RowSums sums{Eigen::VectorXd::Zero(static_cast<Eigen::Index>(goal_patches.size())),
+               Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(goal_patches.size()),
+                                     static_cast<Eigen::Index>(table.gathered.size()))};
+  if (options.indirect == IndirectMethod::exact_second_bounce && any_reflecting) {
+    goals.rows = compute_form_factor_rows(scene, caster, goal_patches, options.form_factors, progress);
+    sums = row_sums_from_rows(scene, goals.rows->F, table);
+    goals.rays_cast = goals.rows->rays_cast;
+  } else if (any_reflecting || !table.gathered.empty()) {
+    sums = row_sums_by_counting(scene, caster, goal_patches, table, options.form_factors, progress);
+    goals.rays_cast = static_cast<std::uint64_t>(goal_patches.size()) * options.form_factors.rays_per_patch;
+  }
+  goals.reflecting_fraction = sums.reflecting;
+  if (progress) progress("direct light (goals)", 0, 1);
+  goals.direct_lux_per_lm = direct_light(scene, caster, goal_patches, sources.size(), table, sums.gathered,
+                                         options.direct_light);
+  if (progress) progress("direct light (goals)", 1, 1);
+  require_finite(goals.direct_lux_per_lm, "direct light", scene, goal_patches, sources);
+  goals.seconds = seconds_since(start);
+  return goals;
+}
+
+SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                                     const SampleOperatorOptions& options, const ProgressCallback& progress) {
+  if (options.sample_size < 1)
+    throw std::invalid_argument("sample_size = " + std::to_string(options.sample_size) + ": must be >= 1");
+  const std::span<const LightSource> sources = goals.sources;
+  const SourceTable table = make_source_table(scene, sources);
+  const Eigen::Index L = static_cast<Eigen::Index>(sources.size());
+  const Eigen::Index G = static_cast<Eigen::Index>(goals.patches.size());
+
+  SampleOperator op;
+  op.goal_patches = goals.patches;
+  op.sources = goals.sources;
+  op.direct_lux_per_lm = goals.direct_lux_per_lm;
+  SampleOperatorStats& st = op.stats;
+  st.patches = scene.patches.size();
+  st.channels = scene.channels;
+  st.goal_patches = goals.patches.size();
+  st.goal_seconds = goals.seconds;
+  st.rays_cast = goals.rays_cast;
+  st.direct_rows = goals.patches.size();
+
+  const std::vector<int> population = reflecting_patches(scene);
+  st.population = population.size();
+  if (population.empty()) {
+    st.direct_only = true;
+    op.total_lux_per_lm = op.direct_lux_per_lm;
+    op.log.push_back("every reflectance is 0: direct light only, no sample, no interreflection");
+    return op;
+  }
+  if (options.indirect == IndirectMethod::exact_second_bounce && !goals.rows)
+    throw std::invalid_argument("build_sample_operator: exact_second_bounce needs goal rows computed with it");
+
+  // The sample and its rows.
+  op.sample = draw_patch_sample(scene, population, options.sample_size, options.strategy, options.sample_seed);
+  const std::vector<int>& P = op.sample.patches;
+  const Eigen::Index k = static_cast<Eigen::Index>(P.size());
+  st.sample_patches = P.size();
+  st.census = op.sample.census;
+  FormFactorRows rows = compute_form_factor_rows(scene, caster, P, options.form_factors, progress);
+  st.sample_row_seconds = rows.seconds;
+  st.rays_cast += rows.rays_cast;
+  const RowSums sample_sums = row_sums_from_rows(scene, rows.F, table);
+
+  // Direct light at the sample patches (copied where a sample patch is a goal).
+  auto start = std::chrono::steady_clock::now();
+  std::vector<int> goal_slot(scene.patches.size(), -1), sample_slot(scene.patches.size(), -1);
+  for (Eigen::Index g = 0; g < G; ++g) goal_slot[goals.patches[g]] = static_cast<int>(g);
+  for (Eigen::Index b = 0; b < k; ++b) sample_slot[P[b]] = static_cast<int>(b);
+  std::vector<int> need_direct;
+  std::vector<Eigen::Index> need_direct_row;
+  for (Eigen::Index b = 0; b < k; ++b)
+    if (goal_slot[P[b]] < 0) {
+      need_direct.push_back(P[b]);
+      need_direct_row.push_back(b);
+    }
+  Eigen::MatrixXd gathered_needed(static_cast<Eigen::Index>(need_direct.size()), sample_sums.gathered.cols());
+  for (std::size_t m = 0; m < need_direct.size(); ++m)
+    gathered_needed.row(static_cast<Eigen::Index>(m)) = sample_sums.gathered.row(need_direct_row[m]);
+  const Eigen::MatrixXd D_new =
+      direct_light(scene, caster, need_direct, sources.size(), table, gathered_needed, options.direct_light);
+  Eigen::MatrixXd D_P(k, L);
+  for (Eigen::Index b = 0; b < k; ++b)
+    if (goal_slot[P[b]] >= 0) D_P.row(b) = goals.direct_lux_per_lm.row(goal_slot[P[b]]);
+  for (std::size_t m = 0; m < need_direct.size(); ++m) D_P.row(need_direct_row[m]) = D_new.row(static_cast<Eigen::Index>(m));
+  st.direct_rows += need_direct.size();
+  require_finite(D_P, "direct light", scene, P, sources);
+
+  // Refinement: direct light at every reflecting patch the sample and goal rows hit.
+  const bool refine = options.indirect == IndirectMethod::exact_second_bounce;
+  std::vector<int> hit_slot(scene.patches.size(), -1);
+  Eigen::MatrixXd D_hit;
+  if (refine) {
+    std::vector<int> hit;
+    auto collect = [&](const SparseRows& F) {
+      for (Eigen::Index r = 0; r < F.rows(); ++r)
+        for (SparseRows::InnerIterator it(F, r); it; ++it)
+          if (hit_slot[it.col()] < 0 && is_reflecting(scene, scene.patches[it.col()])) {
+            hit_slot[it.col()] = static_cast<int>(hit.size());
+            hit.push_back(static_cast<int>(it.col()));
+          }
+    };
+    collect(rows.F);
+    collect(goals.rows->F);
+    // Gathered sources keep the plain form (their direct light is known only where rows were cast).
+    D_hit = direct_light(scene, caster, hit, sources.size(), table,
+                         Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(hit.size()),
+                                               static_cast<Eigen::Index>(table.gathered.size())),
+                         options.direct_light);
+    st.direct_rows += hit.size();
+    require_finite(D_hit, "direct light", scene, hit, sources);
+  }
+  st.direct_seconds = seconds_since(start);
+
+  // Gather weights. Sample rows: from their own rows; ambient where they see no sample patch.
+  start = std::chrono::steady_clock::now();
+  const Eigen::VectorXd& w = op.sample.weight;
+  Eigen::VectorXd ambient(k);
+  for (Eigen::Index b = 0; b < k; ++b) ambient[b] = scene.patches[P[b]].area_m2 * w[b];
+  ambient /= ambient.sum();
+  Eigen::MatrixXd W_PP = Eigen::MatrixXd::Zero(k, k);
+  std::vector<bool> sample_fallback(static_cast<std::size_t>(k), false);
+  for (Eigen::Index a = 0; a < k; ++a) {
+    double den = 0.0;
+    for (SparseRows::InnerIterator it(rows.F, a); it; ++it)
+      if (const int b = sample_slot[it.col()]; b >= 0) den += it.value() * w[b];
+    const double s = sample_sums.reflecting[a];
+    if (den > 0.0) {
+      for (SparseRows::InnerIterator it(rows.F, a); it; ++it)
+        if (const int b = sample_slot[it.col()]; b >= 0) W_PP(a, b) += s * it.value() * w[b] / den;
+    } else {
+      W_PP.row(a) = s * ambient.transpose();
+      sample_fallback[static_cast<std::size_t>(a)] = true;
+      ++st.sample_fallback_rows;
+    }
+  }
+  // Goal rows: a sampled goal uses its sample row; others A_p F_pi w_p from the sample's columns.
+  const Eigen::SparseMatrix<double, Eigen::ColMajor> by_column = rows.F;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd fallback_scale = Eigen::VectorXd::Zero(G);
+  double goal_area = 0.0, fallback_area = 0.0;
+  for (Eigen::Index g = 0; g < G; ++g) {
+    const int i = goals.patches[g];
+    goal_area += scene.patches[i].area_m2;
+    bool fallback = false;
+    if (const int a = sample_slot[i]; a >= 0) {
+      if (sample_fallback[static_cast<std::size_t>(a)]) fallback = true;
+      else
+        for (Eigen::Index b = 0; b < k; ++b)
+          if (W_PP(a, b) != 0.0) entries.emplace_back(g, b, W_PP(a, b));
+    } else {
+      double den = 0.0;
+      for (Eigen::SparseMatrix<double>::InnerIterator it(by_column, i); it; ++it)
+        den += scene.patches[P[it.row()]].area_m2 * it.value() * w[it.row()];
+      if (den > 0.0) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(by_column, i); it; ++it)
+          entries.emplace_back(g, it.row(),
+                               goals.reflecting_fraction[g] * scene.patches[P[it.row()]].area_m2 * it.value() *
+                                   w[it.row()] / den);
+      } else {
+        fallback = true;
+      }
+    }
+    if (fallback) {
+      fallback_scale[g] = goals.reflecting_fraction[g];
+      ++st.goal_fallback_rows;
+      fallback_area += scene.patches[i].area_m2;
+    }
+  }
+  st.goal_fallback_area_fraction = goal_area > 0.0 ? fallback_area / goal_area : 0.0;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> W_GP(G, k);
+  W_GP.setFromTriplets(entries.begin(), entries.end());
+
+  // Per channel: (I - K) Bʳ_P = right-hand side, then the goals gather Bʳ_P.
+  op.total_lux_per_lm = op.direct_lux_per_lm;
+  Eigen::MatrixXd indirect = Eigen::MatrixXd::Zero(G, L);
+  double solve_seconds = 0.0;
+  for (int c = 0; c < scene.channels; ++c) {
+    const auto solve_start = std::chrono::steady_clock::now();
+    Eigen::VectorXd rho(k);
+    for (Eigen::Index b = 0; b < k; ++b) rho[b] = scene.reflectance(P[b], c);
+    const Eigen::MatrixXd K = rho.asDiagonal() * W_PP;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd::Identity(k, k) - K);
+    const double rcond = lu.rcond();
+    st.condition_estimate = std::max(st.condition_estimate, rcond > 0.0 ? 1.0 / rcond : INFINITY);
+    const Eigen::MatrixXd B1 = rho.asDiagonal() * D_P;  // first reflection at the sample
+    Eigen::MatrixXd rhs = B1;
+    Eigen::MatrixXd first_at_goals;                     // refined: F(G,:) B1, exact through full rows
+    if (refine) {
+      const Eigen::MatrixXd S = gather_first_reflection(scene, rows.F, hit_slot, D_hit, c);
+      first_at_goals = gather_first_reflection(scene, goals.rows->F, hit_slot, D_hit, c);
+      const Eigen::MatrixXd correction = rho.asDiagonal() * S - K * B1;
+      for (Eigen::Index l = 0; l < L; ++l)
+        if (table.emitting_index[l] < 0) rhs.col(l) += correction.col(l);
+    }
+    Eigen::MatrixXd reflected = lu.solve(rhs);  // Bʳ_P per lumen
+    require_finite(reflected, "interreflection solve (I - K)", scene, P, sources);
+    solve_seconds += seconds_since(solve_start);
+
+    const auto response_start = std::chrono::steady_clock::now();
+    if (refine)
+      for (Eigen::Index l = 0; l < L; ++l)
+        if (table.emitting_index[l] < 0) reflected.col(l) -= B1.col(l);  // the sample carries bounces 2+
+    Eigen::MatrixXd channel_indirect = W_GP * reflected + fallback_scale * (ambient.transpose() * reflected);
+    if (refine)
+      for (Eigen::Index l = 0; l < L; ++l)
+        if (table.emitting_index[l] < 0) channel_indirect.col(l) += first_at_goals.col(l);
+    const double weight = scene.channels == 1 ? 1.0 : kLuminanceWeights[c];
+    indirect += weight * channel_indirect;
+    st.response_seconds += seconds_since(response_start);
+  }
+  st.solve_seconds = solve_seconds;
+  op.total_lux_per_lm += indirect;
+  require_finite(op.total_lux_per_lm, "illuminance at goal patches", scene, goals.patches, sources);
+  clamp_round_off(op.total_lux_per_lm, scene, goals.patches, sources);
+
+  std::ostringstream line;
+  line << (scene.channels == 1 ? "gray materials: 1 colour channel" : "coloured materials: 3 colour channels (RGB)");
+  op.log.push_back(line.str());
+  line.str("");
+  if (op.sample.census)
+    line << "sample: every one of the " << population.size() << " reflecting patches (k = n, no sampling error)";
+  else
+    line << "sample: " << P.size() << " distinct patches of " << population.size() << " reflecting ("
+         << to_string(options.strategy) << ", k = " << options.sample_size << ", seed " << options.sample_seed << ")";
+  op.log.push_back(line.str());
+  line.str("");
+  line << "rows cast: " << P.size() << " sample + " << goals.patches.size() << " goal of " << scene.patches.size()
+       << " patches, " << options.form_factors.rays_per_patch << " rays each; direct light at " << st.direct_rows
+       << " patches; indirect: " << to_string(options.indirect);
+  op.log.push_back(line.str());
+  line.str("");
+  line << "I - K: " << k << " x " << k << ", condition estimate " << st.condition_estimate;
+  op.log.push_back(line.str());
+  if (st.goal_fallback_rows > 0 || st.sample_fallback_rows > 0) {
+    line.str("");
+    line << "ambient fallback: " << st.goal_fallback_rows << " goal patches ("
+         << 100.0 * st.goal_fallback_area_fraction << " % of goal area) and " << st.sample_fallback_rows
+         << " sample patches see no sample patch";
+    op.log.push_back(line.str());
+  }
+  return op;
+}
+
+}  // namespace ilp

@@ -1,0 +1,134 @@
+// The sample-based radiosity operator (METHOD sections 3 and 4). From the rows of a
+// random sample P of k patches it builds T, the illuminance at chosen goal patches
+// G per lumen of each light source, so that a configuration of source fluxes phi
+// costs one product: H_G = T phi. Light straight from a source is exact; light
+// reflected once or more goes through the sample:
+//
+//   gather weights  W_ip = s_i w_p a_ip / sum_q w_q a_iq       (ratio estimator)
+//   K = R_P W(P,P),  Bʳ_P = (I - K)^-1 R_P D(P,:)   per colour channel, LU in double
+//   T = D(G,:) + W(G,P) Bʳ_P
+//
+// s_i is the fraction of patch i's rays that reach a reflecting patch (the row sum
+// over the population), w_p the sample weight (1 / inclusion probability) and
+// a_ip an estimate of A_i F_ip: from i's own row when i was sampled (so k = n
+// reproduces the exact solve), else A_p F_pi by reciprocity from p's row. Where no
+// sample patch is seen from i (every a_ip = 0) the fallback is the ambient term:
+// W_ip = s_i A_p w_p / sum_q A_q w_q, i.e. i sees the area-weighted mean of the
+// sample's reflected radiosity. Row sums of K are rho_i s_i < 1, so I - K is
+// strictly diagonally dominant and its inverse is non-negative.
+//
+// Only the rows needed are computed: k sample rows, the goal patches' row sums,
+// and direct light at goal and sample patches (all patches only when the goals
+// are all patches). With every reflectance 0 there is no sample at all.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/direct_light.h"
+#include "core/form_factors.h"
+#include "core/patch_sample.h"
+#include "core/progress.h"
+#include "core/ray_caster.h"
+#include "core/scene.h"
+
+namespace ilp {
+
+// A column of T: a luminaire surface (direct light in closed form with shadow rays)
+// or a surface given an exitance (direct light gathered by the rows' rays).
+struct LightSource {
+  std::string name;
+  int surface = -1;
+};
+
+// Every luminaire and every emitting surface of the scene, in surface order.
+std::vector<LightSource> scene_light_sources(const Scene& scene);
+// The flux each source emits as the scene stands (exitance x area), lm.
+Eigen::VectorXd source_flux_lm(const Scene& scene, std::span<const LightSource> sources);
+
+// How light reflected at least once reaches the sample and goal patches.
+enum class IndirectMethod {
+  sample_gather,        // every bounce through the sample (METHOD section 4, the plain form)
+  exact_second_bounce,  // the first reflection gathered through full rows (needs direct light at
+                        // every patch those rows hit); the sample carries the rest
+};
+std::string_view to_string(IndirectMethod method);
+std::optional<IndirectMethod> parse_indirect_method(std::string_view text);
+
+struct SampleOperatorOptions {
+  int sample_size = 1;  // k: patches drawn from the reflecting ones; >= their number means all of them
+  SampleStrategy strategy = SampleStrategy::stratified;
+  std::uint64_t sample_seed = 1;  // which patches are drawn (the rays follow form_factors.seed)
+  IndirectMethod indirect = IndirectMethod::sample_gather;
+  FormFactorOptions form_factors;  // rays per row for sample and goal rows
+  DirectLightOptions direct_light;
+};
+
+// What the goal patches need whatever the sample: their direct light and row sums.
+// Built once, it serves every sample drawn for the same goals (sample-size studies).
+struct GoalRows {
+  std::vector<int> patches;
+  std::vector<LightSource> sources;
+  Eigen::MatrixXd direct_lux_per_lm;       // D(G,:), #goals by #sources
+  Eigen::VectorXd reflecting_fraction;     // s_i: rays reaching the front of a reflecting patch
+  std::optional<FormFactorRows> rows;      // full rows, kept for IndirectMethod::exact_second_bounce
+  std::uint64_t rays_cast = 0;
+  double seconds = 0.0;
+};
+
+GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::span<const int> goal_patches,
+                           std::span<const LightSource> sources, const SampleOperatorOptions& options,
+                           const ProgressCallback& progress = {});
+
+struct SampleOperatorStats {
+  std::size_t patches = 0;                // in the scene
+  std::size_t population = 0;             // reflecting patches, the ones a sample is drawn from
+  std::size_t sample_patches = 0;         // distinct patches drawn (rows cast)
+  bool census = false;                    // every reflecting patch is in the sample
+  bool direct_only = false;               // every reflectance is 0: no sample, T = D
+  int channels = 1;
+  std::size_t goal_patches = 0;
+  std::size_t direct_rows = 0;            // patches whose direct light was computed
+  std::size_t goal_fallback_rows = 0;     // goal patches that see no sample patch (ambient fallback)
+  double goal_fallback_area_fraction = 0.0;
+  std::size_t sample_fallback_rows = 0;   // sample patches that see no other sample patch
+  double condition_estimate = 1.0;        // of I - K, 1-norm, largest over channels (1 without a sample)
+  std::uint64_t rays_cast = 0;            // gather rays: sample rows + goal rows
+  double goal_seconds = 0.0;
+  double sample_row_seconds = 0.0;
+  double direct_seconds = 0.0;            // direct light at the sample (and, refined, at the rows' hits)
+  double solve_seconds = 0.0;             // LU of I - K and the solves
+  double response_seconds = 0.0;          // forming T
+  double build_seconds() const {
+    return goal_seconds + sample_row_seconds + direct_seconds + solve_seconds + response_seconds;
+  }
+};
+
+struct SampleOperator {
+  std::vector<int> goal_patches;
+  std::vector<LightSource> sources;
+  Eigen::MatrixXd direct_lux_per_lm;  // D(G,:): #goals by #sources
+  Eigen::MatrixXd total_lux_per_lm;   // T: photometric (luminance-weighted for RGB)
+  PatchSample sample;
+  SampleOperatorStats stats;
+  std::vector<std::string> log;       // what was simulated and why, for the run log
+
+  // Total illuminance at the goal patches for the given source fluxes (lm), lux.
+  Eigen::VectorXd illuminance_lux(const Eigen::VectorXd& flux_lm) const { return total_lux_per_lm * flux_lm; }
+  Eigen::VectorXd direct_lux(const Eigen::VectorXd& flux_lm) const { return direct_lux_per_lm * flux_lm; }
+};
+
+// Builds T for the goal rows (from compute_goal_rows with the same options). Throws
+// NumericalError naming the stage, patch and source if anything becomes non-finite
+// or clearly negative, std::invalid_argument on bad options.
+SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                                     const SampleOperatorOptions& options, const ProgressCallback& progress = {});
+
+// Reflecting patches (some channel of rho > 0, not a luminaire): the population.
+std::vector<int> reflecting_patches(const Scene& scene);
+
+}  // namespace ilp
