@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -229,9 +230,55 @@ void read_solver(const Map& solver, JobConfig& job) {
   if (auto v = solver.get("max_iterations")) job.radiosity.max_iterations = static_cast<int>(v->integer(1, 100'000'000));
   if (auto v = solver.get("direct_receiver_points")) job.direct_light.receiver_points = static_cast<int>(v->integer(1, 4096));
   if (auto v = solver.get("direct_shadow_rays")) job.direct_light.shadow_rays = static_cast<int>(v->integer(1, 4096));
+  if (auto v = solver.get("method")) {
+    const std::string m = v->text();
+    if (m == "sample") job.method = SolveMethod::sample;
+    else if (m == "exact") job.method = SolveMethod::exact;
+    else v->fail("must be sample or exact");
+  }
+  SampleSettings& sample = job.sample;
+  const auto size = solver.get("sample_size"), fraction = solver.get("sample_fraction"),
+             target = solver.get("target_error");
+  if (size && fraction) fraction->fail("give sample_size or sample_fraction, not both");
+  if (size) {
+    sample.size = static_cast<int>(size->integer(1, 100'000'000));
+    sample.size_loc = size->loc();
+  }
+  if (fraction) {
+    sample.fraction = fraction->number_in(0.0, 1.0, false, "(0, 1]");
+    if (sample.fraction <= 0.0) fraction->fail("must be in (0, 1]");
+    sample.size_loc = fraction->loc();
+  }
+  if (target) {
+    if (size || fraction) target->fail("give target_error or a sample size (sample_size, sample_fraction), not both");
+    sample.target_error = target->number_in(0.0, 1.0, true, "(0, 1)");
+    if (*sample.target_error <= 0.0) target->fail("must be in (0, 1)");
+    sample.target_error_loc = target->loc();
+  }
+  if (auto v = solver.get("sampling")) {
+    const auto strategy = parse_sample_strategy(v->text());
+    if (!strategy) v->fail("must be uniform, area or stratified");
+    sample.strategy = *strategy;
+  }
+  if (auto v = solver.get("sample_seed")) sample.seed = static_cast<std::uint64_t>(v->integer(0, (1ll << 53)));
+  if (auto v = solver.get("indirect")) {
+    const auto method = parse_indirect_method(v->text());
+    if (!method) v->fail("must be sample_gather or exact_second_bounce");
+    sample.indirect = *method;
+  }
+  if (auto v = solver.get("error_samples")) sample.error_samples = static_cast<int>(v->integer(2, 64));
+  if (auto v = solver.get("pilot_fraction")) {
+    sample.pilot_fraction = v->number_in(0.0, 1.0, false, "(0, 1]");
+    if (sample.pilot_fraction <= 0.0) v->fail("must be in (0, 1]");
+  }
 }
 
 }  // namespace
+
+int SampleSettings::size_for(std::size_t population) const {
+  if (size) return *size;
+  return std::max(1, static_cast<int>(std::lround(fraction * static_cast<double>(population))));
+}
 
 JobConfig load_job_config(const std::string& path) {
   JobConfig job;
@@ -256,8 +303,10 @@ JobConfig load_job_config(const std::string& path) {
                job);
     if (auto v = top.get("luminaires")) read_luminaires(Map(*v, {"size_m", "placed"}), job);
     if (auto v = top.get("solver"))
-      read_solver(Map(*v, {"rays_per_patch", "seed", "threads", "relative_residual", "max_iterations",
-                           "direct_receiver_points", "direct_shadow_rays"}),
+      read_solver(Map(*v, {"method", "rays_per_patch", "seed", "threads", "relative_residual", "max_iterations",
+                           "direct_receiver_points", "direct_shadow_rays", "sample_size", "sample_fraction",
+                           "sampling", "sample_seed", "indirect", "target_error", "error_samples",
+                           "pilot_fraction"}),
                   job);
     if (auto v = top.get("report")) {
       const Map report(*v, {"surfaces"});

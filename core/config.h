@@ -13,7 +13,9 @@
 #include "core/error.h"
 #include "core/form_factors.h"
 #include "core/mesh.h"
+#include "core/patch_sample.h"
 #include "core/radiosity.h"
+#include "core/sample_operator.h"
 #include "core/scene.h"
 
 namespace ilp {
@@ -37,6 +39,27 @@ struct LuminaireSetting {
   FileLoc loc;
 };
 
+// How `ilp solve` computes illuminance: through the sample-based operator, or the
+// exact reference (every form-factor row, Gauss-Seidel).
+enum class SolveMethod { sample, exact };
+
+// The sample-based operator's settings (solver section).
+struct SampleSettings {
+  std::optional<int> size;         // k; when absent, fraction of the reflecting patches
+  double fraction = 0.05;
+  FileLoc size_loc;                // where size or fraction was set
+  SampleStrategy strategy = SampleStrategy::stratified;
+  std::uint64_t seed = 1;          // which patches are drawn
+  IndirectMethod indirect = IndirectMethod::exact_second_bounce;
+  std::optional<double> target_error;  // choose k so the predicted RMS relative error is at most this
+  FileLoc target_error_loc;
+  int error_samples = 4;           // eta pilot samples behind the prediction
+  double pilot_fraction = 0.02;    // their size, of the reflecting patches
+
+  // k for a population of reflecting patches (at least 1).
+  int size_for(std::size_t population) const;
+};
+
 struct JobConfig {
   std::string path;                     // the YAML file
   // scene
@@ -55,6 +78,8 @@ struct JobConfig {
   FormFactorOptions form_factors;
   DirectLightOptions direct_light;
   RadiosityOptions radiosity;
+  SolveMethod method = SolveMethod::sample;
+  SampleSettings sample;
   // report
   std::vector<std::string> report_surfaces;  // empty: every surface
   std::vector<FileLoc> report_surface_locs;

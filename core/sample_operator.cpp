@@ -262,6 +262,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   if (population.empty()) {
     st.direct_only = true;
     op.total_lux_per_lm = op.direct_lux_per_lm;
+    op.reflected_lm_per_m2_per_lm = Eigen::MatrixXd::Zero(G, L);
     op.log.push_back("every reflectance is 0: direct light only, no sample, no interreflection");
     return op;
   }
@@ -304,11 +305,14 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   require_finite(D_P, "direct light", scene, P, sources);
 
   // Refinement: direct light at every reflecting patch the sample and goal rows hit.
+  // Goal and sample patches reuse theirs; the others are only ever read through a
+  // row's average over its hits, so a cheaper estimate (hit_direct_light) serves.
   const bool refine = options.indirect == IndirectMethod::exact_second_bounce;
   std::vector<int> hit_slot(scene.patches.size(), -1);
   Eigen::MatrixXd D_hit;
   if (refine) {
-    std::vector<int> hit;
+    std::vector<int> hit, cheap;
+    std::vector<Eigen::Index> cheap_slot;
     auto collect = [&](const SparseRows& F) {
       for (Eigen::Index r = 0; r < F.rows(); ++r)
         for (SparseRows::InnerIterator it(F, r); it; ++it)
@@ -319,12 +323,27 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     };
     collect(rows.F);
     collect(goals.rows->F);
+    D_hit.resize(static_cast<Eigen::Index>(hit.size()), L);
+    for (std::size_t h = 0; h < hit.size(); ++h) {
+      const auto slot = static_cast<Eigen::Index>(h);
+      if (sample_slot[hit[h]] >= 0) D_hit.row(slot) = D_P.row(sample_slot[hit[h]]);
+      else if (goal_slot[hit[h]] >= 0) D_hit.row(slot) = goals.direct_lux_per_lm.row(goal_slot[hit[h]]);
+      else {
+        cheap.push_back(hit[h]);
+        cheap_slot.push_back(slot);
+      }
+    }
     // Gathered sources keep the plain form (their direct light is known only where rows were cast).
-    D_hit = direct_light(scene, caster, hit, sources.size(), table,
-                         Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(hit.size()),
-                                               static_cast<Eigen::Index>(table.gathered.size())),
-                         options.direct_light);
-    st.direct_rows += hit.size();
+    DirectLightOptions cheap_options = options.hit_direct_light;
+    cheap_options.seed = options.direct_light.seed;
+    cheap_options.threads = options.direct_light.threads;
+    const Eigen::MatrixXd D_cheap = direct_light(
+        scene, caster, cheap, sources.size(), table,
+        Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(cheap.size()), static_cast<Eigen::Index>(table.gathered.size())),
+        cheap_options);
+    for (std::size_t m = 0; m < cheap.size(); ++m) D_hit.row(cheap_slot[m]) = D_cheap.row(static_cast<Eigen::Index>(m));
+    for (std::size_t e = 0; e < table.gathered.size(); ++e) D_hit.col(table.gathered[e]).setZero();
+    st.direct_rows += cheap.size();
     require_finite(D_hit, "direct light", scene, hit, sources);
   }
   st.direct_seconds = seconds_since(start);
@@ -390,14 +409,17 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
 
   // Per channel: (I - K) Bʳ_P = right-hand side, then the goals gather Bʳ_P.
   op.total_lux_per_lm = op.direct_lux_per_lm;
+  op.reflected_lm_per_m2_per_lm = Eigen::MatrixXd::Zero(G, L);
   Eigen::MatrixXd indirect = Eigen::MatrixXd::Zero(G, L);
   double solve_seconds = 0.0;
   for (int c = 0; c < scene.channels; ++c) {
     const auto solve_start = std::chrono::steady_clock::now();
     Eigen::VectorXd rho(k);
     for (Eigen::Index b = 0; b < k; ++b) rho[b] = scene.reflectance(P[b], c);
-    const Eigen::MatrixXd K = rho.asDiagonal() * W_PP;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd::Identity(k, k) - K);
+    // I - K factorised in place: at k = n (10K patches) each k x k copy is 800 MB.
+    Eigen::MatrixXd system = -(rho.asDiagonal() * W_PP);
+    system.diagonal().array() += 1.0;
+    const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(system);
     const double rcond = lu.rcond();
     st.condition_estimate = std::max(st.condition_estimate, rcond > 0.0 ? 1.0 / rcond : INFINITY);
     const Eigen::MatrixXd B1 = rho.asDiagonal() * D_P;  // first reflection at the sample
@@ -406,7 +428,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     if (refine) {
       const Eigen::MatrixXd S = gather_first_reflection(scene, rows.F, hit_slot, D_hit, c);
       first_at_goals = gather_first_reflection(scene, goals.rows->F, hit_slot, D_hit, c);
-      const Eigen::MatrixXd correction = rho.asDiagonal() * S - K * B1;
+      const Eigen::MatrixXd correction = rho.asDiagonal() * (S - W_PP * B1);  // R S - K B1
       for (Eigen::Index l = 0; l < L; ++l)
         if (table.emitting_index[l] < 0) rhs.col(l) += correction.col(l);
     }
@@ -424,6 +446,9 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
         if (table.emitting_index[l] < 0) channel_indirect.col(l) += first_at_goals.col(l);
     const double weight = scene.channels == 1 ? 1.0 : kLuminanceWeights[c];
     indirect += weight * channel_indirect;
+    Eigen::VectorXd rho_goal(G);
+    for (Eigen::Index g = 0; g < G; ++g) rho_goal[g] = scene.reflectance(goals.patches[g], c);
+    op.reflected_lm_per_m2_per_lm += weight * (rho_goal.asDiagonal() * (op.direct_lux_per_lm + channel_indirect));
     st.response_seconds += seconds_since(response_start);
   }
   st.solve_seconds = solve_seconds;

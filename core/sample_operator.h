@@ -63,9 +63,12 @@ struct SampleOperatorOptions {
   int sample_size = 1;  // k: patches drawn from the reflecting ones; >= their number means all of them
   SampleStrategy strategy = SampleStrategy::stratified;
   std::uint64_t sample_seed = 1;  // which patches are drawn (the rays follow form_factors.seed)
-  IndirectMethod indirect = IndirectMethod::sample_gather;
+  IndirectMethod indirect = IndirectMethod::exact_second_bounce;
   FormFactorOptions form_factors;  // rays per row for sample and goal rows
   DirectLightOptions direct_light;
+  // exact_second_bounce only: direct light at the patches the rows hit that are
+  // neither goal nor sample patches, seen only through a row's average over its hits.
+  DirectLightOptions hit_direct_light{.receiver_points = 1, .shadow_rays = 2};
 };
 
 // What the goal patches need whatever the sample: their direct light and row sums.
@@ -113,6 +116,7 @@ struct SampleOperator {
   std::vector<LightSource> sources;
   Eigen::MatrixXd direct_lux_per_lm;  // D(G,:): #goals by #sources
   Eigen::MatrixXd total_lux_per_lm;   // T: photometric (luminance-weighted for RGB)
+  Eigen::MatrixXd reflected_lm_per_m2_per_lm;  // rho H at the goal patches, photometric: radiosity minus emission
   PatchSample sample;
   SampleOperatorStats stats;
   std::vector<std::string> log;       // what was simulated and why, for the run log

@@ -144,7 +144,8 @@ TEST(Scene, ShippedCornellBoxIsColouredAndClosed) {
     if (ff.escaped_fraction[static_cast<Eigen::Index>(r)] < 1e-3) continue;
     if (leaking++ == 0) first_leaking = rows[r];
   }
-  EXPECT_EQ(leaking, 0) << leaking << " of " << rows.size() << " rows leak light, the first from patch " << first_leaking;
+  EXPECT_EQ(leaking, 0) << leaking << " of " << rows.size() << " rows leak light, the first from patch "
+                        << first_leaking;
 }
 
 }  // namespace

@@ -1,0 +1,188 @@
+// ilp accuracy: what the sample-based operator's accuracy costs in time, against
+// the exact reference. Writes accuracy.csv and accuracy.svg into the output folder.
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "apps/cli_support.h"
+#include "apps/commands.h"
+#include "core/accuracy_study.h"
+#include "core/config.h"
+#include "core/error.h"
+#include "core/job.h"
+#include "output/atomic_file.h"
+#include "output/svg_plot.h"
+
+namespace ilp::cli {
+namespace {
+
+std::vector<int> goal_patches(const Scene& scene, const std::vector<std::string>& surfaces, const std::string& config) {
+  std::vector<int> out;
+  for (const std::string& name : surfaces) {
+    const int s = scene.find_surface(name);
+    if (s < 0) throw ConfigError(config + ": goal surface '" + name + "' is not in the scene");
+    for (std::size_t i = 0; i < scene.patches.size(); ++i)
+      if (scene.patches[i].surface == s) out.push_back(static_cast<int>(i));
+  }
+  if (out.empty()) throw ConfigError(config + ": no goal surfaces (give --goals or report.surfaces)");
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::string series_name(const AccuracyRow& row) {
+  std::ostringstream s;
+  s << to_string(row.strategy) << ", " << row.rays_per_row << " rays";
+  if (row.method != IndirectMethod::sample_gather) s << ", " << to_string(row.method);
+  return s.str();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+void write_csv(const std::string& path, const AccuracyStudy& study) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << std::setprecision(6);
+    out << "strategy,indirect,sample_fraction,k,sample_patches,rays_per_row,sample_seed,build_seconds,"
+           "evaluation_microseconds,rms_rel_error_total,max_rel_error_total,rms_rel_error_indirect,"
+           "max_rel_error_indirect,predicted_rms_rel_error_total,goal_fallback_patches,condition_estimate\n";
+    for (const AccuracyRow& r : study.rows)
+      out << to_string(r.strategy) << ',' << to_string(r.method) << ',' << r.sample_fraction << ',' << r.sample_size
+          << ',' << r.sample_patches << ',' << r.rays_per_row << ',' << r.sample_seed << ',' << r.build_seconds << ','
+          << r.evaluation_microseconds << ',' << r.error.rms_relative_total << ',' << r.error.max_relative_total
+          << ',' << r.error.rms_relative_indirect << ',' << r.error.max_relative_indirect << ','
+          << r.predicted_rms_error_total << ',' << r.goal_fallback_rows << ',' << r.condition_estimate << '\n';
+  });
+}
+
+// Medians over seeds, per series and sample size.
+struct Point {
+  double fraction = 0.0, build_seconds = 0.0, eval_us = 0.0, rms_total = 0.0, max_total = 0.0, rms_indirect = 0.0,
+         predicted = 0.0;
+  int k = 0;
+  std::size_t runs = 0;
+};
+
+std::map<std::string, std::vector<Point>> summarise(const AccuracyStudy& study) {
+  std::map<std::string, std::map<int, std::vector<const AccuracyRow*>>> grouped;
+  for (const AccuracyRow& r : study.rows) grouped[series_name(r)][r.sample_size].push_back(&r);
+  std::map<std::string, std::vector<Point>> out;
+  for (const auto& [name, by_k] : grouped)
+    for (const auto& [k, rows] : by_k) {
+      Point p;
+      p.k = k;
+      p.fraction = rows.front()->sample_fraction;
+      p.predicted = rows.front()->predicted_rms_error_total;
+      p.runs = rows.size();
+      auto med = [&](auto field) {
+        std::vector<double> v;
+        for (const AccuracyRow* r : rows) v.push_back(field(*r));
+        return median(v);
+      };
+      p.build_seconds = med([](const AccuracyRow& r) { return r.build_seconds; });
+      p.eval_us = med([](const AccuracyRow& r) { return r.evaluation_microseconds; });
+      p.rms_total = med([](const AccuracyRow& r) { return r.error.rms_relative_total; });
+      p.max_total = med([](const AccuracyRow& r) { return r.error.max_relative_total; });
+      p.rms_indirect = med([](const AccuracyRow& r) { return r.error.rms_relative_indirect; });
+      out[name].push_back(p);
+    }
+  return out;
+}
+
+void write_plot(const std::string& path, const std::map<std::string, std::vector<Point>>& summary,
+                const std::string& scene_name, double reference_seconds) {
+  std::vector<PlotSeries> series;
+  for (const auto& [name, points] : summary) {
+    PlotSeries measured{"measured: " + name, {}, {}}, predicted{"predicted: " + name, {}, {}};
+    for (const Point& p : points) {
+      measured.x.push_back(p.build_seconds);
+      measured.y.push_back(100.0 * p.rms_total);
+      if (p.predicted > 0.0) {
+        predicted.x.push_back(p.build_seconds);
+        predicted.y.push_back(100.0 * p.predicted);
+      }
+    }
+    series.push_back(std::move(measured));
+    series.push_back(std::move(predicted));
+  }
+  std::ostringstream title;
+  title << "Accuracy against build time: " << scene_name << " (exact reference: " << std::fixed << std::setprecision(1)
+        << reference_seconds << " s)";
+  const PlotAxes axes{title.str(), "operator build time (s)", "RMS relative error of total illuminance (%)", true,
+                      true};
+  const std::string svg = render_svg_plot(axes, series);
+  write_file_atomically(path, [&](std::ostream& out) { out << svg; });
+}
+
+}  // namespace
+
+int run_accuracy(const AccuracyArgs& args) {
+  JobConfig job = load_job_config(args.config);
+  if (args.threads >= 0) job.form_factors.threads = job.direct_light.threads = args.threads;
+  const JobScene loaded = load_job_scene(job);
+  const Scene& scene = loaded.scene;
+  for (const std::string& line : loaded.log) std::cerr << line << "\n";
+
+  AccuracyStudyOptions options;
+  options.sample_fractions = args.fractions;
+  options.seeds = args.seeds;
+  options.rays_per_row = args.rays;
+  options.strategies.clear();
+  for (const std::string& s : args.strategies) {
+    const auto strategy = parse_sample_strategy(s);
+    if (!strategy) throw ConfigError("--strategies: '" + s + "' is not uniform, area or stratified");
+    options.strategies.push_back(*strategy);
+  }
+  options.methods.clear();
+  for (const std::string& m : args.methods) {
+    const auto method = parse_indirect_method(m);
+    if (!method) throw ConfigError("--methods: '" + m + "' is not sample_gather or exact_second_bounce");
+    options.methods.push_back(*method);
+  }
+  options.reference_rays = args.reference_rays;
+  options.error_samples = args.error_samples;
+  options.pilot_fraction = args.pilot_fraction;
+  options.base.form_factors = job.form_factors;
+  options.base.direct_light = job.direct_light;
+  options.base.sample_seed = job.sample.seed;
+  const std::vector<int> goals =
+      goal_patches(scene, args.goals.empty() ? job.report_surfaces : args.goals, args.config);
+
+  std::filesystem::create_directories(args.out_dir);
+  const AccuracyStudy study = run_accuracy_study(scene, goals, options, make_progress(args.quiet));
+  const std::string csv = (std::filesystem::path(args.out_dir) / "accuracy.csv").string();
+  const std::string svg = (std::filesystem::path(args.out_dir) / "accuracy.svg").string();
+  write_csv(csv, study);
+  const auto summary = summarise(study);
+  const double reference_seconds = study.reference.bvh_seconds + study.reference.form_factor_seconds +
+                                   study.reference.direct_light_seconds + study.reference.solve_seconds;
+  write_plot(svg, summary, std::filesystem::path(job.mesh_path).filename().string(), reference_seconds);
+
+  std::cout << "Accuracy of the sample-based operator: " << study.patches << " patches, " << study.population
+            << " reflecting, " << study.goal_patches << " goal patches\n"
+            << "reference: exact solve with " << options.reference_rays << " rays per patch (seed "
+            << options.reference_seed << ") in " << std::fixed << std::setprecision(2) << reference_seconds << " s\n";
+  for (const ErrorPrediction& p : study.predictions)
+    std::cout << "pilot: " << p.samples << " samples of k0 = " << p.pilot_size << " spread by "
+              << std::setprecision(2) << 100.0 * p.rms_relative_spread_total << " % RMS (total), "
+              << 100.0 * p.rms_relative_spread_indirect << " % (indirect) in " << p.seconds << " s\n";
+  std::cout << "medians over seeds; errors are area-weighted RMS and maximum over goal patches, relative\n";
+  std::cout << std::left << std::setw(26) << "series" << std::right << std::setw(8) << "k %" << std::setw(8) << "k"
+            << std::setw(10) << "build s" << std::setw(10) << "eval us" << std::setw(11) << "RMS tot %"
+            << std::setw(11) << "max tot %" << std::setw(11) << "RMS ind %" << std::setw(11) << "predict %" << "\n";
+  for (const auto& [name, points] : summary)
+    for (const Point& p : points)
+      std::cout << std::left << std::setw(26) << name << std::right << std::fixed << std::setprecision(1)
+                << std::setw(8) << 100.0 * p.fraction << std::setw(8) << p.k << std::setprecision(3) << std::setw(10)
+                << p.build_seconds << std::setprecision(2) << std::setw(10) << p.eval_us << std::setw(11)
+                << 100.0 * p.rms_total << std::setw(11) << 100.0 * p.max_total << std::setw(11)
+                << 100.0 * p.rms_indirect << std::setw(11) << 100.0 * p.predicted << "\n";
+  std::cout << "wrote " << csv << " and " << svg << "\n";
+  return 0;
+}
+
+}  // namespace ilp::cli

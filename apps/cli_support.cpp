@@ -1,0 +1,43 @@
+#include "apps/cli_support.h"
+
+#include <iostream>
+#include <memory>
+#include <mutex>
+
+#include <unistd.h>
+
+namespace ilp::cli {
+
+ProgressCallback make_progress(bool quiet) {
+  if (quiet) return {};
+  struct State {
+    std::mutex mutex;
+    std::string phase;
+    int shown = -1;
+  };
+  auto state = std::make_shared<State>();
+  const bool tty = isatty(STDERR_FILENO);
+  return [state, tty](std::string_view phase, std::size_t done, std::size_t total) {
+    const int percent = total ? static_cast<int>(100 * done / total) : 100;
+    std::lock_guard lock(state->mutex);
+    if (phase != state->phase) {
+      state->phase = phase;
+      state->shown = -1;
+    }
+    const int step = tty ? 1 : 25;
+    if (percent / step == state->shown / step && percent != 100) return;
+    if (percent == state->shown) return;
+    state->shown = percent;
+    if (tty) std::cerr << "\r  " << phase << ": " << percent << " %" << (percent == 100 ? "\n" : "") << std::flush;
+    else std::cerr << "  " << phase << ": " << percent << " %\n";
+  };
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace ilp::cli

@@ -1,0 +1,17 @@
+// Small pieces every ilp command shares: progress lines and CSV fields.
+#pragma once
+
+#include <string>
+
+#include "core/progress.h"
+
+namespace ilp::cli {
+
+// On a terminal: one line per phase, rewritten in place. Elsewhere (logs, CI): a
+// line at every quarter, so long runs still show they are moving. Empty when quiet.
+ProgressCallback make_progress(bool quiet);
+
+// A CSV field: quoted (quotes doubled) when it holds a comma, quote or line break.
+std::string csv_field(const std::string& text);
+
+}  // namespace ilp::cli

@@ -1,0 +1,36 @@
+// The ilp subcommands. Each takes parsed arguments, calls the library and prints;
+// errors propagate to main, which prints one line and exits 1.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace ilp::cli {
+
+struct SolveArgs {
+  std::string config;
+  std::string csv;            // per-patch results; asks for the full-scene solution
+  std::string method;         // "", "sample" or "exact": overrides solver.method
+  int threads = -1;           // -1: the job's solver.threads
+  bool quiet = false;
+};
+int run_solve(const SolveArgs& args);
+
+struct AccuracyArgs {
+  std::string config;
+  std::string out_dir = "accuracy";
+  std::vector<double> fractions{0.01, 0.02, 0.05, 0.10, 0.25, 1.0};
+  int seeds = 3;
+  std::vector<int> rays{256};
+  std::vector<std::string> strategies{"stratified"};
+  std::vector<std::string> methods{"sample_gather"};
+  std::vector<std::string> goals;  // surfaces; empty: the job's report surfaces
+  int reference_rays = 1024;
+  int error_samples = 4;
+  double pilot_fraction = 0.02;
+  int threads = -1;
+  bool quiet = false;
+};
+int run_accuracy(const AccuracyArgs& args);
+
+}  // namespace ilp::cli

@@ -1,0 +1,159 @@
+// ilp solve: illuminance per surface for the job's luminaires as placed, through the
+// sample-based operator (default) or the exact reference.
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+#include "apps/cli_support.h"
+#include "apps/commands.h"
+#include "core/config.h"
+#include "core/exact_solver.h"
+#include "core/job.h"
+#include "core/sample_error.h"
+#include "core/sample_operator.h"
+#include "optimizer/illuminance_metrics.h"
+#include "output/atomic_file.h"
+
+namespace ilp::cli {
+namespace {
+
+// Per-patch results for the patches in `patches` (every patch for the full scene).
+void write_patch_csv(const std::string& path, const Scene& scene, const std::vector<int>& patches,
+                     const Eigen::VectorXd& direct_lux, const Eigen::VectorXd& total_lux,
+                     const Eigen::VectorXd& radiosity_lm_per_m2) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << std::setprecision(9);
+    out << "patch,surface,centroid_x_m,centroid_y_m,centroid_z_m,normal_x,normal_y,normal_z,area_m2,"
+           "direct_lux,total_lux,radiosity_lm_per_m2\n";
+    for (std::size_t r = 0; r < patches.size(); ++r) {
+      const Patch& p = scene.patches[patches[r]];
+      const auto row = static_cast<Eigen::Index>(r);
+      out << patches[r] << ',' << csv_field(scene.surfaces[p.surface].name) << ',' << p.centroid_m.x() << ','
+          << p.centroid_m.y() << ',' << p.centroid_m.z() << ',' << p.normal.x() << ',' << p.normal.y() << ','
+          << p.normal.z() << ',' << p.area_m2 << ',' << direct_lux[row] << ',' << total_lux[row] << ','
+          << radiosity_lm_per_m2[row] << '\n';
+    }
+  });
+}
+
+// Patches of the surfaces to report (every patch when the list is empty).
+std::vector<int> patches_of(const Scene& scene, const std::vector<std::string>& surfaces) {
+  std::vector<int> out;
+  std::vector<bool> wanted(scene.surfaces.size(), surfaces.empty());
+  for (const std::string& name : surfaces) wanted[static_cast<std::size_t>(scene.find_surface(name))] = true;
+  for (std::size_t i = 0; i < scene.patches.size(); ++i)
+    if (wanted[static_cast<std::size_t>(scene.patches[i].surface)]) out.push_back(static_cast<int>(i));
+  return out;
+}
+
+void print_table(const Scene& scene, const std::vector<int>& patches, const Eigen::VectorXd& lux,
+                 const std::vector<std::string>& surfaces) {
+  Eigen::VectorXd all = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(scene.patches.size()));
+  for (std::size_t r = 0; r < patches.size(); ++r) all[patches[r]] = lux[static_cast<Eigen::Index>(r)];
+  print_illuminance_table(std::cout, surface_illuminance_table(scene, all, surfaces));
+}
+
+// Sample size: as configured, or the smallest whose predicted error meets solver.target_error.
+int choose_sample_size(const JobConfig& job, const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                       const Eigen::VectorXd& flux, const SampleOperatorOptions& options,
+                       const ProgressCallback& progress) {
+  const std::size_t population = reflecting_patches(scene).size();
+  if (!job.sample.target_error || population == 0) return job.sample.size_for(population);
+  const int pilot = std::max(2, static_cast<int>(std::lround(job.sample.pilot_fraction * population)));
+  const ErrorPrediction prediction =
+      predict_sample_error(scene, caster, goals, flux, options, pilot, job.sample.error_samples, progress);
+  const int k = prediction.recommended_sample_size(*job.sample.target_error);
+  std::cerr << std::fixed << std::setprecision(2) << "sample size: " << prediction.samples << " pilot samples of "
+            << pilot << " patches spread by " << 100.0 * prediction.rms_relative_spread_total
+            << " % (RMS, total illuminance) in " << prediction.seconds << " s; target "
+            << 100.0 * *job.sample.target_error << " % needs k = " << k << " of " << population << " ("
+            << std::setprecision(1) << 100.0 * k / population << " %)\n";
+  return k;
+}
+
+int solve_with_sample(const JobConfig& job, const JobScene& loaded, bool full_scene, const std::string& csv,
+                      bool quiet) {
+  const Scene& scene = loaded.scene;
+  const ProgressCallback progress = make_progress(quiet);
+  auto start = std::chrono::steady_clock::now();
+  const RayCaster caster(scene, job.form_factors.threads);
+  const double bvh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::vector<LightSource> sources = scene_light_sources(scene);
+  const Eigen::VectorXd flux = source_flux_lm(scene, sources);
+  const std::vector<int> goals = full_scene ? scene.all_patches() : patches_of(scene, job.report_surfaces);
+
+  SampleOperatorOptions options;
+  options.strategy = job.sample.strategy;
+  options.sample_seed = job.sample.seed;
+  options.indirect = job.sample.indirect;
+  options.form_factors = job.form_factors;
+  options.direct_light = job.direct_light;
+  const GoalRows goal_rows = compute_goal_rows(scene, caster, goals, sources, options, progress);
+  options.sample_size = choose_sample_size(job, scene, caster, goal_rows, flux, options, progress);
+  const SampleOperator op = build_sample_operator(scene, caster, goal_rows, options, progress);
+  for (const std::string& line : op.log) std::cerr << line << "\n";
+  const SampleOperatorStats& st = op.stats;
+  std::cerr << std::fixed << std::setprecision(3) << "build: BVH " << bvh_seconds << " s, goal rows "
+            << st.goal_seconds << " s, sample rows " << st.sample_row_seconds << " s, direct light "
+            << st.direct_seconds << " s, solve " << st.solve_seconds << " s, T " << st.response_seconds
+            << " s; total " << bvh_seconds + st.build_seconds() << " s\n";
+
+  const Eigen::VectorXd total = op.illuminance_lux(flux), direct = op.direct_lux(flux);
+  if (!csv.empty()) {
+    Eigen::VectorXd radiosity = op.reflected_lm_per_m2_per_lm * flux;
+    for (std::size_t r = 0; r < goals.size(); ++r)
+      radiosity[static_cast<Eigen::Index>(r)] += scene.patches[goals[r]].exitance_lm_per_m2;
+    write_patch_csv(csv, scene, goals, direct, total, radiosity);
+  }
+  std::cout << "Illuminance per surface (sample-based operator, ";
+  if (st.direct_only) std::cout << "direct light only";
+  else std::cout << "k = " << st.sample_patches << " of " << st.population << " reflecting patches";
+  std::cout << ", " << job.form_factors.rays_per_patch << " rays per row, seed " << job.form_factors.seed << ")\n";
+  print_table(scene, goals, total, job.report_surfaces);
+  return 0;
+}
+
+int solve_exactly(const JobConfig& job, const JobScene& loaded, const std::string& csv, bool quiet) {
+  const Scene& scene = loaded.scene;
+  const ExactSolveOptions options{job.form_factors, job.direct_light, job.radiosity};
+  const ExactSolution solution = solve_exact(scene, options, make_progress(quiet));
+  std::cerr << solution.summary << "\n";
+  // A closed model with consistent winding absorbs little on back faces; more hints at flipped faces.
+  constexpr double kBackFaceWarning = 0.05;
+  if (solution.summary.mean_back_hit_fraction > kBackFaceWarning)
+    std::cerr << "warning: " << std::fixed << std::setprecision(1) << 100.0 * solution.summary.mean_back_hit_fraction
+              << " % of the light strikes the back of one-sided patches and is absorbed: check the winding of the "
+                 "model's faces\n";
+  if (!csv.empty()) {
+    Eigen::VectorXd radiosity(static_cast<Eigen::Index>(scene.patches.size()));
+    for (Eigen::Index i = 0; i < radiosity.size(); ++i)
+      radiosity[i] = photometric(solution.radiosity.radiosity_lm_per_m2.row(i));
+    write_patch_csv(csv, scene, scene.all_patches(), solution.radiosity.direct_lux, solution.radiosity.total_lux,
+                    radiosity);
+  }
+  std::cout << "Illuminance per surface (exact radiosity, " << job.form_factors.rays_per_patch
+            << " rays per patch, seed " << job.form_factors.seed << ")\n";
+  print_table(scene, scene.all_patches(), solution.radiosity.total_lux, job.report_surfaces);
+  return 0;
+}
+
+}  // namespace
+
+int run_solve(const SolveArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+  JobConfig job = load_job_config(args.config);
+  if (args.threads >= 0) job.form_factors.threads = job.direct_light.threads = args.threads;
+  if (args.method == "exact") job.method = SolveMethod::exact;
+  if (args.method == "sample") job.method = SolveMethod::sample;
+  const JobScene loaded = load_job_scene(job);
+  for (const std::string& line : loaded.log) std::cerr << line << "\n";
+  if (job.method == SolveMethod::exact) solve_exactly(job, loaded, args.csv, args.quiet);
+  else solve_with_sample(job, loaded, !args.csv.empty(), args.csv, args.quiet);
+  std::cout << "total time " << std::fixed << std::setprecision(2)
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
+  if (!args.csv.empty()) std::cout << "per-patch results: " << args.csv << "\n";
+  return 0;
+}
+
+}  // namespace ilp::cli

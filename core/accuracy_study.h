@@ -1,0 +1,64 @@
+// What accuracy costs in time (issue 3): the sample-based operator built for a range
+// of sample sizes, rays per row, strategies and seeds, each measured against one
+// exact reference solved with more rays and an independent ray seed, next to the
+// error predicted from eta pilot samples without the reference. `ilp accuracy`
+// prints, plots and saves it; docs/accuracy.md records the office study.
+#pragma once
+
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+#include "core/exact_solver.h"
+#include "core/progress.h"
+#include "core/sample_error.h"
+#include "core/sample_operator.h"
+#include "core/scene.h"
+
+namespace ilp {
+
+struct AccuracyStudyOptions {
+  std::vector<double> sample_fractions{0.01, 0.02, 0.05, 0.10, 0.25, 1.0};  // of the reflecting patches
+  int seeds = 3;                                 // samples per size (the census needs one)
+  std::vector<int> rays_per_row{256};
+  std::vector<SampleStrategy> strategies{SampleStrategy::stratified};
+  std::vector<IndirectMethod> methods{IndirectMethod::sample_gather};
+  int reference_rays = 1024;                     // rays per patch of the exact reference
+  std::uint64_t reference_seed = 1'000'003;      // independent of the operator's rays
+  int error_samples = 4;                         // eta, for the predicted error
+  double pilot_fraction = 0.02;                  // k0 of the prediction, of the reflecting patches
+  int evaluation_repeats = 2000;                 // T phi products timed per measurement
+  SampleOperatorOptions base;                    // ray seed, threads, direct-light settings
+};
+
+struct AccuracyRow {
+  SampleStrategy strategy = SampleStrategy::stratified;
+  IndirectMethod method = IndirectMethod::sample_gather;
+  double sample_fraction = 0.0;
+  int sample_size = 0;              // k requested
+  std::size_t sample_patches = 0;   // distinct patches drawn
+  int rays_per_row = 0;
+  std::uint64_t sample_seed = 0;
+  double build_seconds = 0.0;       // goal rows + sample rows + direct + solve + T
+  double evaluation_microseconds = 0.0;  // one T phi, median
+  IlluminanceError error;
+  double predicted_rms_error_total = 0.0;
+  std::size_t goal_fallback_rows = 0;
+  double condition_estimate = 0.0;
+};
+
+struct AccuracyStudy {
+  std::size_t patches = 0, population = 0, goal_patches = 0;
+  ExactSolveSummary reference;
+  std::vector<ErrorPrediction> predictions;   // one per (strategy, method, rays), in row order of first use
+  std::vector<AccuracyRow> rows;
+};
+
+// Light sources: every luminaire and emitting surface at its configured flux.
+AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_patches,
+                                 const AccuracyStudyOptions& options, const ProgressCallback& progress = {});
+
+// Median time of one T phi product, microseconds.
+double time_evaluation_microseconds(const SampleOperator& op, const Eigen::VectorXd& flux_lm, int repeats);
+
+}  // namespace ilp
