@@ -34,8 +34,8 @@ std::vector<int> goal_patches(const Scene& scene, const std::vector<std::string>
 
 std::string series_name(const AccuracyRow& row) {
   std::ostringstream s;
-  s << to_string(row.strategy) << ", " << row.rays_per_row << " rays";
-  if (row.method != IndirectMethod::sample_gather) s << ", " << to_string(row.method);
+  s << to_string(row.strategy) << ", " << row.rays_per_row << " rays, "
+    << (row.method == IndirectMethod::sample_gather ? "sample gather" : "exact 2nd bounce");
   return s.str();
 }
 
@@ -171,12 +171,12 @@ int run_accuracy(const AccuracyArgs& args) {
               << std::setprecision(2) << 100.0 * p.rms_relative_spread_total << " % RMS (total), "
               << 100.0 * p.rms_relative_spread_indirect << " % (indirect) in " << p.seconds << " s\n";
   std::cout << "medians over seeds; errors are area-weighted RMS and maximum over goal patches, relative\n";
-  std::cout << std::left << std::setw(26) << "series" << std::right << std::setw(8) << "k %" << std::setw(8) << "k"
+  std::cout << std::left << std::setw(40) << "series" << std::right << std::setw(8) << "k %" << std::setw(8) << "k"
             << std::setw(10) << "build s" << std::setw(10) << "eval us" << std::setw(11) << "RMS tot %"
             << std::setw(11) << "max tot %" << std::setw(11) << "RMS ind %" << std::setw(11) << "predict %" << "\n";
   for (const auto& [name, points] : summary)
     for (const Point& p : points)
-      std::cout << std::left << std::setw(26) << name << std::right << std::fixed << std::setprecision(1)
+      std::cout << std::left << std::setw(40) << name << std::right << std::fixed << std::setprecision(1)
                 << std::setw(8) << 100.0 * p.fraction << std::setw(8) << p.k << std::setprecision(3) << std::setw(10)
                 << p.build_seconds << std::setprecision(2) << std::setw(10) << p.eval_us << std::setw(11)
                 << 100.0 * p.rms_total << std::setw(11) << 100.0 * p.max_total << std::setw(11)

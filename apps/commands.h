@@ -23,7 +23,7 @@ struct AccuracyArgs {
   int seeds = 3;
   std::vector<int> rays{256};
   std::vector<std::string> strategies{"stratified"};
-  std::vector<std::string> methods{"sample_gather"};
+  std::vector<std::string> methods{"exact_second_bounce"};
   std::vector<std::string> goals;  // surfaces; empty: the job's report surfaces
   int reference_rays = 1024;
   int error_samples = 4;

@@ -60,7 +60,8 @@ int choose_sample_size(const JobConfig& job, const Scene& scene, const RayCaster
                        const ProgressCallback& progress) {
   const std::size_t population = reflecting_patches(scene).size();
   if (!job.sample.target_error || population == 0) return job.sample.size_for(population);
-  const int pilot = std::max(2, static_cast<int>(std::lround(job.sample.pilot_fraction * population)));
+  const int pilot = std::min(static_cast<int>(population),
+                             std::max(2, static_cast<int>(std::lround(job.sample.pilot_fraction * population))));
   const ErrorPrediction prediction =
       predict_sample_error(scene, caster, goals, flux, options, pilot, job.sample.error_samples, progress);
   const int k = prediction.recommended_sample_size(*job.sample.target_error);

@@ -1,5 +1,7 @@
-// Benchmarks of the foundation: form-factor rows against plain Embree tracing the
-// very same rays (the baseline, measured in the same run), and the exact solve.
+// Benchmarks of the foundation and the sample-based operator: form-factor rows
+// against plain Embree tracing the very same rays (the baseline, measured in the
+// same run), the exact solve, and the operator's build and per-configuration cost
+// (which replaces one exact solve per configuration).
 // Scene: configs/office.yaml, or the job in $ILP_BENCH_CONFIG. Argument: threads.
 //
 //   ./build/bench/ilp_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
@@ -22,6 +24,7 @@
 #include "core/form_factors.h"
 #include "core/job.h"
 #include "core/ray_caster.h"
+#include "core/sample_operator.h"
 #include "core/sampling.h"
 
 namespace {
@@ -152,8 +155,68 @@ void BM_ExactSolve(benchmark::State& state) {
   state.counters["sweeps"] = last.iterations;
 }
 
+// The sample-based operator for the job's report surfaces as goals, built at the
+// job's sample size: what replaces one exact solve per configuration.
+ilp::SampleOperatorOptions sample_options(const Fixture& f, int threads) {
+  ilp::SampleOperatorOptions o;
+  o.strategy = f.job.sample.strategy;
+  o.sample_seed = f.job.sample.seed;
+  o.indirect = f.job.sample.indirect;
+  o.form_factors = f.job.form_factors;
+  o.direct_light = f.job.direct_light;
+  o.form_factors.threads = o.direct_light.threads = threads;
+  o.sample_size = f.job.sample.size_for(ilp::reflecting_patches(f.scene).size());
+  return o;
+}
+
+std::vector<int> goal_patches(const Fixture& f) {
+  std::vector<int> goals;
+  for (std::size_t i = 0; i < f.scene.patches.size(); ++i)
+    for (const std::string& name : f.job.report_surfaces)
+      if (f.scene.surfaces[f.scene.patches[i].surface].name == name) goals.push_back(static_cast<int>(i));
+  return goals;
+}
+
+void BM_SampleOperatorBuild(benchmark::State& state) {
+  const Fixture& f = fixture();
+  const ilp::SampleOperatorOptions o = sample_options(f, static_cast<int>(state.range(0)));
+  const std::vector<int> goals = goal_patches(f);
+  ilp::SampleOperatorStats last;
+  for (auto _ : state) {
+    const ilp::RayCaster caster(f.scene, o.form_factors.threads);
+    const ilp::GoalRows rows = ilp::compute_goal_rows(f.scene, caster, goals, ilp::scene_light_sources(f.scene), o);
+    last = ilp::build_sample_operator(f.scene, caster, rows, o).stats;
+  }
+  state.counters["k"] = static_cast<double>(last.sample_patches);
+  state.counters["goal_patches"] = static_cast<double>(last.goal_patches);
+  state.counters["goal_rows_s"] = last.goal_seconds;
+  state.counters["sample_rows_s"] = last.sample_row_seconds;
+  state.counters["direct_s"] = last.direct_seconds;
+  state.counters["solve_s"] = last.solve_seconds;
+}
+
+// One configuration through the built operator: H_G = T phi.
+void BM_EvaluateConfiguration(benchmark::State& state) {
+  const Fixture& f = fixture();
+  const ilp::SampleOperatorOptions o = sample_options(f, 0);
+  const ilp::RayCaster caster(f.scene, 0);
+  const ilp::GoalRows rows = ilp::compute_goal_rows(f.scene, caster, goal_patches(f), ilp::scene_light_sources(f.scene), o);
+  const ilp::SampleOperator op = ilp::build_sample_operator(f.scene, caster, rows, o);
+  Eigen::VectorXd flux = ilp::source_flux_lm(f.scene, op.sources);
+  Eigen::VectorXd H(op.total_lux_per_lm.rows());
+  for (auto _ : state) {
+    flux[0] += 1e-9;  // a new configuration each time
+    H.noalias() = op.total_lux_per_lm * flux;
+    benchmark::DoNotOptimize(H.data());
+  }
+  state.counters["goal_patches"] = static_cast<double>(H.size());
+  state.counters["sources"] = static_cast<double>(flux.size());
+}
+
 }  // namespace
 
+BENCHMARK(BM_SampleOperatorBuild)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_EvaluateConfiguration)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FormFactorRows)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_PlainEmbreeSameRays)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ExactSolve)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

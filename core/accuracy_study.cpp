@@ -62,8 +62,12 @@ AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_p
   auto size_of = [&](double fraction) { return std::max(1, static_cast<int>(std::lround(fraction * population))); };
   // The census does not depend on the seed: one build.
   auto seeds_of = [&](int k) { return k >= population ? 1 : options.seeds; };
+  // Fractions that round to the same k are built once.
+  std::vector<int> sizes;
+  for (double fraction : options.sample_fractions)
+    if (std::find(sizes.begin(), sizes.end(), size_of(fraction)) == sizes.end()) sizes.push_back(size_of(fraction));
   std::size_t builds = 0;
-  for (double fraction : options.sample_fractions) builds += static_cast<std::size_t>(seeds_of(size_of(fraction)));
+  for (int k : sizes) builds += static_cast<std::size_t>(seeds_of(k));
   builds *= options.methods.size() * options.rays_per_row.size() * options.strategies.size();
   for (IndirectMethod method : options.methods)
     for (int rays : options.rays_per_row) {
@@ -73,12 +77,14 @@ AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_p
       const GoalRows goals = compute_goal_rows(scene, caster, goal_patches, sources, base);
       for (SampleStrategy strategy : options.strategies) {
         base.strategy = strategy;
-        const int pilot = std::max(2, static_cast<int>(std::lround(options.pilot_fraction * population)));
+        const int pilot =
+            std::min(population, std::max(2, static_cast<int>(std::lround(options.pilot_fraction * population))));
         study.predictions.push_back(
             predict_sample_error(scene, caster, goals, flux, base, pilot, options.error_samples));
         const ErrorPrediction& prediction = study.predictions.back();
-        for (double fraction : options.sample_fractions) {
-          const int k = size_of(fraction);
+        for (std::size_t f = 0; f < sizes.size(); ++f) {
+          const int k = sizes[f];
+          const double fraction = static_cast<double>(k) / population;
           for (int s = 0; s < seeds_of(k); ++s) {
             SampleOperatorOptions o = base;
             o.sample_size = k;

@@ -18,11 +18,12 @@
 namespace ilp {
 
 struct AccuracyStudyOptions {
-  std::vector<double> sample_fractions{0.01, 0.02, 0.05, 0.10, 0.25, 1.0};  // of the reflecting patches
+  std::vector<double> sample_fractions{0.01, 0.02, 0.05, 0.10, 0.25, 1.0};  // of the reflecting patches;
+                                                                            // those giving the same k run once
   int seeds = 3;                                 // samples per size (the census needs one)
   std::vector<int> rays_per_row{256};
   std::vector<SampleStrategy> strategies{SampleStrategy::stratified};
-  std::vector<IndirectMethod> methods{IndirectMethod::sample_gather};
+  std::vector<IndirectMethod> methods{IndirectMethod::exact_second_bounce};
   int reference_rays = 1024;                     // rays per patch of the exact reference
   std::uint64_t reference_seed = 1'000'003;      // independent of the operator's rays
   int error_samples = 4;                         // eta, for the predicted error
@@ -34,7 +35,7 @@ struct AccuracyStudyOptions {
 struct AccuracyRow {
   SampleStrategy strategy = SampleStrategy::stratified;
   IndirectMethod method = IndirectMethod::sample_gather;
-  double sample_fraction = 0.0;
+  double sample_fraction = 0.0;     // k / reflecting patches
   int sample_size = 0;              // k requested
   std::size_t sample_patches = 0;   // distinct patches drawn
   int rays_per_row = 0;

@@ -55,11 +55,13 @@ int ErrorPrediction::recommended_sample_size(double target) const {
   if (!(target > 0.0)) throw std::invalid_argument("target error must be > 0");
   const double n = static_cast<double>(population);
   // eps(k)^2 = c (1/k - 1/n), c = eps0^2 / (1/k0 - 1/n)  =>  k = 1 / (target^2 / c + 1/n).
+  const int census = std::max(1, static_cast<int>(population));
+  if (pilot_size >= census) return census;
   const double eps0 = rms_relative_spread_total;
-  if (eps0 == 0.0 || pilot_size >= static_cast<int>(population)) return std::max(1, pilot_size);
+  if (eps0 == 0.0) return std::clamp(pilot_size, 1, census);
   const double c = eps0 * eps0 / (1.0 / pilot_size - 1.0 / n);
   const double k = 1.0 / (target * target / c + 1.0 / n);
-  return std::clamp(static_cast<int>(std::ceil(k - 1e-9)), 1, static_cast<int>(population));
+  return std::clamp(static_cast<int>(std::ceil(k - 1e-9)), 1, census);
 }
 
 ErrorPrediction predict_sample_error(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
@@ -72,12 +74,12 @@ ErrorPrediction predict_sample_error(const Scene& scene, const RayCaster& caster
   Eigen::VectorXd sum_total = Eigen::VectorXd::Zero(G), sq_total = sum_total, sum_indirect = sum_total,
                   sq_indirect = sum_total;
   ErrorPrediction out;
-  out.pilot_size = pilot_size;
-  out.samples = samples;
   out.population = reflecting_patches(scene).size();
+  out.pilot_size = std::clamp(pilot_size, 1, std::max(1, static_cast<int>(out.population)));
+  out.samples = samples;
   for (int e = 0; e < samples; ++e) {
     SampleOperatorOptions options = base;
-    options.sample_size = pilot_size;
+    options.sample_size = out.pilot_size;
     options.sample_seed = base.sample_seed + 1 + static_cast<std::uint64_t>(e);
     const SampleOperator op = build_sample_operator(scene, caster, goals, options);
     const Eigen::VectorXd total = op.illuminance_lux(flux_lm);

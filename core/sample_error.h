@@ -46,7 +46,7 @@ struct ErrorPrediction {
   int recommended_sample_size(double target) const;
 };
 
-// Builds eta operators of size pilot_size with sample seeds base.sample_seed + 1 ..
+// Builds eta operators of size pilot_size (capped at the population) with sample seeds base.sample_seed + 1 ..
 // + eta (the goal rows are shared) and measures their spread for the given source
 // fluxes. Throws std::invalid_argument when eta < 2.
 ErrorPrediction predict_sample_error(const Scene& scene, const RayCaster& caster, const GoalRows& goals,

@@ -259,4 +259,280 @@ TEST(IlpCli, SolvesATinyBox) {
   EXPECT_GT(floor_min, 0.0);  // the whole floor sees the panel
 }
 
+// The whitespace-separated fields of the table row for `surface` on stdout; empty
+// when there is none.
+std::vector<std::string> table_row(const std::string& out, const std::string& surface) {
+  for (const std::string& line : lines_of(out)) {
+    std::istringstream in(line);
+    std::vector<std::string> fields;
+    for (std::string f; in >> f;) fields.push_back(f);
+    if (!fields.empty() && fields[0] == surface) return fields;
+  }
+  return {};
+}
+
+// Eavg lux of `surface` in the illuminance table (columns: surface, patches,
+// area m2, Eavg, Emin, Emax, U0); NaN when there is no such row.
+double table_eavg(const std::string& out, const std::string& surface) {
+  const std::vector<std::string> f = table_row(out, surface);
+  if (f.size() != 7) return std::nan("");
+  return std::strtod(f[3].c_str(), nullptr);
+}
+
+// A number, and whether the whole field was one and finite.
+bool finite_number(const std::string& field, double* value = nullptr) {
+  char* end = nullptr;
+  const double v = std::strtod(field.c_str(), &end);
+  if (value) *value = v;
+  return !field.empty() && end == field.c_str() + field.size() && std::isfinite(v);
+}
+
+TEST(IlpCli, SolveMethodsExactAndSampleAgree) {
+  TempDir dir;
+  dir.write("box.obj", kBoxObj);
+  const std::string yaml = dir.write("job.yaml", kBoxYaml);
+  const RunResult exact = run_ilp(dir, {"solve", yaml, "--method", "exact", "--threads", "2", "-q"});
+  ASSERT_EQ(exact.exit_code, 0) << "stderr:\n" << exact.err;
+  EXPECT_TRUE(Contains(exact.out, "exact radiosity"));
+  const RunResult sample = run_ilp(dir, {"solve", yaml, "--method", "sample", "--threads", "2", "-q"});
+  ASSERT_EQ(sample.exit_code, 0) << "stderr:\n" << sample.err;
+  EXPECT_TRUE(Contains(sample.out, "sample-based operator"));
+  for (const RunResult* r : {&exact, &sample}) {
+    EXPECT_TRUE(Contains(r->out, "Eavg lux"));
+    for (const char* surface : {"floor", "ceiling", "walls", "L1"})
+      EXPECT_EQ(table_row(r->out, surface).size(), 7u) << surface << " has no row in\n" << r->out;
+  }
+  // What the sample run did, in its log.
+  EXPECT_TRUE(Contains(sample.err, "sample:"));
+  EXPECT_TRUE(Contains(sample.err, "condition estimate"));
+
+  const double floor_exact = table_eavg(exact.out, "floor"), floor_sample = table_eavg(sample.out, "floor");
+  ASSERT_TRUE(std::isfinite(floor_exact) && floor_exact > 0.0) << exact.out;
+  ASSERT_TRUE(std::isfinite(floor_sample) && floor_sample > 0.0) << sample.out;
+  EXPECT_NEAR(floor_sample / floor_exact, 1.0, 0.05) << "exact:\n" << exact.out << "sample:\n" << sample.out;
+}
+
+TEST(IlpCli, SolveMethodFromTheJobAndOverride) {
+  TempDir dir;
+  dir.write("box.obj", kBoxObj);
+  const std::string yaml = dir.write("job.yaml", std::string(kBoxYaml) + "  method: exact\n");
+  const RunResult from_job = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
+  ASSERT_EQ(from_job.exit_code, 0) << "stderr:\n" << from_job.err;
+  EXPECT_TRUE(Contains(from_job.out, "exact radiosity"));
+  const RunResult overridden = run_ilp(dir, {"solve", yaml, "--method", "sample", "--threads", "2", "-q"});
+  ASSERT_EQ(overridden.exit_code, 0) << "stderr:\n" << overridden.err;
+  EXPECT_TRUE(Contains(overridden.out, "sample-based operator"));
+}
+
+TEST(IlpCli, SolveBogusMethodIsAUsageError) {
+  TempDir dir;
+  dir.write("box.obj", kBoxObj);
+  const std::string yaml = dir.write("job.yaml", kBoxYaml);
+  const RunResult r = run_ilp(dir, {"solve", yaml, "--method", "bogus"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_TRUE(Contains(r.err, "--method"));
+  EXPECT_FALSE(Contains(r.out, "Eavg lux")) << "nothing may be solved";
+}
+
+TEST(IlpCli, SolveWithoutReflectionIsDirectLightOnly) {
+  TempDir dir;
+  dir.write("box.obj", kBoxObj);
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n"
+                                     "  mesh: box.obj\n"
+                                     "  max_patch_edge_m: 0.5\n"
+                                     "  reflectance:\n"
+                                     "    floor: 0\n"
+                                     "    ceiling: 0\n"
+                                     "    walls: 0\n"
+                                     "luminaires:\n"
+                                     "  size_m: 0.4\n"
+                                     "  placed:\n"
+                                     "    - {name: L1, position_m: [1, 1, 1.95], flux_lm: 1000}\n"
+                                     "solver:\n"
+                                     "  rays_per_patch: 64\n"
+                                     "  seed: 3\n");
+  const RunResult r = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
+  EXPECT_TRUE(Contains(r.err, "direct light only"));
+  EXPECT_GT(table_eavg(r.out, "floor"), 0.0) << r.out;
+}
+
+TEST(IlpCli, SolveTargetErrorChoosesTheSampleSize) {
+  TempDir dir;
+  dir.write("box.obj", kBoxObj);
+  const std::string yaml = dir.write("job.yaml", std::string(kBoxYaml) + "  target_error: 0.05\n");
+  const RunResult r = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
+  std::string line;
+  for (const std::string& l : lines_of(r.err))
+    if (l.rfind("sample size:", 0) == 0) line = l;
+  ASSERT_FALSE(line.empty()) << "no \"sample size:\" line in\n" << r.err;
+  EXPECT_TRUE(Contains(line, "needs k ="));
+  EXPECT_TRUE(Contains(line, "of 432"));  // the reflecting patches: every patch but the panel's 2
+  EXPECT_TRUE(Contains(r.out, "Eavg lux"));
+}
+
+// The census (every reflecting patch in the sample) is the exact solve by another
+// route: same rays (seed), same rows, so the reflecting surfaces agree to the table's
+// precision. (The luminaire's own patches are never sampled and so reach the
+// sample through reciprocity; they are left out.)
+TEST(IlpCli, SolveCensusReproducesTheExactSolve) {
+  TempDir dir;
+  dir.write("box.obj", kBoxObj);
+  const std::string yaml = dir.write("job.yaml", std::string(kBoxYaml) + "  sample_fraction: 1\n");
+  const RunResult exact = run_ilp(dir, {"solve", yaml, "--method", "exact", "--threads", "2", "-q"});
+  ASSERT_EQ(exact.exit_code, 0) << "stderr:\n" << exact.err;
+  const RunResult census = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
+  ASSERT_EQ(census.exit_code, 0) << "stderr:\n" << census.err;
+  EXPECT_TRUE(Contains(census.out, "k = 432 of 432 reflecting patches"));
+  EXPECT_TRUE(Contains(census.err, "no sampling error"));
+  for (const char* surface : {"floor", "ceiling", "walls"}) {
+    const std::vector<std::string> a = table_row(exact.out, surface), b = table_row(census.out, surface);
+    ASSERT_EQ(a.size(), 7u) << exact.out;
+    ASSERT_EQ(b.size(), 7u) << census.out;
+    for (std::size_t c = 3; c < 6; ++c)  // Eavg, Emin, Emax (0.1 lux printed)
+      EXPECT_NEAR(std::stod(b[c]), std::stod(a[c]), 0.11) << surface << " column " << c;
+  }
+}
+
+// With n reflecting patches, no sample size above n means anything: the
+// recommendation must stay within 1..n (k = n is the census), also when the pilot
+// samples (at least 2 patches) are as large as the population.
+TEST(IlpCli, SolveTargetErrorRecommendsAtMostThePopulation) {
+  TempDir dir;
+  // The box unsubdivided, with one floor triangle as the only reflecting patch.
+  dir.write("box.obj",
+            "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nv 0 0 2\nv 2 0 2\nv 2 2 2\nv 0 2 2\n"
+            "g floor\nf 1 2 3\n"
+            "g rest\nf 1 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n");
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n"
+                                     "  mesh: box.obj\n"
+                                     "  reflectance: {floor: 0.5, rest: 0}\n"
+                                     "luminaires:\n"
+                                     "  size_m: 0.4\n"
+                                     "  placed:\n"
+                                     "    - {name: L1, position_m: [1, 1, 1.95], flux_lm: 1000}\n"
+                                     "solver:\n"
+                                     "  rays_per_patch: 64\n"
+                                     "  target_error: 0.05\n");
+  const RunResult r = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
+  EXPECT_TRUE(Contains(r.out, "k = 1 of 1 reflecting patches"));
+  std::string line;
+  for (const std::string& l : lines_of(r.err))
+    if (l.rfind("sample size:", 0) == 0) line = l;
+  ASSERT_FALSE(line.empty()) << "no \"sample size:\" line in\n" << r.err;
+  EXPECT_TRUE(Contains(line, "needs k = 1 of 1 ")) << "the recommendation exceeds the population";
+}
+
+// ---------------------------------------------------------------------------------
+// ilp accuracy
+
+TEST(IlpCli, AccuracyStudyOnATinyBox) {
+  TempDir dir;
+  dir.write("box.obj", kBoxObj);
+  const std::string yaml = dir.write("job.yaml", kBoxYaml);
+  const std::string out_dir = dir.file("acc");
+  const RunResult r = run_ilp(dir, {"accuracy", yaml, "--fractions", "0.2,1", "--seeds", "2", "--rays", "64",
+                                    "--reference-rays", "128", "--goals", "floor", "--threads", "2", "--out", out_dir,
+                                    "-q"});
+  ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
+  EXPECT_TRUE(Contains(r.out, "RMS tot %"));  // the table's header
+  EXPECT_TRUE(Contains(r.out, "stratified, 64 rays"));
+
+  const std::string csv = (fs::path(out_dir) / "accuracy.csv").string();
+  const std::string svg = (fs::path(out_dir) / "accuracy.svg").string();
+  ASSERT_TRUE(fs::exists(csv));
+  const std::vector<std::string> rows = lines_of(read_file(csv));
+  const std::vector<std::string> expected_header{"strategy",
+                                                 "indirect",
+                                                 "sample_fraction",
+                                                 "k",
+                                                 "sample_patches",
+                                                 "rays_per_row",
+                                                 "sample_seed",
+                                                 "build_seconds",
+                                                 "evaluation_microseconds",
+                                                 "rms_rel_error_total",
+                                                 "max_rel_error_total",
+                                                 "rms_rel_error_indirect",
+                                                 "max_rel_error_indirect",
+                                                 "predicted_rms_rel_error_total",
+                                                 "goal_fallback_patches",
+                                                 "condition_estimate"};
+  ASSERT_FALSE(rows.empty());
+  ASSERT_EQ(split_csv(rows[0]), expected_header);
+  // 2 seeds at 20 %, and one census (it does not depend on the seed).
+  ASSERT_EQ(rows.size(), 1u + 2u + 1u) << read_file(csv);
+  int census_rows = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    SCOPED_TRACE(rows[i]);
+    const std::vector<std::string> f = split_csv(rows[i]);
+    ASSERT_EQ(f.size(), expected_header.size());
+    EXPECT_EQ(f[0], "stratified");
+    EXPECT_TRUE(f[1] == "sample_gather" || f[1] == "exact_second_bounce") << f[1];  // one method: the default
+    EXPECT_EQ(f[1], split_csv(rows[1])[1]);
+    std::vector<double> v(f.size(), 0.0);
+    for (std::size_t c = 2; c < f.size(); ++c) EXPECT_TRUE(finite_number(f[c], &v[c])) << expected_header[c];
+    EXPECT_EQ(v[5], 64.0);
+    if (v[2] == 1.0) {
+      ++census_rows;
+      EXPECT_EQ(v[3], 432.0);  // k = n
+      EXPECT_EQ(v[4], 432.0);
+      EXPECT_EQ(v[13], 0.0);   // no sampling error predicted for the census
+      EXPECT_LT(v[9], 0.10);   // only the reference's (and the rows') ray noise
+    } else {
+      EXPECT_EQ(v[3], 86.0);  // 0.2 x 432 = 86.4
+      EXPECT_NEAR(v[2], 86.0 / 432.0, 1e-5);  // the fraction actually drawn
+      EXPECT_GT(v[13], 0.0);
+    }
+    EXPECT_GE(v[7], 0.0);
+    EXPECT_GE(v[9], 0.0);
+    EXPECT_GE(v[10], v[9] - 1e-12);  // max >= RMS
+    EXPECT_GE(v[15], 1.0);           // condition number
+  }
+  EXPECT_EQ(census_rows, 1);
+  // The two 20 % rows are different samples.
+  EXPECT_NE(split_csv(rows[1])[6], split_csv(rows[2])[6]);
+
+  ASSERT_TRUE(fs::exists(svg));
+  EXPECT_EQ(read_file(svg).rfind("<svg", 0), 0u) << read_file(svg).substr(0, 200);
+  for (const auto& entry : fs::directory_iterator(out_dir))
+    EXPECT_NE(entry.path().extension(), ".tmp") << entry.path();
+}
+
+TEST(IlpCli, AccuracyUnknownGoalSurface) {
+  TempDir dir;
+  dir.write("box.obj", kBoxObj);
+  const std::string yaml = dir.write("job.yaml", kBoxYaml);
+  const std::string out_dir = dir.file("acc");
+  const RunResult r = run_ilp(dir, {"accuracy", yaml, "--goals", "floor,desk", "--out", out_dir, "-q"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out, "");
+  EXPECT_TRUE(Contains(r.err, "error: "));
+  EXPECT_TRUE(Contains(r.err, "'desk'"));
+  EXPECT_FALSE(fs::exists(fs::path(out_dir) / "accuracy.csv"));
+}
+
+TEST(IlpCli, AccuracyBogusStrategy) {
+  TempDir dir;
+  dir.write("box.obj", kBoxObj);
+  const std::string yaml = dir.write("job.yaml", kBoxYaml);
+  const std::string out_dir = dir.file("acc");
+  const RunResult r = run_ilp(dir, {"accuracy", yaml, "--strategies", "bogus", "--goals", "floor", "--out", out_dir});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_TRUE(Contains(r.err, "bogus"));
+  EXPECT_FALSE(fs::exists(fs::path(out_dir) / "accuracy.csv"));
+}
+
+TEST(IlpCli, AccuracyHelp) {
+  TempDir dir;
+  const RunResult r = run_ilp(dir, {"accuracy", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* option : {"--fractions", "--rays", "--seeds", "--goals", "--out", "--strategies"})
+    EXPECT_TRUE(Contains(r.out, option));
+}
+
 }  // namespace

@@ -46,11 +46,15 @@ void expect_error_at(const std::string& msg, const std::string& file, int line, 
 }
 
 // job.yaml holding `text` must fail load_job_config with a ConfigError at `line`
-// (see expect_error_at) that says each of `says`.
-void expect_config_error(const std::string& text, int line, const std::vector<std::string>& says) {
+// (see expect_error_at) that says each of `says`; with `col` > 0 the message must
+// start with "<file>:<line>:<col>:".
+void expect_config_error(const std::string& text, int line, const std::vector<std::string>& says, int col = 0) {
   TempDir dir;
   const std::string yaml = dir.write("job.yaml", text);
-  expect_error_at(config_error(yaml), yaml, line, says);
+  if (col > 0)
+    expect_message(config_error(yaml), yaml + ":" + std::to_string(line) + ":" + std::to_string(col) + ":", says);
+  else
+    expect_error_at(config_error(yaml), yaml, line, says);
 }
 
 // A unit floor (one quad, group floor) and a wall (one quad, group wall).
@@ -196,6 +200,154 @@ TEST(JobConfig, EveryShippedConfigLoads) {
 }
 
 // ---------------------------------------------------------------------------------
+// The sample-based operator's keys (solver section)
+
+TEST(JobConfig, SolverSampleDefaults) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml", "scene:\n  mesh: room.obj\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  EXPECT_EQ(job.method, ilp::SolveMethod::sample);
+  EXPECT_FALSE(job.sample.size.has_value());
+  EXPECT_DOUBLE_EQ(job.sample.fraction, 0.05);
+  EXPECT_EQ(job.sample.strategy, ilp::SampleStrategy::stratified);
+  EXPECT_EQ(job.sample.seed, 1u);
+  EXPECT_EQ(job.sample.indirect, ilp::IndirectMethod::exact_second_bounce);
+  EXPECT_FALSE(job.sample.target_error.has_value());
+  EXPECT_EQ(job.sample.error_samples, 4);
+  EXPECT_DOUBLE_EQ(job.sample.pilot_fraction, 0.02);
+}
+
+TEST(JobConfig, ReadsSolverSampleSizeKeys) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n"
+                                     "  mesh: room.obj\n"
+                                     "solver:\n"
+                                     "  method: exact\n"
+                                     "  sample_size: 40\n"
+                                     "  sampling: uniform\n"
+                                     "  sample_seed: 9\n"
+                                     "  indirect: sample_gather\n"
+                                     "  error_samples: 6\n"
+                                     "  pilot_fraction: 0.1\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  EXPECT_EQ(job.method, ilp::SolveMethod::exact);
+  ASSERT_TRUE(job.sample.size.has_value());
+  EXPECT_EQ(*job.sample.size, 40);
+  EXPECT_EQ(job.sample.size_loc.file, yaml);
+  EXPECT_EQ(job.sample.size_loc.line, 5);
+  EXPECT_EQ(job.sample.strategy, ilp::SampleStrategy::uniform);
+  EXPECT_EQ(job.sample.seed, 9u);
+  EXPECT_EQ(job.form_factors.seed, 1u);  // the ray seed is separate
+  EXPECT_EQ(job.sample.indirect, ilp::IndirectMethod::sample_gather);
+  EXPECT_EQ(job.sample.error_samples, 6);
+  EXPECT_DOUBLE_EQ(job.sample.pilot_fraction, 0.1);
+  EXPECT_FALSE(job.sample.target_error.has_value());
+}
+
+TEST(JobConfig, ReadsSolverSampleFraction) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n"
+                                     "  mesh: room.obj\n"
+                                     "solver:\n"
+                                     "  method: sample\n"
+                                     "  sampling: area\n"
+                                     "  indirect: exact_second_bounce\n"
+                                     "  sample_fraction: 0.25\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  EXPECT_EQ(job.method, ilp::SolveMethod::sample);
+  EXPECT_FALSE(job.sample.size.has_value());
+  EXPECT_DOUBLE_EQ(job.sample.fraction, 0.25);
+  EXPECT_EQ(job.sample.size_loc.line, 7);
+  EXPECT_EQ(job.sample.strategy, ilp::SampleStrategy::area);
+  EXPECT_EQ(job.sample.indirect, ilp::IndirectMethod::exact_second_bounce);
+}
+
+TEST(JobConfig, SampleFractionOneIsTheCensus) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml", "scene:\n  mesh: room.obj\nsolver:\n  sample_fraction: 1\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  EXPECT_DOUBLE_EQ(job.sample.fraction, 1.0);
+  EXPECT_EQ(job.sample.size_for(123), 123);
+}
+
+TEST(JobConfig, ReadsSolverTargetError) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n"
+                                     "  mesh: room.obj\n"
+                                     "solver:\n"
+                                     "  sampling: stratified\n"
+                                     "  target_error: 0.03\n"
+                                     "  error_samples: 2\n"
+                                     "  pilot_fraction: 1\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ASSERT_TRUE(job.sample.target_error.has_value());
+  EXPECT_DOUBLE_EQ(*job.sample.target_error, 0.03);
+  EXPECT_EQ(job.sample.target_error_loc.file, yaml);
+  EXPECT_EQ(job.sample.target_error_loc.line, 5);
+  EXPECT_EQ(job.sample.target_error_loc.column, 17);
+  EXPECT_FALSE(job.sample.size.has_value());
+  EXPECT_EQ(job.sample.strategy, ilp::SampleStrategy::stratified);
+  EXPECT_EQ(job.sample.error_samples, 2);
+  EXPECT_DOUBLE_EQ(job.sample.pilot_fraction, 1.0);
+}
+
+// Whichever comes first in the file, the two ways of giving a size (or a size and a
+// target) are refused, and the message names both keys.
+TEST(JobConfigErrors, ExclusiveSampleKeysInEitherOrder) {
+  struct Case {
+    const char* solver;
+    std::vector<std::string> says;
+  };
+  const std::vector<Case> cases{
+      {"  sample_fraction: 0.1\n  sample_size: 10\n", {"sample_size", "sample_fraction", "not both"}},
+      {"  target_error: 0.05\n  sample_size: 10\n", {"target_error", "sample_size", "not both"}},
+      {"  target_error: 0.05\n  sample_fraction: 0.1\n", {"target_error", "sample_fraction", "not both"}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.solver);
+    TempDir dir;
+    const std::string yaml = dir.write("job.yaml", std::string("scene:\n  mesh: room.obj\nsolver:\n") + c.solver);
+    const std::string msg = config_error(yaml);
+    EXPECT_TRUE(Contains(msg, yaml + ":4:") || Contains(msg, yaml + ":5:")) << msg;  // at one of the two keys
+    for (const std::string& part : c.says) EXPECT_TRUE(Contains(msg, part));
+  }
+}
+
+TEST(SampleSettings, SizeForIsTheFractionOfThePopulationRounded) {
+  ilp::SampleSettings s;  // fraction 0.05
+  EXPECT_EQ(s.size_for(1000), 50);
+  EXPECT_EQ(s.size_for(432), 22);  // 21.6 rounds up
+  EXPECT_EQ(s.size_for(429), 21);  // 21.45 rounds down
+  s.fraction = 0.25;
+  EXPECT_EQ(s.size_for(10), 3);  // 2.5
+  EXPECT_EQ(s.size_for(9), 2);   // 2.25
+  s.fraction = 1.0;
+  EXPECT_EQ(s.size_for(777), 777);
+}
+
+TEST(SampleSettings, SizeForIsAtLeastOne) {
+  ilp::SampleSettings s;
+  EXPECT_EQ(s.size_for(5), 1);  // 0.25
+  EXPECT_EQ(s.size_for(1), 1);
+  EXPECT_EQ(s.size_for(0), 1);
+  s.fraction = 1e-6;
+  EXPECT_EQ(s.size_for(100000), 1);  // 0.1
+}
+
+TEST(SampleSettings, ExplicitSizeWins) {
+  ilp::SampleSettings s;
+  s.fraction = 0.5;
+  s.size = 7;
+  EXPECT_EQ(s.size_for(1000), 7);
+  EXPECT_EQ(s.size_for(3), 7);  // as given, even above the population (the sampler takes the census then)
+  s.size.reset();
+  EXPECT_EQ(s.size_for(1000), 500);
+}
+
+// ---------------------------------------------------------------------------------
 // Files that cannot be read
 
 TEST(JobConfigErrors, MissingConfigFile) {
@@ -314,6 +466,7 @@ struct BadValue {
   const char* key;      // dotted key the message must name
   const char* rule;     // text the message must contain
   int line = 0;         // line the message must name; 0: the last line of `section`
+  int col = 0;          // column the message must name (1-based); 0: not checked
 };
 
 void PrintTo(const BadValue& v, std::ostream* os) { *os << v.name; }
@@ -324,7 +477,7 @@ TEST_P(JobConfigBadValue, NamesFileLineAndKey) {
   const BadValue& p = GetParam();
   const std::string text = p.section;
   const int bad_line = p.line ? p.line : static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-  expect_config_error(text, bad_line, {p.key, p.rule});
+  expect_config_error(text, bad_line, {p.key, p.rule}, p.col);
 }
 
 #define SCENE "scene:\n  mesh: room.obj\n"
@@ -411,7 +564,47 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{"ExitanceNegative", SCENE "  emitting_surfaces:\n    - {surface: wall, exitance_lm_per_m2: -1}\n",
                  "scene.emitting_surfaces[0].exitance_lm_per_m2 = -1", "must be >= 0"},
         BadValue{"LuminaireSizeZero", SCENE "luminaires:\n  size_m: 0\n", "luminaires.size_m = 0", "must be > 0"},
-        BadValue{"ReportSurfacesNotAList", SCENE "report:\n  surfaces: floor\n", "report.surfaces", "must be a list"}),
+        BadValue{"ReportSurfacesNotAList", SCENE "report:\n  surfaces: floor\n", "report.surfaces", "must be a list"},
+        // the sample-based operator's keys (solver section); the column is the value's
+        BadValue{"MethodFoo", SCENE "solver:\n  method: foo\n", "solver.method = foo", "must be sample or exact", 0,
+                 11},
+        BadValue{"SamplingRandom", SCENE "solver:\n  sampling: random\n", "solver.sampling = random",
+                 "must be uniform, area or stratified", 0, 13},
+        BadValue{"IndirectX", SCENE "solver:\n  indirect: x\n", "solver.indirect = x",
+                 "must be sample_gather or exact_second_bounce", 0, 13},
+        BadValue{"SampleSizeZero", SCENE "solver:\n  sample_size: 0\n", "solver.sample_size = 0",
+                 "must be between 1 and", 0, 16},
+        BadValue{"SampleSizeFraction", SCENE "solver:\n  sample_size: 2.5\n", "solver.sample_size = 2.5",
+                 "must be a whole number", 0, 16},
+        BadValue{"SampleSizeNotANumber", SCENE "solver:\n  sample_size: many\n", "solver.sample_size = many",
+                 "must be a number", 0, 16},
+        BadValue{"SampleFractionZero", SCENE "solver:\n  sample_fraction: 0\n", "solver.sample_fraction = 0",
+                 "must be in (0, 1]", 0, 20},
+        BadValue{"SampleFractionAboveOne", SCENE "solver:\n  sample_fraction: 1.5\n", "solver.sample_fraction = 1.5",
+                 "must be in (0, 1]", 0, 20},
+        BadValue{"SampleFractionNan", SCENE "solver:\n  sample_fraction: .nan\n", "solver.sample_fraction = .nan",
+                 "must be a finite number", 0, 20},
+        BadValue{"TargetErrorZero", SCENE "solver:\n  target_error: 0\n", "solver.target_error = 0",
+                 "must be in (0, 1)", 0, 17},
+        BadValue{"TargetErrorOne", SCENE "solver:\n  target_error: 1\n", "solver.target_error = 1",
+                 "must be in (0, 1)", 0, 17},
+        BadValue{"TargetErrorNegative", SCENE "solver:\n  target_error: -0.1\n", "solver.target_error = -0.1",
+                 "must be in (0, 1)", 0, 17},
+        BadValue{"ErrorSamplesOne", SCENE "solver:\n  error_samples: 1\n", "solver.error_samples = 1",
+                 "must be between 2 and 64", 0, 18},
+        BadValue{"PilotFractionZero", SCENE "solver:\n  pilot_fraction: 0\n", "solver.pilot_fraction = 0",
+                 "must be in (0, 1]", 0, 19},
+        BadValue{"SampleSeedNegative", SCENE "solver:\n  sample_seed: -1\n", "solver.sample_seed = -1",
+                 "must be between 0 and", 0, 16},
+        BadValue{"TypoSampleFraction", SCENE "solver:\n  sample_fracton: 0.1\n", "'solver.sample_fracton'",
+                 "unknown key"},
+        // keys that exclude each other: the error points at the second and names both
+        BadValue{"SampleSizeAndFraction", SCENE "solver:\n  sample_size: 10\n  sample_fraction: 0.1\n",
+                 "solver.sample_fraction = 0.1", "give sample_size or sample_fraction, not both", 0, 20},
+        BadValue{"TargetErrorAndSampleSize", SCENE "solver:\n  sample_size: 10\n  target_error: 0.05\n",
+                 "solver.target_error = 0.05", "give target_error or a sample size", 0, 17},
+        BadValue{"TargetErrorAndSampleFraction", SCENE "solver:\n  sample_fraction: 0.1\n  target_error: 0.05\n",
+                 "solver.target_error = 0.05", "give target_error or a sample size", 0, 17}),
     [](const ::testing::TestParamInfo<BadValue>& info) { return std::string(info.param.name); });
 
 #undef SCENE_REFL
