@@ -416,6 +416,15 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     const auto solve_start = std::chrono::steady_clock::now();
     Eigen::VectorXd rho(k);
     for (Eigen::Index b = 0; b < k; ++b) rho[b] = scene.reflectance(P[b], c);
+    // Energy: a sample patch reflects rho_a s_a < 1 of what reaches it (row sums of
+    // K), so no light is created and I - K is strictly diagonally dominant.
+    for (Eigen::Index a = 0; a < k; ++a) {
+      const double row_sum = rho[a] * W_PP.row(a).sum();
+      if (!(row_sum < 1.0))
+        throw NumericalError("interreflection operator: " + patch_name(scene, P[a]) + " would reflect " +
+                             std::to_string(row_sum) + " of the light reaching it (rho " + std::to_string(rho[a]) +
+                             ", channel " + std::to_string(c) + "): energy would be created");
+    }
     // I - K factorised in place: at k = n (10K patches) each k x k copy is 800 MB.
     Eigen::MatrixXd system = -(rho.asDiagonal() * W_PP);
     system.diagonal().array() += 1.0;
