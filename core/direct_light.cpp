@@ -180,6 +180,18 @@ void replace_emitter_columns(const Scene& scene, const RayCaster& caster, std::s
     }
   }
   F.finalize();
+  // The rays that struck an emitter only sampled its solid angle, which the closed
+  // form knows: scale the row's other entries so that it loses exactly the
+  // closed-form share and keeps its escaped and back-hit shares (see
+  // apply_closed_form_loss in sample_operator.cpp, which does the same).
+  for (Eigen::Index r = 0; r < F.rows(); ++r) {
+    double kept = 0.0, struck = 0.0;
+    for (SparseRows::InnerIterator it(rows.F, r); it; ++it) (emitter_slot[it.col()] >= 0 ? struck : kept) += it.value();
+    if (!(kept > 0.0)) continue;
+    const double scale = std::max(0.0, kept + struck - exact.row(r).sum()) / kept;
+    for (SparseRows::InnerIterator it(F, r); it; ++it)
+      if (emitter_slot[it.col()] < 0) it.valueRef() *= scale;
+  }
   rows.F = std::move(F);
 }
 

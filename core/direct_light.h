@@ -44,7 +44,9 @@ std::vector<int> luminaire_patches(const Scene& scene);
 
 // Replaces the columns of F (rows: rows.row_patches) that belong to `emitters`
 // with compute_emitter_form_factors values. Rays that hit those emitters are
-// dropped from the gathered entries.
+// dropped from the gathered entries, and the row's other entries are scaled so that
+// the row sum stays 1 - escaped - back-hit fraction: the share lost to emitters is
+// the closed form's, not the ray count's.
 void replace_emitter_columns(const Scene& scene, const RayCaster& caster, std::span<const int> emitters,
                              const DirectLightOptions& options, FormFactorRows& rows);
 

@@ -65,17 +65,33 @@ SourceTable make_source_table(const Scene& scene, std::span<const LightSource> s
 }
 
 // Row sums of one row split the way the gather needs them: s_i over the reflecting
-// patches and, per gathered source, the fraction of rays reaching it.
+// patches, per gathered source the fraction of rays reaching it, and the split of
+// front hits between luminaires (of the sources) and everything else.
 struct RowSums {
   Eigen::VectorXd reflecting;   // per row
   Eigen::MatrixXd gathered;     // rows by #gathered sources
+  Eigen::VectorXd luminaire;    // rays that struck a luminaire
+  Eigen::VectorXd kept;         // rays that struck the front of any other patch
 };
 
+std::vector<bool> source_luminaire_mask(const Scene& scene, const SourceTable& sources) {
+  std::vector<bool> mask(scene.patches.size(), false);
+  for (int p : sources.luminaire_patches) mask[static_cast<std::size_t>(p)] = true;
+  return mask;
+}
+
 RowSums row_sums_from_rows(const Scene& scene, const SparseRows& F, const SourceTable& sources) {
-  RowSums out{Eigen::VectorXd::Zero(F.rows()),
-              Eigen::MatrixXd::Zero(F.rows(), static_cast<Eigen::Index>(sources.gathered.size()))};
-  for (Eigen::Index r = 0; r < F.rows(); ++r)
+  const Eigen::Index rows = F.rows();
+  RowSums out{Eigen::VectorXd::Zero(rows), Eigen::MatrixXd::Zero(rows, static_cast<Eigen::Index>(sources.gathered.size())),
+              Eigen::VectorXd::Zero(rows), Eigen::VectorXd::Zero(rows)};
+  const std::vector<bool> luminaire = source_luminaire_mask(scene, sources);
+  for (Eigen::Index r = 0; r < rows; ++r)
     for (SparseRows::InnerIterator it(F, r); it; ++it) {
+      if (luminaire[static_cast<std::size_t>(it.col())]) {
+        out.luminaire[r] += it.value();
+        continue;
+      }
+      out.kept[r] += it.value();
       if (is_reflecting(scene, scene.patches[it.col()])) out.reflecting[r] += it.value();
       if (const int e = sources.gathered_of_patch[it.col()]; e >= 0) out.gathered(r, e) += it.value();
     }
@@ -83,24 +99,49 @@ RowSums row_sums_from_rows(const Scene& scene, const SparseRows& F, const Source
 }
 
 // The same sums by counting rays only: bin 0 reflecting, 1 + e gathered source e,
-// 1 + m + e both (a reflecting emitter).
+// 1 + m + e both (a reflecting emitter), 1 + 2m luminaires.
 RowSums row_sums_by_counting(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
                              const SourceTable& sources, const FormFactorOptions& options,
                              const ProgressCallback& progress) {
   const int m = static_cast<int>(sources.gathered.size());
+  const std::vector<bool> luminaire = source_luminaire_mask(scene, sources);
   std::vector<int> bin(scene.patches.size(), -1);
   for (std::size_t j = 0; j < scene.patches.size(); ++j) {
     const bool reflecting = is_reflecting(scene, scene.patches[j]);
     const int e = sources.gathered_of_patch[j];
-    bin[j] = e >= 0 ? (reflecting ? 1 + m + e : 1 + e) : (reflecting ? 0 : -1);
+    bin[j] = luminaire[j] ? 1 + 2 * m : e >= 0 ? (reflecting ? 1 + m + e : 1 + e) : (reflecting ? 0 : -1);
   }
-  const Eigen::MatrixXd f = compute_row_bin_fractions(scene, caster, patches, bin, 1 + 2 * m, options, progress);
-  RowSums out{f.col(0), Eigen::MatrixXd::Zero(f.rows(), m)};
+  const int bins = 2 + 2 * m;
+  const Eigen::MatrixXd f = compute_row_bin_fractions(scene, caster, patches, bin, bins, options, progress);
+  RowSums out{f.col(0), Eigen::MatrixXd::Zero(f.rows(), m), f.col(1 + 2 * m), Eigen::VectorXd()};
   for (int e = 0; e < m; ++e) {
     out.reflecting += f.col(1 + m + e);
     out.gathered.col(e) = f.col(1 + e) + f.col(1 + m + e);
   }
+  // Columns bins and bins + 1 are the escaped and back-hit fractions.
+  out.kept = Eigen::VectorXd::Ones(f.rows()) - f.col(bins) - f.col(bins + 1) - out.luminaire;
   return out;
+}
+
+// Rays that strike a luminaire only sample its solid angle, which the closed form
+// knows exactly. Each row's other entries are scaled by (kept + hits - closed) / kept
+// so that the row loses exactly the closed-form share to luminaires and keeps its
+// escaped and back-hit shares. Without this, a room of rho 0.999 whose only loss is
+// its luminaires gets that loss from 0 to 3 ray hits per row, and interreflection
+// multiplies the noise by 1 / (1 - rho s). D: the rows' direct light (luminaire
+// columns read). Applies the scale to the sums and to D's gathered columns.
+Eigen::VectorXd apply_closed_form_loss(RowSums& sums, Eigen::MatrixXd& D, const SourceTable& sources) {
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(sums.kept.size());
+  for (Eigen::Index r = 0; r < scale.size(); ++r) {
+    double closed = 0.0;
+    for (std::size_t l = 0; l < sources.emitting_index.size(); ++l)
+      if (sources.emitting_index[l] < 0) closed += D(r, static_cast<Eigen::Index>(l)) * sources.area_m2[l];
+    if (sums.kept[r] > 0.0) scale[r] = std::max(0.0, sums.kept[r] + sums.luminaire[r] - closed) / sums.kept[r];
+  }
+  sums.reflecting.array() *= scale.array();
+  for (Eigen::Index e = 0; e < sums.gathered.cols(); ++e) sums.gathered.col(e).array() *= scale.array();
+  for (int l : sources.gathered) D.col(l).array() *= scale.array();
+  return scale;
 }
 
 // D(R,:): illuminance at each receiver per lumen of each source.
@@ -136,6 +177,22 @@ void require_finite(const Eigen::MatrixXd& m, const char* stage, const Scene& sc
         throw NumericalError(std::string(stage) + ": non-finite value " + std::to_string(m(r, c)) + " at " +
                              patch_name(scene, row_patches[static_cast<std::size_t>(r)]) + " for light source '" +
                              sources[static_cast<std::size_t>(c)].name + "'");
+}
+
+// A reflectance outside [0, 1) or a NaN would otherwise drop the patch from the
+// population (NaN > 0 is false) and flow into the output unnoticed.
+void require_valid_materials(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& p = scene.patches[i];
+    for (int c = 0; c < 3; ++c)
+      if (!(p.reflectance[c] >= 0.0 && p.reflectance[c] < 1.0))
+        throw NumericalError("materials: reflectance " + std::to_string(p.reflectance[c]) + " (channel " +
+                             std::to_string(c) + ") at " + patch_name(scene, static_cast<int>(i)) +
+                             " is not a number in [0, 1)");
+    if (!(p.exitance_lm_per_m2 >= 0.0 && std::isfinite(p.exitance_lm_per_m2)))
+      throw NumericalError("materials: exitance " + std::to_string(p.exitance_lm_per_m2) + " lm/m2 at " +
+                           patch_name(scene, static_cast<int>(i)) + " is not a finite number >= 0");
+  }
 }
 
 // I - K is an M-matrix, so exact arithmetic gives T >= 0; LU round-off may leave
@@ -207,6 +264,7 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
                            std::span<const LightSource> sources, const SampleOperatorOptions& options,
                            const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
+  require_valid_materials(scene);
   for (int p : goal_patches)
     if (p < 0 || p >= static_cast<int>(scene.patches.size()))
       throw std::invalid_argument("compute_goal_rows: patch " + std::to_string(p) + " is not in the scene");
@@ -215,9 +273,9 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
   goals.patches.assign(goal_patches.begin(), goal_patches.end());
   goals.sources.assign(sources.begin(), sources.end());
   const bool any_reflecting = !reflecting_patches(scene).empty();
-  RowSums sums{Eigen::VectorXd::Zero(static_cast<Eigen::Index>(goal_patches.size())),
-               Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(goal_patches.size()),
-                                     static_cast<Eigen::Index>(table.gathered.size()))};
+  const Eigen::Index G = static_cast<Eigen::Index>(goal_patches.size());
+  RowSums sums{Eigen::VectorXd::Zero(G), Eigen::MatrixXd::Zero(G, static_cast<Eigen::Index>(table.gathered.size())),
+               Eigen::VectorXd::Zero(G), Eigen::VectorXd::Zero(G)};
   if (options.indirect == IndirectMethod::exact_second_bounce && any_reflecting) {
     goals.rows = compute_form_factor_rows(scene, caster, goal_patches, options.form_factors, progress);
     sums = row_sums_from_rows(scene, goals.rows->F, table);
@@ -226,11 +284,12 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
     sums = row_sums_by_counting(scene, caster, goal_patches, table, options.form_factors, progress);
     goals.rays_cast = static_cast<std::uint64_t>(goal_patches.size()) * options.form_factors.rays_per_patch;
   }
-  goals.reflecting_fraction = sums.reflecting;
   if (progress) progress("direct light (goals)", 0, 1);
   goals.direct_lux_per_lm = direct_light(scene, caster, goal_patches, sources.size(), table, sums.gathered,
                                          options.direct_light);
   if (progress) progress("direct light (goals)", 1, 1);
+  goals.kept_scale = apply_closed_form_loss(sums, goals.direct_lux_per_lm, table);
+  goals.reflecting_fraction = sums.reflecting;
   require_finite(goals.direct_lux_per_lm, "direct light", scene, goal_patches, sources);
   goals.seconds = seconds_since(start);
   return goals;
@@ -240,6 +299,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
                                      const SampleOperatorOptions& options, const ProgressCallback& progress) {
   if (options.sample_size < 1)
     throw std::invalid_argument("sample_size = " + std::to_string(options.sample_size) + ": must be >= 1");
+  require_valid_materials(scene);
   const std::span<const LightSource> sources = goals.sources;
   const SourceTable table = make_source_table(scene, sources);
   const Eigen::Index L = static_cast<Eigen::Index>(sources.size());
@@ -278,7 +338,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   FormFactorRows rows = compute_form_factor_rows(scene, caster, P, options.form_factors, progress);
   st.sample_row_seconds = rows.seconds;
   st.rays_cast += rows.rays_cast;
-  const RowSums sample_sums = row_sums_from_rows(scene, rows.F, table);
+  RowSums sample_sums = row_sums_from_rows(scene, rows.F, table);
 
   // Direct light at the sample patches (copied where a sample patch is a goal).
   auto start = std::chrono::steady_clock::now();
@@ -302,6 +362,10 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     if (goal_slot[P[b]] >= 0) D_P.row(b) = goals.direct_lux_per_lm.row(goal_slot[P[b]]);
   for (std::size_t m = 0; m < need_direct.size(); ++m) D_P.row(need_direct_row[m]) = D_new.row(static_cast<Eigen::Index>(m));
   st.direct_rows += need_direct.size();
+  // Rows copied from the goals are scaled already (same patch, same rays, same scale).
+  Eigen::MatrixXd D_scaled = D_P;
+  const Eigen::VectorXd kept_scale_P = apply_closed_form_loss(sample_sums, D_scaled, table);
+  for (std::size_t m = 0; m < need_direct.size(); ++m) D_P.row(need_direct_row[m]) = D_scaled.row(need_direct_row[m]);
   require_finite(D_P, "direct light", scene, P, sources);
 
   // Refinement: direct light at every reflecting patch the sample and goal rows hit.
@@ -435,8 +499,8 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     Eigen::MatrixXd rhs = B1;
     Eigen::MatrixXd first_at_goals;                     // refined: F(G,:) B1, exact through full rows
     if (refine) {
-      const Eigen::MatrixXd S = gather_first_reflection(scene, rows.F, hit_slot, D_hit, c);
-      first_at_goals = gather_first_reflection(scene, goals.rows->F, hit_slot, D_hit, c);
+      const Eigen::MatrixXd S = kept_scale_P.asDiagonal() * gather_first_reflection(scene, rows.F, hit_slot, D_hit, c);
+      first_at_goals = goals.kept_scale.asDiagonal() * gather_first_reflection(scene, goals.rows->F, hit_slot, D_hit, c);
       const Eigen::MatrixXd correction = rho.asDiagonal() * (S - W_PP * B1);  // R S - K B1
       for (Eigen::Index l = 0; l < L; ++l)
         if (table.emitting_index[l] < 0) rhs.col(l) += correction.col(l);

@@ -78,6 +78,7 @@ struct GoalRows {
   std::vector<LightSource> sources;
   Eigen::MatrixXd direct_lux_per_lm;       // D(G,:), #goals by #sources
   Eigen::VectorXd reflecting_fraction;     // s_i: rays reaching the front of a reflecting patch
+  Eigen::VectorXd kept_scale;              // factor on the non-luminaire entries of each row (see the .cpp)
   std::optional<FormFactorRows> rows;      // full rows, kept for IndirectMethod::exact_second_bounce
   std::uint64_t rays_cast = 0;
   double seconds = 0.0;
