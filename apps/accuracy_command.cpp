@@ -32,10 +32,11 @@ std::vector<int> goal_patches(const Scene& scene, const std::vector<std::string>
   return out;
 }
 
-std::string series_name(const AccuracyRow& row) {
+// "area, 256 rays, exact 2nd": the strategy only when the study compares several.
+std::string series_name(const AccuracyRow& row, bool with_strategy) {
   std::ostringstream s;
-  s << to_string(row.strategy) << ", " << row.rays_per_row << " rays, "
-    << (row.method == IndirectMethod::sample_gather ? "sample gather" : "exact 2nd bounce");
+  if (with_strategy) s << to_string(row.strategy) << ", ";
+  s << row.rays_per_row << " rays, " << (row.method == IndirectMethod::sample_gather ? "all via sample" : "exact 2nd");
   return s.str();
 }
 
@@ -68,8 +69,10 @@ struct Point {
 };
 
 std::map<std::string, std::vector<Point>> summarise(const AccuracyStudy& study) {
+  bool several_strategies = false;
+  for (const AccuracyRow& r : study.rows) several_strategies |= r.strategy != study.rows.front().strategy;
   std::map<std::string, std::map<int, std::vector<const AccuracyRow*>>> grouped;
-  for (const AccuracyRow& r : study.rows) grouped[series_name(r)][r.sample_size].push_back(&r);
+  for (const AccuracyRow& r : study.rows) grouped[series_name(r, several_strategies)][r.sample_size].push_back(&r);
   std::map<std::string, std::vector<Point>> out;
   for (const auto& [name, by_k] : grouped)
     for (const auto& [k, rows] : by_k) {
@@ -97,7 +100,7 @@ void write_plot(const std::string& path, const std::map<std::string, std::vector
                 const std::string& scene_name, double reference_seconds) {
   std::vector<PlotSeries> series;
   for (const auto& [name, points] : summary) {
-    PlotSeries measured{"measured: " + name, {}, {}}, predicted{"predicted: " + name, {}, {}};
+    PlotSeries measured{name, {}, {}}, predicted{"predicted (" + name + ")", {}, {}};
     for (const Point& p : points) {
       measured.x.push_back(p.build_seconds);
       measured.y.push_back(100.0 * p.rms_total);
@@ -160,7 +163,7 @@ int run_accuracy(const AccuracyArgs& args) {
   const auto summary = summarise(study);
   const double reference_seconds = study.reference.bvh_seconds + study.reference.form_factor_seconds +
                                    study.reference.direct_light_seconds + study.reference.solve_seconds;
-  write_plot(svg, summary, std::filesystem::path(job.mesh_path).filename().string(), reference_seconds);
+  write_plot(svg, summary, std::filesystem::path(args.config).filename().string(), reference_seconds);
 
   std::cout << "Accuracy of the sample-based operator: " << study.patches << " patches, " << study.population
             << " reflecting, " << study.goal_patches << " goal patches\n"

@@ -135,7 +135,8 @@ JobScene load_job_scene(const JobConfig& job) {
   os << std::fixed << "scene: " << scene.patches.size() << " patches, " << scene.total_area_m2() << " m2, bounds ["
      << scene.bounds_m.min().transpose() << "] .. [" << scene.bounds_m.max().transpose() << "] m, "
      << (scene.channels == 1 ? "gray (1 channel)" : "coloured (3 channels)") << ", " << job.luminaires.size()
-     << " luminaires; emitted flux " << std::setprecision(0) << luminaire_flux_lm << " lm from luminaires, "
+     << (job.luminaires.size() == 1 ? " luminaire" : " luminaires") << "; emitted flux " << std::setprecision(0)
+     << luminaire_flux_lm << " lm from luminaires, "
      << surface_flux_lm << " lm from emitting surfaces";
   out.log.push_back(os.str());
   return out;

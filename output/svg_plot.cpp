@@ -14,7 +14,7 @@
 namespace ilp {
 namespace {
 
-constexpr double kWidth_px = 720.0;
+constexpr double kWidth_px = 800.0;
 constexpr double kHeight_px = 480.0;
 constexpr double kFont_px = 12.0;
 constexpr double kCharWidth_px = 7.0;  // a generous estimate of one sans-serif glyph at 12 px
@@ -22,7 +22,7 @@ constexpr double kTick_px = 5.0;
 constexpr double kMinorTick_px = 3.0;
 constexpr double kMarker_px = 4.0;  // marker "radius"
 constexpr double kLegendRow_px = 20.0;
-constexpr std::size_t kLegendChars = 24;
+constexpr std::size_t kLegendChars = 32;
 
 // Okabe-Ito colours (distinguishable with colour-vision deficiencies) without the
 // yellow, which is too pale on white, plus gray. Shapes cycle with a different

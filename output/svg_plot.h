@@ -20,10 +20,10 @@ struct PlotAxes {
   bool x_log = false, y_log = false;    // base-10 logarithmic axes
 };
 
-// Returns a complete standalone SVG document (720 x 480 px): frame, grid and ticks
+// Returns a complete standalone SVG document (800 x 480 px): frame, grid and ticks
 // at "nice" values (1-2-5 steps on linear axes; decades, with 2 and 5 labelled too
 // where they fit, on log axes), tick labels, axis labels, title, one colour and
-// marker shape per series, and a legend right of the plot (labels longer than 24
+// marker shape per series, and a legend right of the plot (labels longer than 32
 // characters are shortened there, in full in its tooltip). The axes cover every
 // point with a small margin; a single value is given a range around it. Throws
 // std::invalid_argument for x and y of different sizes, non-finite values, or
