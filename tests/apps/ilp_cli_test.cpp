@@ -440,7 +440,7 @@ TEST(IlpCli, AccuracyStudyOnATinyBox) {
                                     "-q"});
   ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
   EXPECT_TRUE(Contains(r.out, "RMS tot %"));  // the table's header
-  EXPECT_TRUE(Contains(r.out, "stratified, 64 rays"));
+  EXPECT_TRUE(Contains(r.out, "64 rays, exact 2nd"));
 
   const std::string csv = (fs::path(out_dir) / "accuracy.csv").string();
   const std::string svg = (fs::path(out_dir) / "accuracy.svg").string();

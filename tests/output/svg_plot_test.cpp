@@ -119,7 +119,7 @@ TEST(SvgPlot, LongLegendLabelIsShortenedButKeptAsTooltip) {
   EXPECT_TRUE(WellFormed(svg));
   EXPECT_FALSE(has_text(svg, label));
   EXPECT_TRUE(Contains(svg, "<title>" + label + "</title>", "svg"));
-  EXPECT_TRUE(has_text(svg, label.substr(0, 23) + "\u2026"));
+  EXPECT_TRUE(has_text(svg, label.substr(0, 31) + "\u2026"));
 }
 
 TEST(SvgPlot, LogAxisTicksAtTheDecadesSpanningTheData) {
