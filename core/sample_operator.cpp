@@ -434,32 +434,47 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
       ++st.sample_fallback_rows;
     }
   }
-  // Goal rows: a sampled goal uses its sample row; others A_p F_pi w_p from the sample's columns.
+  // Goal rows: a sampled goal uses its sample row. Others estimate A_i F_ip from
+  // the sample's columns (A_p F_pi, reciprocity) and, where the goal's own full row
+  // was kept, also from that row (A_i F_ip): two independent estimates of the same
+  // quantity, summed, so a goal falls back to ambient only if both saw nothing.
   const Eigen::SparseMatrix<double, Eigen::ColMajor> by_column = rows.F;
+  const bool own_goal_rows = goals.rows.has_value();
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::VectorXd fallback_scale = Eigen::VectorXd::Zero(G);
+  std::vector<double> a(static_cast<std::size_t>(k), 0.0);
+  std::vector<Eigen::Index> touched;
   double goal_area = 0.0, fallback_area = 0.0;
   for (Eigen::Index g = 0; g < G; ++g) {
     const int i = goals.patches[g];
     goal_area += scene.patches[i].area_m2;
     bool fallback = false;
-    if (const int a = sample_slot[i]; a >= 0) {
-      if (sample_fallback[static_cast<std::size_t>(a)]) fallback = true;
+    if (const int s = sample_slot[i]; s >= 0) {
+      if (sample_fallback[static_cast<std::size_t>(s)]) fallback = true;
       else
         for (Eigen::Index b = 0; b < k; ++b)
-          if (W_PP(a, b) != 0.0) entries.emplace_back(g, b, W_PP(a, b));
+          if (W_PP(s, b) != 0.0) entries.emplace_back(g, b, W_PP(s, b));
     } else {
-      double den = 0.0;
+      auto add = [&](Eigen::Index b, double value) {
+        if (a[static_cast<std::size_t>(b)] == 0.0) touched.push_back(b);
+        a[static_cast<std::size_t>(b)] += value * w[b];
+      };
       for (Eigen::SparseMatrix<double>::InnerIterator it(by_column, i); it; ++it)
-        den += scene.patches[P[it.row()]].area_m2 * it.value() * w[it.row()];
+        add(it.row(), scene.patches[P[it.row()]].area_m2 * it.value());
+      if (own_goal_rows)
+        for (SparseRows::InnerIterator it(goals.rows->F, g); it; ++it)
+          if (const int b = sample_slot[it.col()]; b >= 0) add(b, scene.patches[i].area_m2 * it.value());
+      double den = 0.0;
+      for (Eigen::Index b : touched) den += a[static_cast<std::size_t>(b)];
       if (den > 0.0) {
-        for (Eigen::SparseMatrix<double>::InnerIterator it(by_column, i); it; ++it)
-          entries.emplace_back(g, it.row(),
-                               goals.reflecting_fraction[g] * scene.patches[P[it.row()]].area_m2 * it.value() *
-                                   w[it.row()] / den);
+        std::sort(touched.begin(), touched.end());
+        for (Eigen::Index b : touched)
+          entries.emplace_back(g, b, goals.reflecting_fraction[g] * a[static_cast<std::size_t>(b)] / den);
       } else {
         fallback = true;
       }
+      for (Eigen::Index b : touched) a[static_cast<std::size_t>(b)] = 0.0;
+      touched.clear();
     }
     if (fallback) {
       fallback_scale[g] = goals.reflecting_fraction[g];

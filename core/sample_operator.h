@@ -11,7 +11,8 @@
 // s_i is the fraction of patch i's rays that reach a reflecting patch (the row sum
 // over the population), w_p the sample weight (1 / inclusion probability) and
 // a_ip an estimate of A_i F_ip: from i's own row when i was sampled (so k = n
-// reproduces the exact solve), else A_p F_pi by reciprocity from p's row. Where no
+// reproduces the exact solve), else A_p F_pi by reciprocity from p's row, plus
+// A_i F_ip from i's own row where goal rows are kept (exact_second_bounce). Where no
 // sample patch is seen from i (every a_ip = 0) the fallback is the ambient term:
 // W_ip = s_i A_p w_p / sum_q A_q w_q, i.e. i sees the area-weighted mean of the
 // sample's reflected radiosity. Row sums of K are rho_i s_i < 1, so I - K is
