@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -510,24 +511,23 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(system);
     const double rcond = lu.rcond();
     st.condition_estimate = std::max(st.condition_estimate, rcond > 0.0 ? 1.0 / rcond : INFINITY);
-    const Eigen::MatrixXd B1 = rho.asDiagonal() * D_P;  // first reflection at the sample
-    Eigen::MatrixXd rhs = B1;
-    Eigen::MatrixXd first_at_goals;                     // refined: F(G,:) B1, exact through full rows
+    // Plain: (I - K) Bʳ_P = R D_P, every reflection through the sample. Refined
+    // (luminaire columns): the first reflection B1 = R D is gathered exactly through
+    // full rows, S = F(P,:) B1, and the sample carries bounces 2 and up:
+    // Bʳ_P - B1_P = (I - K)^-1 R S, non-negative like every term here.
+    Eigen::MatrixXd rhs = rho.asDiagonal() * D_P;
+    Eigen::MatrixXd first_at_goals;  // refined: F(G,:) B1
     if (refine) {
       const Eigen::MatrixXd S = kept_scale_P.asDiagonal() * gather_first_reflection(scene, rows.F, hit_slot, D_hit, c);
       first_at_goals = goals.kept_scale.asDiagonal() * gather_first_reflection(scene, goals.rows->F, hit_slot, D_hit, c);
-      const Eigen::MatrixXd correction = rho.asDiagonal() * (S - W_PP * B1);  // R S - K B1
       for (Eigen::Index l = 0; l < L; ++l)
-        if (table.emitting_index[l] < 0) rhs.col(l) += correction.col(l);
+        if (table.emitting_index[l] < 0) rhs.col(l) = rho.asDiagonal() * S.col(l);
     }
-    Eigen::MatrixXd reflected = lu.solve(rhs);  // Bʳ_P per lumen
+    const Eigen::MatrixXd reflected = lu.solve(rhs);  // Bʳ_P per lumen (refined columns: bounces 2+)
     require_finite(reflected, "interreflection solve (I - K)", scene, P, sources);
     solve_seconds += seconds_since(solve_start);
 
     const auto response_start = std::chrono::steady_clock::now();
-    if (refine)
-      for (Eigen::Index l = 0; l < L; ++l)
-        if (table.emitting_index[l] < 0) reflected.col(l) -= B1.col(l);  // the sample carries bounces 2+
     Eigen::MatrixXd channel_indirect = W_GP * reflected + fallback_scale * (ambient.transpose() * reflected);
     if (refine)
       for (Eigen::Index l = 0; l < L; ++l)
@@ -560,11 +560,11 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
        << " patches; indirect: " << to_string(options.indirect);
   op.log.push_back(line.str());
   line.str("");
-  line << "I - K: " << k << " x " << k << ", condition estimate " << st.condition_estimate;
+  line << std::setprecision(3) << "I - K: " << k << " x " << k << ", condition estimate " << st.condition_estimate;
   op.log.push_back(line.str());
   if (st.goal_fallback_rows > 0 || st.sample_fallback_rows > 0) {
     line.str("");
-    line << "ambient fallback: " << st.goal_fallback_rows << " goal patches ("
+    line << "ambient fallback: " << st.goal_fallback_rows << " goal patches (" << std::setprecision(2)
          << 100.0 * st.goal_fallback_area_fraction << " % of goal area) and " << st.sample_fallback_rows
          << " sample patches see no sample patch";
     op.log.push_back(line.str());

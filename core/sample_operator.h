@@ -8,6 +8,10 @@
 //   K = R_P W(P,P),  Bʳ_P = (I - K)^-1 R_P D(P,:)   per colour channel, LU in double
 //   T = D(G,:) + W(G,P) Bʳ_P
 //
+// With the first reflection gathered exactly (IndirectMethod::exact_second_bounce,
+// the default), B1 = R D at the patches the full rows hit and
+//   T = D(G,:) + F(G,:) B1 + W(G,P) (I - K)^-1 R_P F(P,:) B1
+//
 // s_i is the fraction of patch i's rays that reach a reflecting patch (the row sum
 // over the population), w_p the sample weight (1 / inclusion probability) and
 // a_ip an estimate of A_i F_ip: from i's own row when i was sampled (so k = n
