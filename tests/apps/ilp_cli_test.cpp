@@ -114,21 +114,27 @@ const char* kBoxObj =
     "f 1 4 8 5\n"
     "f 2 6 7 3\n";
 
-const char* kBoxYaml =
-    "scene:\n"
-    "  mesh: box.obj\n"
+// The box job: `scene` holds the scene section's keys after the mesh, `solver` the
+// solver section's keys after the ray count.
+std::string box_job(const std::string& scene, const std::string& solver = "  seed: 3\n") {
+  return "scene:\n"
+         "  mesh: box.obj\n" +
+         scene +
+         "luminaires:\n"
+         "  size_m: 0.4\n"
+         "  placed:\n"
+         "    - {name: L1, position_m: [1, 1, 1.95], flux_lm: 1000}\n"
+         "solver:\n"
+         "  rays_per_patch: 64\n" +
+         solver;
+}
+
+const std::string kBoxYaml = box_job(
     "  max_patch_edge_m: 0.5\n"
     "  reflectance:\n"
     "    floor: 0.5\n"
     "    ceiling: 0.5\n"
-    "    walls: 0.5\n"
-    "luminaires:\n"
-    "  size_m: 0.4\n"
-    "  placed:\n"
-    "    - {name: L1, position_m: [1, 1, 1.95], flux_lm: 1000}\n"
-    "solver:\n"
-    "  rays_per_patch: 64\n"
-    "  seed: 3\n";
+    "    walls: 0.5\n");
 
 // Each 2 m face: two right triangles with a 2.83 m hypotenuse, cut into 6 x 6 = 36
 // patches each; 6 faces, plus the luminaire's 2 patches.
@@ -315,7 +321,7 @@ TEST(IlpCli, SolveMethodsExactAndSampleAgree) {
 TEST(IlpCli, SolveMethodFromTheJobAndOverride) {
   TempDir dir;
   dir.write("box.obj", kBoxObj);
-  const std::string yaml = dir.write("job.yaml", std::string(kBoxYaml) + "  method: exact\n");
+  const std::string yaml = dir.write("job.yaml", kBoxYaml + "  method: exact\n");
   const RunResult from_job = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
   ASSERT_EQ(from_job.exit_code, 0) << "stderr:\n" << from_job.err;
   EXPECT_TRUE(Contains(from_job.out, "exact radiosity"));
@@ -337,21 +343,8 @@ TEST(IlpCli, SolveBogusMethodIsAUsageError) {
 TEST(IlpCli, SolveWithoutReflectionIsDirectLightOnly) {
   TempDir dir;
   dir.write("box.obj", kBoxObj);
-  const std::string yaml = dir.write("job.yaml",
-                                     "scene:\n"
-                                     "  mesh: box.obj\n"
-                                     "  max_patch_edge_m: 0.5\n"
-                                     "  reflectance:\n"
-                                     "    floor: 0\n"
-                                     "    ceiling: 0\n"
-                                     "    walls: 0\n"
-                                     "luminaires:\n"
-                                     "  size_m: 0.4\n"
-                                     "  placed:\n"
-                                     "    - {name: L1, position_m: [1, 1, 1.95], flux_lm: 1000}\n"
-                                     "solver:\n"
-                                     "  rays_per_patch: 64\n"
-                                     "  seed: 3\n");
+  const std::string yaml = dir.write("job.yaml", box_job("  max_patch_edge_m: 0.5\n"
+                                                         "  reflectance: {floor: 0, ceiling: 0, walls: 0}\n"));
   const RunResult r = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
   ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
   EXPECT_TRUE(Contains(r.err, "direct light only"));
@@ -361,7 +354,7 @@ TEST(IlpCli, SolveWithoutReflectionIsDirectLightOnly) {
 TEST(IlpCli, SolveTargetErrorChoosesTheSampleSize) {
   TempDir dir;
   dir.write("box.obj", kBoxObj);
-  const std::string yaml = dir.write("job.yaml", std::string(kBoxYaml) + "  target_error: 0.05\n");
+  const std::string yaml = dir.write("job.yaml", kBoxYaml + "  target_error: 0.05\n");
   const RunResult r = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
   ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
   std::string line;
@@ -380,7 +373,7 @@ TEST(IlpCli, SolveTargetErrorChoosesTheSampleSize) {
 TEST(IlpCli, SolveCensusReproducesTheExactSolve) {
   TempDir dir;
   dir.write("box.obj", kBoxObj);
-  const std::string yaml = dir.write("job.yaml", std::string(kBoxYaml) + "  sample_fraction: 1\n");
+  const std::string yaml = dir.write("job.yaml", kBoxYaml + "  sample_fraction: 1\n");
   const RunResult exact = run_ilp(dir, {"solve", yaml, "--method", "exact", "--threads", "2", "-q"});
   ASSERT_EQ(exact.exit_code, 0) << "stderr:\n" << exact.err;
   const RunResult census = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
@@ -406,17 +399,8 @@ TEST(IlpCli, SolveTargetErrorRecommendsAtMostThePopulation) {
             "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nv 0 0 2\nv 2 0 2\nv 2 2 2\nv 0 2 2\n"
             "g floor\nf 1 2 3\n"
             "g rest\nf 1 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n");
-  const std::string yaml = dir.write("job.yaml",
-                                     "scene:\n"
-                                     "  mesh: box.obj\n"
-                                     "  reflectance: {floor: 0.5, rest: 0}\n"
-                                     "luminaires:\n"
-                                     "  size_m: 0.4\n"
-                                     "  placed:\n"
-                                     "    - {name: L1, position_m: [1, 1, 1.95], flux_lm: 1000}\n"
-                                     "solver:\n"
-                                     "  rays_per_patch: 64\n"
-                                     "  target_error: 0.05\n");
+  const std::string yaml =
+      dir.write("job.yaml", box_job("  reflectance: {floor: 0.5, rest: 0}\n", "  target_error: 0.05\n"));
   const RunResult r = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
   ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
   EXPECT_TRUE(Contains(r.out, "k = 1 of 1 reflecting patches"));
