@@ -408,7 +408,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
         cheap_options);
     for (std::size_t m = 0; m < cheap.size(); ++m) D_hit.row(cheap_slot[m]) = D_cheap.row(static_cast<Eigen::Index>(m));
     for (std::size_t e = 0; e < table.gathered.size(); ++e) D_hit.col(table.gathered[e]).setZero();
-    st.direct_rows += cheap.size();
+    st.cheap_direct_rows = cheap.size();
     require_finite(D_hit, "direct light", scene, hit, sources);
   }
   st.direct_seconds = seconds_since(start);
@@ -557,7 +557,9 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   line.str("");
   line << "rows cast: " << P.size() << " sample + " << goals.patches.size() << " goal of " << scene.patches.size()
        << " patches, " << options.form_factors.rays_per_patch << " rays each; direct light at " << st.direct_rows
-       << " patches; indirect: " << to_string(options.indirect);
+       << " goal and sample patches";
+  if (refine) line << " (+ " << st.cheap_direct_rows << " cheap estimates at patches the rows hit)";
+  line << "; indirect: " << to_string(options.indirect);
   op.log.push_back(line.str());
   line.str("");
   line << std::setprecision(3) << "I - K: " << k << " x " << k << ", condition estimate " << st.condition_estimate;

@@ -101,7 +101,8 @@ struct SampleOperatorStats {
   bool direct_only = false;               // every reflectance is 0: no sample, T = D
   int channels = 1;
   std::size_t goal_patches = 0;
-  std::size_t direct_rows = 0;            // patches whose direct light was computed
+  std::size_t direct_rows = 0;            // goal and sample patches whose direct light was computed
+  std::size_t cheap_direct_rows = 0;      // exact_second_bounce: other patches the rows hit (cheap estimate)
   std::size_t goal_fallback_rows = 0;     // goal patches that see no sample patch (ambient fallback)
   double goal_fallback_area_fraction = 0.0;
   std::size_t sample_fallback_rows = 0;   // sample patches that see no other sample patch

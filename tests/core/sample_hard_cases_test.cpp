@@ -791,8 +791,13 @@ TEST(SampleShortcuts, OnlyTheRowsNeededGiveTheSameRowsOfT) {
       if (k < all_patches_k(scene)) {
         EXPECT_LT(part.stats.rays_cast, n * 256u);
       }
-      if (method == IndirectMethod::sample_gather) {  // direct light at the goals and the sample only
-        EXPECT_LE(part.stats.direct_rows, floor.size() + part.stats.sample_patches);
+      // Full direct light at the goals and the sample only; the refinement adds cheap
+      // estimates at the other patches the rows hit, fewer than the scene has.
+      EXPECT_LE(part.stats.direct_rows, floor.size() + part.stats.sample_patches);
+      if (method == IndirectMethod::sample_gather) {
+        EXPECT_EQ(part.stats.cheap_direct_rows, 0u);
+      } else {
+        EXPECT_LE(part.stats.cheap_direct_rows + part.stats.direct_rows, n);  // each patch once
       }
       EXPECT_EQ(part.stats.goal_patches, floor.size());
       const bool exact_same = method == IndirectMethod::sample_gather || k == all_patches_k(scene);
