@@ -169,10 +169,13 @@ int run_accuracy(const AccuracyArgs& args) {
             << " reflecting, " << study.goal_patches << " goal patches\n"
             << "reference: exact solve with " << options.reference_rays << " rays per patch (seed "
             << options.reference_seed << ") in " << std::fixed << std::setprecision(2) << reference_seconds << " s\n";
-  for (const ErrorPrediction& p : study.predictions)
-    std::cout << "pilot: " << p.samples << " samples of k0 = " << p.pilot_size << " spread by "
+  for (const StudyPrediction& sp : study.predictions) {
+    const ErrorPrediction& p = sp.prediction;
+    std::cout << "pilot (" << to_string(sp.strategy) << ", " << sp.rays_per_row << " rays, " << to_string(sp.method)
+              << "): " << p.samples << " samples of k0 = " << p.pilot_size << " spread by "
               << std::setprecision(2) << 100.0 * p.rms_relative_spread_total << " % RMS (total), "
               << 100.0 * p.rms_relative_spread_indirect << " % (indirect) in " << p.seconds << " s\n";
+  }
   std::cout << "medians over seeds; errors are area-weighted RMS and maximum over goal patches, relative\n";
   std::cout << std::left << std::setw(40) << "series" << std::right << std::setw(8) << "k %" << std::setw(8) << "k"
             << std::setw(10) << "build s" << std::setw(10) << "eval us" << std::setw(11) << "RMS tot %"

@@ -80,10 +80,9 @@ AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_p
         const int pilot =
             std::min(population, std::max(2, static_cast<int>(std::lround(options.pilot_fraction * population))));
         study.predictions.push_back(
-            predict_sample_error(scene, caster, goals, flux, base, pilot, options.error_samples));
-        const ErrorPrediction& prediction = study.predictions.back();
-        for (std::size_t f = 0; f < sizes.size(); ++f) {
-          const int k = sizes[f];
+            {strategy, method, rays, predict_sample_error(scene, caster, goals, flux, base, pilot, options.error_samples)});
+        const ErrorPrediction& prediction = study.predictions.back().prediction;
+        for (const int k : sizes) {
           const double fraction = static_cast<double>(k) / population;
           for (int s = 0; s < seeds_of(k); ++s) {
             SampleOperatorOptions o = base;

@@ -48,10 +48,17 @@ struct AccuracyRow {
   double condition_estimate = 0.0;
 };
 
+struct StudyPrediction {
+  SampleStrategy strategy = SampleStrategy::stratified;
+  IndirectMethod method = IndirectMethod::exact_second_bounce;
+  int rays_per_row = 0;
+  ErrorPrediction prediction;
+};
+
 struct AccuracyStudy {
   std::size_t patches = 0, population = 0, goal_patches = 0;
   ExactSolveSummary reference;
-  std::vector<ErrorPrediction> predictions;   // one per (strategy, method, rays), in row order of first use
+  std::vector<StudyPrediction> predictions;   // one per (strategy, method, rays)
   std::vector<AccuracyRow> rows;
 };
 
