@@ -500,6 +500,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     // K), so no light is created and I - K is strictly diagonally dominant.
     for (Eigen::Index a = 0; a < k; ++a) {
       const double row_sum = rho[a] * W_PP.row(a).sum();
+      st.max_row_sum = std::max(st.max_row_sum, row_sum);
       if (!(row_sum < 1.0))
         throw NumericalError("interreflection operator: " + patch_name(scene, P[a]) + " would reflect " +
                              std::to_string(row_sum) + " of the light reaching it (rho " + std::to_string(rho[a]) +
@@ -540,6 +541,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     st.response_seconds += seconds_since(response_start);
   }
   st.solve_seconds = solve_seconds;
+  st.condition_bound_inf = (1.0 + st.max_row_sum) / (1.0 - st.max_row_sum);
   op.total_lux_per_lm += indirect;
   require_finite(op.total_lux_per_lm, "illuminance at goal patches", scene, goals.patches, sources);
   clamp_round_off(op.total_lux_per_lm, scene, goals.patches, sources);
@@ -562,7 +564,9 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   line << "; indirect: " << to_string(options.indirect);
   op.log.push_back(line.str());
   line.str("");
-  line << std::setprecision(3) << "I - K: " << k << " x " << k << ", condition estimate " << st.condition_estimate;
+  line << std::setprecision(3) << "I - K: " << k << " x " << k << ", condition estimate " << st.condition_estimate
+       << " (1-norm); largest row sum of K " << st.max_row_sum << ", so the infinity-norm condition is at most "
+       << st.condition_bound_inf;
   op.log.push_back(line.str());
   if (st.goal_fallback_rows > 0 || st.sample_fallback_rows > 0) {
     line.str("");

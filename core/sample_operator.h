@@ -106,7 +106,13 @@ struct SampleOperatorStats {
   std::size_t goal_fallback_rows = 0;     // goal patches that see no sample patch (ambient fallback)
   double goal_fallback_area_fraction = 0.0;
   std::size_t sample_fallback_rows = 0;   // sample patches that see no other sample patch
-  double condition_estimate = 1.0;        // of I - K, 1-norm, largest over channels (1 without a sample)
+  double condition_estimate = 1.0;        // of I - K, 1-norm (LAPACK-style estimate), largest over channels
+  // Largest row sum of K (rho_a s_a < 1) and the infinity-norm condition bound it gives by
+  // diagonal dominance, (1 + r) / (1 - r): what governs the LU's stability. The 1-norm
+  // estimate can be far larger on real meshes, where a few big patches collect large
+  // column sums of K, without any loss of accuracy.
+  double max_row_sum = 0.0;
+  double condition_bound_inf = 1.0;
   std::uint64_t rays_cast = 0;            // gather rays: sample rows + goal rows
   double goal_seconds = 0.0;
   double sample_row_seconds = 0.0;

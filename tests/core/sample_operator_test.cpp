@@ -127,6 +127,12 @@ TEST(SampleOperator, StatsAndLogDescribeTheBuild) {
   for (const std::string& line : op.log) log += line + "\n";
   EXPECT_NE(log.find("condition estimate"), std::string::npos) << log;
   EXPECT_NE(log.find("100 distinct patches"), std::string::npos) << log;
+  // Row sums of K are rho_a s_a: at most the ceiling's 0.7, and near it in a closed
+  // room (s_a is 1 less what the luminaires and back faces take).
+  EXPECT_LE(op.stats.max_row_sum, 0.7);
+  EXPECT_GT(op.stats.max_row_sum, 0.6);
+  EXPECT_DOUBLE_EQ(op.stats.condition_bound_inf, (1 + op.stats.max_row_sum) / (1 - op.stats.max_row_sum));
+  EXPECT_NE(log.find("infinity-norm condition is at most"), std::string::npos) << log;
 }
 
 TEST(SampleError, ComparesAreaWeightedAndSkipsZeroReferences) {
