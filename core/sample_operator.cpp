@@ -432,7 +432,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     } else {
       W_PP.row(a) = s * ambient.transpose();
       sample_fallback[static_cast<std::size_t>(a)] = true;
-      ++st.sample_fallback_rows;
+      if (s > 0.0) ++st.sample_fallback_rows;
     }
   }
   // Goal rows: a sampled goal uses its sample row. Others estimate A_i F_ip from
@@ -477,7 +477,9 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
       for (Eigen::Index b : touched) a[static_cast<std::size_t>(b)] = 0.0;
       touched.clear();
     }
-    if (fallback) {
+    // A row that reaches no reflecting patch (s_i = 0: facing the sky, say) needs no
+    // fallback: its indirect light is 0 either way.
+    if (fallback && goals.reflecting_fraction[g] > 0.0) {
       fallback_scale[g] = goals.reflecting_fraction[g];
       ++st.goal_fallback_rows;
       fallback_area += scene.patches[i].area_m2;

@@ -103,9 +103,9 @@ struct SampleOperatorStats {
   std::size_t goal_patches = 0;
   std::size_t direct_rows = 0;            // goal and sample patches whose direct light was computed
   std::size_t cheap_direct_rows = 0;      // exact_second_bounce: other patches the rows hit (cheap estimate)
-  std::size_t goal_fallback_rows = 0;     // goal patches that see no sample patch (ambient fallback)
+  std::size_t goal_fallback_rows = 0;     // goal patches that see reflecting patches but no sample patch (ambient)
   double goal_fallback_area_fraction = 0.0;
-  std::size_t sample_fallback_rows = 0;   // sample patches that see no other sample patch
+  std::size_t sample_fallback_rows = 0;   // likewise for sample patches
   double condition_estimate = 1.0;        // of I - K, 1-norm (LAPACK-style estimate), largest over channels
   // Largest row sum of K (rho_a s_a < 1) and the infinity-norm condition bound it gives by
   // diagonal dominance, (1 + r) / (1 - r): what governs the LU's stability. The 1-norm

@@ -353,7 +353,7 @@ Eigen::VectorXd documented_T(const Scene& scene, const Ingredients& in, const Pa
       W.row(i) = in.s[i] * a.transpose() / a.sum();
     } else {
       W.row(i) = in.s[i] * ambient.transpose();
-      ++*fallback_goals;
+      if (in.s[i] > 0.0) ++*fallback_goals;  // a patch that sees nothing reflecting needs no fallback
     }
   }
   Eigen::MatrixXd W_PP(k, k);
