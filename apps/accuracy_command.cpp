@@ -18,21 +18,6 @@
 namespace ilp::cli {
 namespace {
 
-std::vector<int> goal_patches(const Scene& scene, const std::vector<std::string>& surfaces, const std::string& config) {
-  std::vector<int> out;
-  for (const std::string& name : surfaces) {
-    const int s = scene.find_surface(name);
-    if (s < 0) throw ConfigError(config + ": goal surface '" + name + "' is not in the scene");
-    for (std::size_t i = 0; i < scene.patches.size(); ++i)
-      if (scene.patches[i].surface == s) out.push_back(static_cast<int>(i));
-  }
-  if (out.empty()) throw ConfigError(config + ": no goal surfaces (give --goals or report.surfaces)");
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
-
-// "area, 256 rays, exact 2nd": the strategy only when the study compares several.
 std::string series_name(const AccuracyRow& row, bool with_strategy) {
   std::ostringstream s;
   if (with_strategy) s << to_string(row.strategy) << ", ";
@@ -152,8 +137,14 @@ int run_accuracy(const AccuracyArgs& args) {
   options.base.form_factors = job.form_factors;
   options.base.direct_light = job.direct_light;
   options.base.sample_seed = job.sample.seed;
-  const std::vector<int> goals =
-      goal_patches(scene, args.goals.empty() ? job.report_surfaces : args.goals, args.config);
+  const std::vector<std::string>& goal_surfaces = args.goals.empty() ? job.report_surfaces : args.goals;
+  if (goal_surfaces.empty()) throw ConfigError(args.config + ": no goal surfaces (give --goals or report.surfaces)");
+  std::vector<int> goals;
+  try {
+    goals = scene.patches_of(goal_surfaces);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(args.config + ": goal " + e.what());
+  }
 
   std::filesystem::create_directories(args.out_dir);
   const AccuracyStudy study = run_accuracy_study(scene, goals, options, make_progress(args.quiet));

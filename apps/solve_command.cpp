@@ -37,16 +37,6 @@ void write_patch_csv(const std::string& path, const Scene& scene, const std::vec
   });
 }
 
-// Patches of the surfaces to report (every patch when the list is empty).
-std::vector<int> patches_of(const Scene& scene, const std::vector<std::string>& surfaces) {
-  std::vector<int> out;
-  std::vector<bool> wanted(scene.surfaces.size(), surfaces.empty());
-  for (const std::string& name : surfaces) wanted[static_cast<std::size_t>(scene.find_surface(name))] = true;
-  for (std::size_t i = 0; i < scene.patches.size(); ++i)
-    if (wanted[static_cast<std::size_t>(scene.patches[i].surface)]) out.push_back(static_cast<int>(i));
-  return out;
-}
-
 void print_table(const Scene& scene, const std::vector<int>& patches, const Eigen::VectorXd& lux,
                  const std::vector<std::string>& surfaces) {
   Eigen::VectorXd all = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(scene.patches.size()));
@@ -82,7 +72,7 @@ int solve_with_sample(const JobConfig& job, const JobScene& loaded, bool full_sc
   const double bvh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::vector<LightSource> sources = scene_light_sources(scene);
   const Eigen::VectorXd flux = source_flux_lm(scene, sources);
-  const std::vector<int> goals = full_scene ? scene.all_patches() : patches_of(scene, job.report_surfaces);
+  const std::vector<int> goals = full_scene ? scene.all_patches() : scene.patches_of(job.report_surfaces);
 
   SampleOperatorOptions options;
   options.strategy = job.sample.strategy;

@@ -169,18 +169,10 @@ ilp::SampleOperatorOptions sample_options(const Fixture& f, int threads) {
   return o;
 }
 
-std::vector<int> goal_patches(const Fixture& f) {
-  std::vector<int> goals;
-  for (std::size_t i = 0; i < f.scene.patches.size(); ++i)
-    for (const std::string& name : f.job.report_surfaces)
-      if (f.scene.surfaces[f.scene.patches[i].surface].name == name) goals.push_back(static_cast<int>(i));
-  return goals;
-}
-
 void BM_SampleOperatorBuild(benchmark::State& state) {
   const Fixture& f = fixture();
   const ilp::SampleOperatorOptions o = sample_options(f, static_cast<int>(state.range(0)));
-  const std::vector<int> goals = goal_patches(f);
+  const std::vector<int> goals = f.scene.patches_of(f.job.report_surfaces);
   ilp::SampleOperatorStats last;
   for (auto _ : state) {
     const ilp::RayCaster caster(f.scene, o.form_factors.threads);
@@ -200,7 +192,7 @@ void BM_EvaluateConfiguration(benchmark::State& state) {
   const Fixture& f = fixture();
   const ilp::SampleOperatorOptions o = sample_options(f, 0);
   const ilp::RayCaster caster(f.scene, 0);
-  const ilp::GoalRows rows = ilp::compute_goal_rows(f.scene, caster, goal_patches(f), ilp::scene_light_sources(f.scene), o);
+  const ilp::GoalRows rows = ilp::compute_goal_rows(f.scene, caster, f.scene.patches_of(f.job.report_surfaces), ilp::scene_light_sources(f.scene), o);
   const ilp::SampleOperator op = ilp::build_sample_operator(f.scene, caster, rows, o);
   Eigen::VectorXd flux = ilp::source_flux_lm(f.scene, op.sources);
   Eigen::VectorXd H(op.total_lux_per_lm.rows());

@@ -14,18 +14,17 @@ double time_evaluation_microseconds(const SampleOperator& op, const Eigen::Vecto
   const int per_batch = std::max(1, repeats / kBatches);
   std::vector<double> batch_us;
   Eigen::VectorXd H(op.total_lux_per_lm.rows());
-  double sink = 0.0;
+  volatile double sink = 0.0;  // keeps the products from being optimised away
   for (int b = 0; b < kBatches; ++b) {
     const auto start = std::chrono::steady_clock::now();
     for (int r = 0; r < per_batch; ++r) {
       H.noalias() = op.total_lux_per_lm * flux_lm;
-      sink += H[0];
+      sink = sink + H[0];
     }
     batch_us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() /
                        per_batch);
   }
   std::nth_element(batch_us.begin(), batch_us.begin() + kBatches / 2, batch_us.end());
-  if (sink == -1.0) batch_us[kBatches / 2] += 0.0;  // keeps the products from being optimised away
   return batch_us[kBatches / 2];
 }
 

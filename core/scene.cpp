@@ -38,6 +38,19 @@ int Scene::find_surface(const std::string& name) const {
   return -1;
 }
 
+std::vector<int> Scene::patches_of(const std::vector<std::string>& names) const {
+  std::vector<bool> wanted(surfaces.size(), names.empty());
+  for (const std::string& name : names) {
+    const int s = find_surface(name);
+    if (s < 0) throw std::invalid_argument("surface '" + name + "' is not in the scene");
+    wanted[static_cast<std::size_t>(s)] = true;
+  }
+  std::vector<int> out;
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    if (wanted[static_cast<std::size_t>(patches[i].surface)]) out.push_back(static_cast<int>(i));
+  return out;
+}
+
 std::vector<int> Scene::all_patches() const {
   std::vector<int> out(patches.size());
   std::iota(out.begin(), out.end(), 0);

@@ -57,6 +57,9 @@ struct Scene {
   int find_surface(const std::string& name) const;
   // 0, 1, ..., #patches - 1: every patch, for functions that take a list of patches.
   std::vector<int> all_patches() const;
+  // Patches of the named surfaces, ascending, each once (every patch when `names` is
+  // empty). Throws std::invalid_argument naming a surface the scene lacks.
+  std::vector<int> patches_of(const std::vector<std::string>& names) const;
   double total_area_m2() const;
   // Reflectance of a patch in one channel (channel 0 for gray scenes).
   double reflectance(int patch, int channel) const { return patches[patch].reflectance[channel]; }

@@ -20,14 +20,6 @@ Scene coarse_office(double max_edge_m = 0.6) {
   return load_job_scene(job).scene;
 }
 
-std::vector<int> patches_of_surfaces(const Scene& scene, std::initializer_list<const char*> names) {
-  std::vector<int> out;
-  for (std::size_t i = 0; i < scene.patches.size(); ++i)
-    for (const char* name : names)
-      if (scene.surfaces[scene.patches[i].surface].name == name) out.push_back(static_cast<int>(i));
-  return out;
-}
-
 SampleOperatorOptions options_with(int k, int rays = 256) {
   SampleOperatorOptions o;
   o.sample_size = k;
@@ -43,7 +35,7 @@ SampleOperator build(const Scene& scene, std::span<const int> goals, const Sampl
 
 TEST(SampleOperator, CensusReproducesTheExactSolve) {
   const Scene scene = coarse_office();
-  const std::vector<int> goals = patches_of_surfaces(scene, {"desk_1", "desk_2", "floor", "walls"});
+  const std::vector<int> goals = scene.patches_of({"desk_1", "desk_2", "floor", "walls"});
   for (IndirectMethod method : {IndirectMethod::sample_gather, IndirectMethod::exact_second_bounce}) {
     SampleOperatorOptions o = options_with(static_cast<int>(scene.patches.size()));
     o.indirect = method;
@@ -69,7 +61,7 @@ TEST(SampleOperator, CensusReproducesTheExactSolve) {
 // grows, for both indirect methods, averaged over seeds; the census itself is exact.
 TEST(SampleOperator, ErrorShrinksAsTheSampleGrows) {
   const Scene scene = coarse_office();
-  const std::vector<int> goals = patches_of_surfaces(scene, {"desk_1", "desk_2", "floor"});
+  const std::vector<int> goals = scene.patches_of({"desk_1", "desk_2", "floor"});
   const RayCaster caster(scene);
   for (IndirectMethod method : {IndirectMethod::sample_gather, IndirectMethod::exact_second_bounce}) {
     SampleOperatorOptions o = options_with(1);
@@ -101,7 +93,7 @@ TEST(SampleOperator, ErrorShrinksAsTheSampleGrows) {
 // The same sample, rays and seeds give bit-identical operators with 1 and 2 threads.
 TEST(SampleOperator, DeterministicWhateverTheThreadCount) {
   const Scene scene = coarse_office();
-  const std::vector<int> goals = patches_of_surfaces(scene, {"desk_1", "floor"});
+  const std::vector<int> goals = scene.patches_of({"desk_1", "floor"});
   SampleOperatorOptions one = options_with(60), two = one;
   one.form_factors.threads = one.direct_light.threads = 1;
   two.form_factors.threads = two.direct_light.threads = 2;
@@ -115,7 +107,7 @@ TEST(SampleOperator, DeterministicWhateverTheThreadCount) {
 // Sample rows of K sum to rho_i s_i: I - K is strictly diagonally dominant.
 TEST(SampleOperator, StatsAndLogDescribeTheBuild) {
   const Scene scene = coarse_office();
-  const std::vector<int> goals = patches_of_surfaces(scene, {"desk_1", "desk_2"});
+  const std::vector<int> goals = scene.patches_of({"desk_1", "desk_2"});
   const SampleOperator op = build(scene, goals, options_with(100));
   EXPECT_EQ(op.stats.goal_patches, goals.size());
   EXPECT_EQ(op.stats.sample_patches, 100u);
@@ -177,7 +169,7 @@ TEST(SampleError, PredictionScalesWithSampleSizeAndReachesZeroAtTheCensus) {
 // The spread of pilot samples predicts the error against the census within a factor 2.
 TEST(SampleError, PilotSpreadPredictsTheMeasuredError) {
   const Scene scene = coarse_office();
-  const std::vector<int> goals = patches_of_surfaces(scene, {"desk_1", "desk_2", "floor"});
+  const std::vector<int> goals = scene.patches_of({"desk_1", "desk_2", "floor"});
   const RayCaster caster(scene);
   SampleOperatorOptions o = options_with(1);
   const GoalRows rows = compute_goal_rows(scene, caster, goals, scene_light_sources(scene), o);

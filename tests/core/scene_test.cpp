@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/config.h"
 #include "core/form_factors.h"
 #include "core/job.h"
@@ -44,6 +46,18 @@ TEST(Scene, SubdivisionBoundsEdgesAndKeepsAreaSurfaceAndOrientation) {
   // The first triangle's patches all face +z, like their parent.
   EXPECT_TRUE(scene.patches.front().normal.isApprox(V::UnitZ()));
   EXPECT_EQ(scene.stats.mesh_patches, scene.patches.size());
+}
+
+TEST(Scene, PatchesOfNamedSurfaces) {
+  const Scene box = reference::make_closed_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 2, 2), 0.5, 1.0);
+  const std::vector<int> floor = reference::patches_of(box, "floor"), ceiling = reference::patches_of(box, "ceiling");
+  ASSERT_FALSE(floor.empty());
+  std::vector<int> both = floor;
+  both.insert(both.end(), ceiling.begin(), ceiling.end());
+  std::sort(both.begin(), both.end());
+  EXPECT_EQ(box.patches_of({"ceiling", "floor", "ceiling"}), both);  // ascending, each once
+  EXPECT_EQ(box.patches_of({}), box.all_patches());
+  EXPECT_THROW(box.patches_of({"floor", "roof"}), std::invalid_argument);
 }
 
 TEST(Scene, DropsAndCountsDegenerateFaces) {
