@@ -33,4 +33,27 @@ struct AccuracyArgs {
 };
 int run_accuracy(const AccuracyArgs& args);
 
+struct RunArgs {
+  std::string config;
+  std::string out_dir;        // overrides output.directory
+  int threads = -1;
+  bool quiet = false;
+};
+// Exit code 0 when every goal is met, 2 when the closest layout found misses one.
+int run_job(const RunArgs& args);
+
+struct SweepArgs {
+  std::string config;
+  std::string set;            // KEY=V1,V2,...: overrides the job's sweep block
+  std::string out_dir;
+  int threads = -1;
+  bool quiet = false;
+};
+int run_sweep(const SweepArgs& args);
+
+struct PrintArgs {
+  std::string result;         // result.json
+};
+int run_print(const PrintArgs& args);
+
 }  // namespace ilp::cli

@@ -52,10 +52,41 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   accuracy->add_flag("-q,--quiet", acc.quiet, "no progress lines");
 
+  ilp::cli::RunArgs run_args;
+  CLI::App* run = app.add_subcommand(
+      "run", "Solve an inverse-lighting job: place luminaires on the mounting surface so the goal surfaces get what "
+             "the job asks, verify the layout with an exact solve, print the layout and write result.json, "
+             "illuminance.csv, plan.svg and scene.ply. Exit code 2 when a goal is missed");
+  run->add_option("config", run_args.config, "job file (YAML)")->required();
+  run->add_option("--out", run_args.out_dir, "output folder (default: output.directory of the job, else results/<job>)");
+  run->add_option("--threads", run_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_flag("-q,--quiet", run_args.quiet, "no progress lines");
+
+  ilp::cli::SweepArgs sweep_args;
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "Run a job once per value of one goal parameter, building the operator once; writes sweep.csv (one row "
+               "per value) and sweep.svg (power against the parameter)");
+  sweep->add_option("config", sweep_args.config, "job file (YAML)")->required();
+  sweep->add_option("--set", sweep_args.set,
+                    "KEY=V1,V2,...: the parameter and its values, e.g. goals.desks.average_lux=300,500,750 (default: "
+                    "the job's sweep block)");
+  sweep->add_option("--out", sweep_args.out_dir, "output folder (default: output.directory of the job, else results/<job>)");
+  sweep->add_option("--threads", sweep_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  sweep->add_flag("-q,--quiet", sweep_args.quiet, "no progress lines");
+
+  ilp::cli::PrintArgs print_args;
+  CLI::App* print = app.add_subcommand("print", "Print a saved layout (result.json of `ilp run`) again");
+  print->add_option("result", print_args.result, "result.json")->required();
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*solve) return ilp::cli::run_solve(solve_args);
     if (*accuracy) return ilp::cli::run_accuracy(acc);
+    if (*run) return ilp::cli::run_job(run_args);
+    if (*sweep) return ilp::cli::run_sweep(sweep_args);
+    if (*print) return ilp::cli::run_print(print_args);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

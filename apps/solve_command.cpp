@@ -10,7 +10,7 @@
 #include "core/config.h"
 #include "core/exact_solver.h"
 #include "core/job.h"
-#include "core/sample_error.h"
+#include "core/operator_setup.h"
 #include "core/sample_operator.h"
 #include "optimizer/illuminance_metrics.h"
 #include "output/atomic_file.h"
@@ -44,25 +44,6 @@ void print_table(const Scene& scene, const std::vector<int>& patches, const Eige
   print_illuminance_table(std::cout, surface_illuminance_table(scene, all, surfaces));
 }
 
-// Sample size: as configured, or the smallest whose predicted error meets solver.target_error.
-int choose_sample_size(const JobConfig& job, const Scene& scene, const RayCaster& caster, const GoalRows& goals,
-                       const Eigen::VectorXd& flux, const SampleOperatorOptions& options,
-                       const ProgressCallback& progress) {
-  const std::size_t population = reflecting_patches(scene).size();
-  if (!job.sample.target_error || population == 0) return job.sample.size_for(population);
-  const int pilot = std::min(static_cast<int>(population),
-                             std::max(2, static_cast<int>(std::lround(job.sample.pilot_fraction * population))));
-  const ErrorPrediction prediction =
-      predict_sample_error(scene, caster, goals, flux, options, pilot, job.sample.error_samples, progress);
-  const int k = prediction.recommended_sample_size(*job.sample.target_error);
-  std::cerr << std::fixed << std::setprecision(2) << "sample size: " << prediction.samples << " pilot samples of "
-            << pilot << " patches spread by " << 100.0 * prediction.rms_relative_spread_total
-            << " % (RMS, total illuminance) in " << prediction.seconds << " s; target "
-            << 100.0 * *job.sample.target_error << " % needs k = " << k << " of " << population << " ("
-            << std::setprecision(1) << 100.0 * k / population << " %)\n";
-  return k;
-}
-
 int solve_with_sample(const JobConfig& job, const JobScene& loaded, bool full_scene, const std::string& csv,
                       bool quiet) {
   const Scene& scene = loaded.scene;
@@ -74,14 +55,11 @@ int solve_with_sample(const JobConfig& job, const JobScene& loaded, bool full_sc
   const Eigen::VectorXd flux = source_flux_lm(scene, sources);
   const std::vector<int> goals = full_scene ? scene.all_patches() : scene.patches_of(job.report_surfaces);
 
-  SampleOperatorOptions options;
-  options.strategy = job.sample.strategy;
-  options.sample_seed = job.sample.seed;
-  options.indirect = job.sample.indirect;
-  options.form_factors = job.form_factors;
-  options.direct_light = job.direct_light;
+  SampleOperatorOptions options = sample_operator_options(job);
   const GoalRows goal_rows = compute_goal_rows(scene, caster, goals, sources, options, progress);
-  options.sample_size = choose_sample_size(job, scene, caster, goal_rows, flux, options, progress);
+  const SampleSizeChoice choice = choose_sample_size(job, scene, caster, goal_rows, flux, options, progress);
+  if (!choice.log.empty()) std::cerr << choice.log << "\n";
+  options.sample_size = choice.sample_size;
   const SampleOperator op = build_sample_operator(scene, caster, goal_rows, options, progress);
   for (const std::string& line : op.log) std::cerr << line << "\n";
   const SampleOperatorStats& st = op.stats;

@@ -2,7 +2,7 @@
 // against plain Embree tracing the very same rays (the baseline, measured in the
 // same run), the exact solve, and the operator's build and per-configuration cost
 // (which replaces one exact solve per configuration).
-// Scene: configs/office.yaml, or the job in $ILP_BENCH_CONFIG. Argument: threads.
+// Scene: configs/office_fixed.yaml, or the job in $ILP_BENCH_CONFIG. Argument: threads.
 //
 //   ./build/bench/ilp_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
@@ -38,7 +38,7 @@ const Fixture& fixture() {
   static const std::unique_ptr<Fixture> f = [] {
     const char* env = std::getenv("ILP_BENCH_CONFIG");
     auto out = std::make_unique<Fixture>();
-    out->job = ilp::load_job_config(env ? env : ILP_SOURCE_DIR "/configs/office.yaml");
+    out->job = ilp::load_job_config(env ? env : ILP_SOURCE_DIR "/configs/office_fixed.yaml");
     out->scene = ilp::load_job_scene(out->job).scene;
     return out;
   }();

@@ -1,4 +1,4 @@
-// How noisy is the exact reference itself? Solves a job (configs/office.yaml, or
+// How noisy is the exact reference itself? Solves a job (configs/office_fixed.yaml, or
 // the one given) with 64 to 4096 rays per patch and compares each answer with the
 // 4096-ray one: area-weighted RMS and largest relative difference of total
 // illuminance on the report surfaces, and each surface's average. The sample-based
@@ -15,7 +15,7 @@
 
 int main(int argc, char** argv) {
   try {
-    const ilp::JobConfig job = ilp::load_job_config(argc > 1 ? argv[1] : ILP_SOURCE_DIR "/configs/office.yaml");
+    const ilp::JobConfig job = ilp::load_job_config(argc > 1 ? argv[1] : ILP_SOURCE_DIR "/configs/office_fixed.yaml");
     const ilp::Scene scene = ilp::load_job_scene(job).scene;
     std::vector<int> surfaces;
     for (const std::string& name : job.report_surfaces) surfaces.push_back(scene.find_surface(name));

@@ -7,8 +7,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <set>
 #include <sstream>
+#include <utility>
 
 namespace ilp {
 namespace {
@@ -127,6 +129,16 @@ class Map {
       }
     }
   }
+  const Value& value() const { return value_; }
+  // Where the key `name` itself is written (a map or list value starts elsewhere).
+  FileLoc key_loc(const std::string& name) const {
+    for (const auto& item : value_.node())
+      if (item.first.Scalar() == name) {
+        const YAML::Mark mark = item.first.Mark();
+        return {file(), mark.line + 1, mark.column + 1};
+      }
+    return value_.loc();
+  }
   std::optional<Value> get(const std::string& name) const {
     YAML::Node child = value_.node()[name];
     if (!child.IsDefined() || child.IsNull()) return std::nullopt;
@@ -189,6 +201,83 @@ void read_scene(const Map& scene, JobConfig& job) {
   }
 }
 
+// The keys of luminaires that describe the search; each needs mounting_surface.
+constexpr const char* kSearchKeys[] = {"model",          "flux_lm",             "efficacy_lm_per_w",
+                                       "mount_offset_m", "candidate_spacing_m", "count",
+                                       "layout",         "array"};
+
+// A list of 2 numbers [x, y], each read and checked by `check`.
+Eigen::Vector2d pair_of(const Value& v, double (*check)(const Value&)) {
+  if (!v.node().IsSequence() || v.node().size() != 2) v.fail("must be a list of 2 numbers [x, y]");
+  return {check(v.element(0)), check(v.element(1))};
+}
+
+void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
+  LuminaireSearch& search = job.search.emplace();
+  search.mounting_surface = mounting.text();
+  if (search.mounting_surface.empty()) mounting.fail("must name a surface");
+  search.mounting_loc = mounting.loc();
+  search.layout_loc = mounting.loc();  // where the layout is decided when layout is not given
+  if (auto v = luminaires.get("model")) {
+    search.model = v->text();
+    if (search.model != "square_lambertian") v->fail("must be square_lambertian");
+  }
+  const auto flux = luminaires.get("flux_lm");
+  if (!flux) mounting.fail("needs luminaires.flux_lm: [min, max]");
+  if (!flux->node().IsSequence() || flux->node().size() != 2) flux->fail("must be a list [min, max]");
+  search.flux_min_lm = flux->element(0).number();
+  if (search.flux_min_lm < 0.0) flux->element(0).fail("must be >= 0");
+  search.flux_max_lm = flux->element(1).number();
+  if (!(search.flux_max_lm > search.flux_min_lm)) flux->element(1).fail("must be above the minimum flux_lm[0]");
+  search.flux_loc = flux->loc();
+  if (auto v = luminaires.get("efficacy_lm_per_w")) search.efficacy_lm_per_w = v->positive();
+  if (auto v = luminaires.get("mount_offset_m")) {
+    search.mount_offset_m = v->number_in(0.0, 10.0, true, "(0, 10)");
+    if (search.mount_offset_m <= 0.0) v->fail("must be in (0, 10)");
+  }
+  if (auto v = luminaires.get("candidate_spacing_m")) {
+    search.candidate_spacing_m = v->positive();
+    search.spacing_loc = v->loc();
+  }
+  const auto layout = luminaires.get("layout"), array = luminaires.get("array"), count = luminaires.get("count");
+  if (layout) {
+    const std::string family = layout->text();
+    if (family == "free") search.layout = LayoutFamily::free;
+    else if (family == "array") search.layout = LayoutFamily::array;
+    else layout->fail("must be free or array");
+    search.layout_loc = layout->loc();
+  }
+  if (search.layout == LayoutFamily::array) {
+    if (!array) layout->fail("needs luminaires.array: {rows, columns}");
+    if (count) count->fail("not with layout: array (the array fixes the count)");
+    const Map block(*array, {"rows", "columns", "spacing_m", "offset_m"});
+    search.array_rows = static_cast<int>(block.require("rows").integer(1, 32));
+    search.array_columns = static_cast<int>(block.require("columns").integer(1, 32));
+    if (auto v = block.get("spacing_m"))
+      search.array_spacing_m = pair_of(*v, [](const Value& e) { return e.positive(); });
+    if (auto v = block.get("offset_m"))
+      search.array_offset_m = pair_of(*v, [](const Value& e) {
+        const double x = e.number();
+        if (x < 0.0) e.fail("must be >= 0");
+        return x;
+      });
+  } else {
+    if (array) array->fail("needs luminaires.layout: array");
+    if (count) {
+      if (count->node().IsScalar()) {
+        search.count_min = search.count_max = static_cast<int>(count->integer(1, 64));
+      } else if (count->node().IsSequence() && count->node().size() == 2) {
+        search.count_min = static_cast<int>(count->element(0).integer(1, 64));
+        search.count_max = static_cast<int>(count->element(1).integer(1, 64));
+        if (search.count_max < search.count_min) count->element(1).fail("must be >= the minimum count[0]");
+      } else {
+        count->fail("must be a whole number N or a list [min, max]");
+      }
+      search.count_loc = count->loc();
+    }
+  }
+}
+
 void read_luminaires(const Map& luminaires, JobConfig& job) {
   if (auto v = luminaires.get("size_m")) job.luminaire_size_m = v->positive();
   if (auto v = luminaires.get("placed")) {
@@ -211,6 +300,266 @@ void read_luminaires(const Map& luminaires, JobConfig& job) {
       job.luminaires.push_back(setting);
     }
   }
+  if (auto mounting = luminaires.get("mounting_surface")) {
+    read_search(luminaires, *mounting, job);
+  } else {
+    // The first search key in the file, so the error points where the reader looks.
+    for (const auto& item : luminaires.value().node())
+      for (const char* key : kSearchKeys)
+        if (item.first.Scalar() == key)
+          if (auto v = luminaires.get(key)) v->fail("needs luminaires.mounting_surface");
+  }
+}
+
+// ---- goals
+
+// The key each metric has in a goals entry, in GoalSetting order.
+constexpr std::pair<GoalMetric, const char*> kGoalKeys[] = {{GoalMetric::average, "average_lux"},
+                                                            {GoalMetric::minimum, "min_lux"},
+                                                            {GoalMetric::maximum, "max_lux"},
+                                                            {GoalMetric::uniformity, "uniformity"}};
+
+const char* goal_key(GoalMetric metric) {
+  for (const auto& [m, key] : kGoalKeys)
+    if (m == metric) return key;
+  return "?";
+}
+
+std::string format_number(double v) {
+  std::ostringstream os;
+  os << std::setprecision(12) << v;
+  return os.str();
+}
+
+// The rule a target breaks ("" when none): the value alone.
+std::string goal_value_rule(GoalMetric metric, double v) {
+  switch (metric) {
+    case GoalMetric::average:
+    case GoalMetric::maximum: return v > 0.0 ? "" : "must be > 0";
+    case GoalMetric::minimum: return v >= 0.0 ? "" : "must be >= 0";
+    case GoalMetric::uniformity: return v > 0.0 && v <= 1.0 ? "" : "must be in (0, 1]";
+  }
+  return "";
+}
+
+// The rule `metric` = v breaks against the other targets of goal `name` in `others`
+// ("" when none): min_lux and average_lux may not exceed max_lux. `skip` is left out
+// (the setting being replaced).
+std::string goal_bound_rule(const std::vector<GoalSetting>& others, const std::string& name, GoalMetric metric,
+                            double v, const GoalSetting* skip = nullptr) {
+  for (const GoalSetting& g : others) {
+    if (&g == skip || g.name != name) continue;
+    const bool lower = metric == GoalMetric::minimum || metric == GoalMetric::average;
+    const bool other_lower = g.metric == GoalMetric::minimum || g.metric == GoalMetric::average;
+    if (lower && g.metric == GoalMetric::maximum && v > g.target)
+      return "must be <= max_lux (" + format_number(g.target) + ") of goal '" + name + "'";
+    if (metric == GoalMetric::maximum && other_lower && v < g.target)
+      return std::string("must be >= ") + goal_key(g.metric) + " (" + format_number(g.target) + ") of goal '" + name +
+             "'";
+  }
+  return "";
+}
+
+void read_goals(const Value& section, JobConfig& job) {
+  const std::vector<Value> entries = section.list();
+  if (entries.empty()) section.fail("must list at least one goal");
+  for (const Value& item : entries) {
+    const Map entry(item, {"name", "surface", "average_lux", "min_lux", "max_lux", "uniformity"});
+    GoalSetting base;
+    const Value surface = entry.require("surface");
+    if (surface.node().IsSequence()) {
+      for (const Value& s : surface.list()) base.surfaces.push_back(s.text());
+      if (base.surfaces.empty()) surface.fail("must be a surface name or a non-empty list of names");
+    } else {
+      base.surfaces.push_back(surface.text());
+    }
+    base.surfaces_loc = surface.loc();
+    if (auto v = entry.get("name")) {
+      base.name = v->text();
+      if (base.name.empty()) v->fail("must not be empty");
+    } else {
+      for (const std::string& s : base.surfaces) base.name += (base.name.empty() ? "" : "+") + s;
+    }
+    // This entry's metrics, each checked alone and against the same goal's earlier
+    // entries; a bound conflict inside the entry is reported at max_lux.
+    std::vector<std::pair<GoalSetting, Value>> metrics;
+    for (const auto& [metric, key] : kGoalKeys) {
+      auto v = entry.get(key);
+      if (!v) continue;
+      GoalSetting goal = base;
+      goal.metric = metric;
+      goal.target = v->number();
+      if (const std::string rule = goal_value_rule(metric, goal.target); !rule.empty()) v->fail(rule);
+      goal.loc = v->loc();
+      for (const GoalSetting& g : job.goals)
+        if (g.name == goal.name && g.metric == metric) v->fail("goal '" + goal.name + "' already has " + key);
+      metrics.emplace_back(goal, *v);
+    }
+    if (metrics.empty()) item.fail("needs at least one of average_lux, min_lux, max_lux, uniformity");
+    std::vector<GoalSetting> here;
+    for (const auto& [goal, v] : metrics) here.push_back(goal);
+    for (const auto& [goal, v] : metrics) {
+      std::string rule;
+      if (goal.metric == GoalMetric::maximum) rule = goal_bound_rule(here, goal.name, goal.metric, goal.target);
+      if (rule.empty()) rule = goal_bound_rule(job.goals, goal.name, goal.metric, goal.target);
+      if (!rule.empty()) v.fail(rule);
+    }
+    job.goals.insert(job.goals.end(), here.begin(), here.end());
+  }
+}
+
+// Every goal parameter of the job, "goals.desks.average_lux, goals.floor.min_lux".
+std::string goal_parameters(const JobConfig& job) {
+  std::string out;
+  for (const GoalSetting& g : job.goals)
+    out += (out.empty() ? "goals." : ", goals.") + g.name + "." + goal_key(g.metric);
+  return out;
+}
+
+// set_goal_parameter with the error reporting left to the caller: bad_key(rule) or
+// bad_value(rule) is called (and must throw) when the key or the value is wrong.
+template <class BadKey, class BadValue>
+void apply_goal_parameter(JobConfig& job, const std::string& key, double value, BadKey bad_key, BadValue bad_value) {
+  GoalSetting* found = nullptr;
+  const std::size_t dot = key.rfind('.');
+  if (key.rfind("goals.", 0) == 0 && dot != std::string::npos && dot > 6) {
+    const std::string name = key.substr(6, dot - 6), metric = key.substr(dot + 1);
+    for (GoalSetting& g : job.goals)
+      if (g.name == name && metric == goal_key(g.metric)) found = &g;
+  }
+  if (!found) {
+    bad_key("no goal parameter " + key + "; " +
+            (job.goals.empty() ? std::string("the job has no goals") : "the job has " + goal_parameters(job)));
+    return;
+  }
+  std::string rule = std::isfinite(value) ? goal_value_rule(found->metric, value) : "must be a finite number";
+  if (rule.empty()) rule = goal_bound_rule(job.goals, found->name, found->metric, value, found);
+  if (!rule.empty()) {
+    bad_value(rule);
+    return;
+  }
+  found->target = value;
+}
+
+void read_constraints(const Map& constraints, JobConfig& job) {
+  if (auto v = constraints.get("max_luminaires")) {
+    const int cap = static_cast<int>(v->integer(1, 100'000'000));
+    if (job.search && job.search->layout == LayoutFamily::free && cap < job.search->count_min)
+      v->fail("is below the least luminaires.count (" + std::to_string(job.search->count_min) + ")");
+    if (job.search && job.search->layout == LayoutFamily::array &&
+        cap < job.search->array_rows * job.search->array_columns)
+      v->fail("is below the array's rows x columns (" +
+              std::to_string(job.search->array_rows * job.search->array_columns) + ")");
+    job.constraints.max_luminaires = cap;
+    job.constraints.max_luminaires_loc = v->loc();
+  }
+  if (auto v = constraints.get("min_distance_m")) {
+    job.constraints.min_distance_m = v->number();
+    if (job.constraints.min_distance_m < 0.0) v->fail("must be >= 0");
+  }
+}
+
+void read_objective(const Value& v, JobConfig& job) {
+  const std::string objective = v.text();
+  if (objective == "min_power") job.objective = Objective::min_power;
+  else if (objective == "closest_to_target") job.objective = Objective::closest_to_target;
+  else v.fail("must be min_power or closest_to_target");
+  if (job.objective == Objective::closest_to_target &&
+      std::none_of(job.goals.begin(), job.goals.end(),
+                   [](const GoalSetting& g) { return g.metric == GoalMetric::average; }))
+    v.fail("needs at least one goal with average_lux");
+}
+
+// The text of `v`, which must be one of `names` (else the error lists them).
+std::string one_of(const Value& v, std::initializer_list<const char*> names) {
+  const std::string text = v.text();
+  std::string list;
+  for (const char* n : names) {
+    if (text == n) return text;
+    list += std::string(list.empty() ? "" : ", ") + n;
+  }
+  v.fail("must be one of " + list);
+}
+
+void read_optimizer(const Map& optimizer, JobConfig& job) {
+  OptimizerSettings& o = job.optimizer;
+  if (auto v = optimizer.get("global_algorithm"))
+    o.global_algorithm = one_of(*v, {"GN_CRS2_LM", "GN_ISRES", "GN_ESCH", "GN_DIRECT_L", "GN_DIRECT_L_RAND", "none"});
+  if (auto v = optimizer.get("local_algorithm")) {
+    o.local_algorithm = one_of(*v, {"LN_SBPLX", "LN_COBYLA", "LN_BOBYQA", "LN_NELDERMEAD", "LN_PRAXIS", "none"});
+    if (o.local_algorithm == "none" && o.global_algorithm == "none")
+      v->fail("global_algorithm and local_algorithm cannot both be none");
+  }
+  if (auto v = optimizer.get("max_evaluations")) o.max_evaluations = static_cast<int>(v->integer(1, 100'000'000));
+  if (auto v = optimizer.get("local_max_evaluations"))
+    o.local_max_evaluations = static_cast<int>(v->integer(1, 100'000'000));
+  if (auto v = optimizer.get("max_seconds")) o.max_seconds = v->positive();
+  if (auto v = optimizer.get("seed")) o.seed = static_cast<std::uint64_t>(v->integer(0, (1ll << 53)));
+}
+
+void read_verification(const Map& verification, JobConfig& job) {
+  VerificationSettings& s = job.verification;
+  if (auto v = verification.get("method")) {
+    const std::string m = v->text();
+    if (m == "auto") s.method = VerificationMethod::automatic;
+    else if (m == "exact") s.method = VerificationMethod::exact;
+    else if (m == "sample") s.method = VerificationMethod::sample;
+    else if (m == "none") s.method = VerificationMethod::none;
+    else v->fail("must be auto, exact, sample or none");
+  }
+  if (auto v = verification.get("rays_per_patch")) s.rays_per_patch = static_cast<int>(v->integer(1, 1 << 24));
+  if (auto v = verification.get("rounds")) s.rounds = static_cast<int>(v->integer(1, 10));
+  if (auto v = verification.get("max_exact_patches"))
+    s.max_exact_patches = static_cast<std::size_t>(v->integer(1, 100'000'000));
+  if (auto v = verification.get("sample_fraction")) {
+    s.sample_fraction = v->number_in(0.0, 1.0, false, "(0, 1]");
+    if (s.sample_fraction <= 0.0) v->fail("must be in (0, 1]");
+  }
+}
+
+void read_output(const Map& output, JobConfig& job) {
+  OutputSettings& o = job.output;
+  if (auto v = output.get("directory")) {
+    o.directory = v->text();
+    if (o.directory.empty()) v->fail("must not be empty");
+  }
+  if (auto v = output.get("formats")) {
+    const std::vector<Value> formats = v->list();
+    if (formats.empty()) v->fail("must list at least one of json, csv, svg, ply");
+    o.json = o.csv = o.svg = o.ply = false;
+    for (const Value& f : formats) {
+      const std::string name = f.text();
+      bool* flag = name == "json" ? &o.json
+                   : name == "csv" ? &o.csv
+                   : name == "svg" ? &o.svg
+                   : name == "ply" ? &o.ply
+                                   : nullptr;
+      if (!flag) f.fail("must be json, csv, svg or ply");
+      if (*flag) f.fail("is listed twice");
+      *flag = true;
+    }
+  }
+}
+
+// `at`: where the sweep key itself is (the section's value starts a line later).
+void read_sweep(const Value& section, const FileLoc& at, JobConfig& job) {
+  const Map sweep(section, {"key", "values"});
+  if (job.goals.empty()) throw ConfigError(located(at, "sweep: needs goals (it varies one goal parameter)"));
+  const Value key = sweep.require("key");
+  const Value values = sweep.require("values");
+  SweepSetting setting;
+  setting.key = key.text();
+  setting.loc = key.loc();
+  const std::vector<Value> list = values.list();
+  if (list.empty()) values.fail("must list at least one number");
+  JobConfig trial = job;  // each value is tried as `ilp sweep` will set it
+  for (const Value& item : list) {
+    const double v = item.number();
+    apply_goal_parameter(trial, setting.key, v, [&](const std::string& rule) { key.fail(rule); },
+                         [&](const std::string& rule) { item.fail(rule); });
+    setting.values.push_back(v);
+  }
+  job.sweep = setting;
 }
 
 void read_solver(const Map& solver, JobConfig& job) {
@@ -275,6 +624,24 @@ void read_solver(const Map& solver, JobConfig& job) {
 
 }  // namespace
 
+std::string_view to_string(GoalMetric metric) {
+  switch (metric) {
+    case GoalMetric::average: return "average";
+    case GoalMetric::minimum: return "minimum";
+    case GoalMetric::maximum: return "maximum";
+    case GoalMetric::uniformity: return "uniformity";
+  }
+  return "?";
+}
+
+void set_goal_parameter(JobConfig& job, const std::string& key, double value) {
+  apply_goal_parameter(
+      job, key, value, [&](const std::string& rule) -> void { throw ConfigError("--set " + key + ": " + rule); },
+      [&](const std::string& rule) -> void {
+        throw ConfigError("--set " + key + " = " + format_number(value) + ": " + rule);
+      });
+}
+
 int SampleSettings::size_for(std::size_t population) const {
   if (size) return *size;
   return std::max(1, static_cast<int>(std::lround(fraction * static_cast<double>(population))));
@@ -295,19 +662,37 @@ JobConfig load_job_config(const std::string& path) {
   } catch (const YAML::Exception& e) {
     throw ConfigError(path + ": cannot read YAML: " + e.what());
   }
-  if (!root.IsMap()) throw ConfigError(path + ": the config must be a YAML map of sections (scene, luminaires, solver, report)");
+  if (!root.IsMap())
+    throw ConfigError(path +
+                      ": the config must be a YAML map of sections (scene, luminaires, goals, constraints, objective, "
+                      "solver, optimizer, verification, output, sweep, report)");
   try {
-    const Map top(Value(root, "", job.path), {"scene", "luminaires", "solver", "report"});
+    const Map top(Value(root, "", job.path), {"scene", "luminaires", "goals", "constraints", "objective", "solver",
+                                              "optimizer", "verification", "output", "sweep", "report"});
     read_scene(Map(top.require("scene"), {"mesh", "up_axis", "scale_to_m", "max_patch_edge_m", "surfaces_from",
                                           "reflectance", "default_reflectance", "emitting_surfaces"}),
                job);
-    if (auto v = top.get("luminaires")) read_luminaires(Map(*v, {"size_m", "placed"}), job);
+    if (auto v = top.get("luminaires"))
+      read_luminaires(Map(*v, {"size_m", "placed", "model", "flux_lm", "efficacy_lm_per_w", "mounting_surface",
+                               "mount_offset_m", "candidate_spacing_m", "count", "layout", "array"}),
+                      job);
+    if (auto v = top.get("goals")) read_goals(*v, job);
+    if (auto v = top.get("constraints")) read_constraints(Map(*v, {"max_luminaires", "min_distance_m"}), job);
+    if (auto v = top.get("objective")) read_objective(*v, job);
     if (auto v = top.get("solver"))
       read_solver(Map(*v, {"method", "rays_per_patch", "seed", "threads", "relative_residual", "max_iterations",
                            "direct_receiver_points", "direct_shadow_rays", "sample_size", "sample_fraction",
                            "sampling", "sample_seed", "indirect", "target_error", "error_samples",
                            "pilot_fraction"}),
                   job);
+    if (auto v = top.get("optimizer"))
+      read_optimizer(Map(*v, {"global_algorithm", "local_algorithm", "max_evaluations", "local_max_evaluations",
+                              "max_seconds", "seed"}),
+                     job);
+    if (auto v = top.get("verification"))
+      read_verification(Map(*v, {"method", "rays_per_patch", "rounds", "max_exact_patches", "sample_fraction"}), job);
+    if (auto v = top.get("output")) read_output(Map(*v, {"directory", "formats"}), job);
+    if (auto v = top.get("sweep")) read_sweep(*v, top.key_loc("sweep"), job);
     if (auto v = top.get("report")) {
       const Map report(*v, {"surfaces"});
       if (auto s = report.get("surfaces"))

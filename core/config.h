@@ -5,8 +5,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/direct_light.h"
@@ -60,6 +62,106 @@ struct SampleSettings {
   int size_for(std::size_t population) const;
 };
 
+// ---- The inverse problem (`ilp run`, `ilp sweep`): where luminaires may go, what the
+// goal surfaces must receive, and how to search. docs/config.md gives the schema, docs/user-guide.md a walk through it.
+
+enum class LayoutFamily {
+  free,   // each luminaire anywhere on the mounting surface, each its own flux
+  array,  // a regular rows x columns array, one flux for all
+};
+
+// luminaires: the luminaires the search places (present when mounting_surface is given).
+struct LuminaireSearch {
+  std::string model = "square_lambertian";  // the only model: a square Lambertian panel facing down
+  double flux_min_lm = 0.0;                 // flux_lm: [min, max]; 0 <= min < max
+  double flux_max_lm = 0.0;
+  FileLoc flux_loc;
+  double efficacy_lm_per_w = 100.0;         // > 0; electric power = flux / efficacy
+  std::string mounting_surface;             // a surface of the scene facing down (a ceiling)
+  FileLoc mounting_loc;
+  double mount_offset_m = 0.02;             // the emitting face hangs this far below the mounting surface, > 0
+  double candidate_spacing_m = 0.5;         // grid of precomputed positions; T is interpolated between them
+  FileLoc spacing_loc;
+  int count_min = 1;                        // count: N or [min, max]: how many luminaires (free layout)
+  int count_max = 1;
+  FileLoc count_loc;
+  LayoutFamily layout = LayoutFamily::free;
+  // layout: array. rows x columns; spacing and offset (the first luminaire's centre,
+  // from the mounting surface's lower x, y corner) fixed when given, else searched.
+  int array_rows = 0;
+  int array_columns = 0;
+  std::optional<Eigen::Vector2d> array_spacing_m;
+  std::optional<Eigen::Vector2d> array_offset_m;
+  FileLoc layout_loc;
+};
+
+enum class GoalMetric {
+  average,     // area-weighted average illuminance >= target lux (closest_to_target: = target)
+  minimum,     // lowest patch illuminance >= target lux
+  maximum,     // highest patch illuminance <= target lux
+  uniformity,  // U0 = Emin / Eavg >= target (a ratio in (0, 1])
+};
+std::string_view to_string(GoalMetric metric);
+
+// One line of goals: a metric over the union of some surfaces. A goals entry with
+// several metrics (average_lux and uniformity) becomes several GoalSettings with the
+// same name.
+struct GoalSetting {
+  std::string name;                   // `name:`, else the surfaces joined with '+'
+  std::vector<std::string> surfaces;  // surface: NAME or [NAME, ...]
+  FileLoc surfaces_loc;
+  GoalMetric metric = GoalMetric::average;
+  double target = 0.0;                // lux, or the U0 ratio
+  FileLoc loc;                        // of the metric's key
+};
+
+struct SearchConstraints {
+  std::optional<int> max_luminaires;    // caps luminaires.count (free) or rows x columns (array: error if more)
+  FileLoc max_luminaires_loc;
+  double min_distance_m = 0.0;          // between luminaire centres, >= 0
+};
+
+enum class Objective {
+  min_power,          // least electric power meeting every goal
+  closest_to_target,  // average goals hit their targets (least squared relative deviation); others are constraints
+};
+
+// optimizer: NLopt names (nlopt::algorithm as text, e.g. GN_CRS2_LM, LN_SBPLX) or "none".
+struct OptimizerSettings {
+  std::string global_algorithm = "GN_CRS2_LM";
+  std::string local_algorithm = "LN_SBPLX";
+  int max_evaluations = 20000;     // global stage, per luminaire count tried
+  int local_max_evaluations = 4000;
+  double max_seconds = 60.0;       // wall-clock budget of the whole search
+  std::uint64_t seed = 1;          // NLopt's random seed: same seed, same layout
+};
+
+enum class VerificationMethod { automatic, exact, sample, none };
+
+// verification: the layout found, placed as real luminaires and solved again.
+struct VerificationSettings {
+  VerificationMethod method = VerificationMethod::automatic;  // auto: exact up to max_exact_patches, else sample
+  int rays_per_patch = 1024;
+  // Searches at most: when a goal fails only on verification, the search runs again
+  // with that goal's target scaled by predicted / verified (a defect correction).
+  int rounds = 3;
+  std::size_t max_exact_patches = 30000;
+  double sample_fraction = 0.25;  // method sample: k as a fraction of the reflecting patches
+};
+
+struct OutputSettings {
+  std::string directory;  // as written in the file (relative to the working directory); empty: "results/<config stem>"
+  bool json = true, csv = true, svg = true, ply = true;  // formats: [json, csv, svg, ply]
+};
+
+// sweep: run the job once per value of one goal parameter, e.g.
+// key "goals.desks.average_lux" with values [300, 500, 750].
+struct SweepSetting {
+  std::string key;
+  std::vector<double> values;
+  FileLoc loc;
+};
+
 struct JobConfig {
   std::string path;                     // the YAML file
   // scene
@@ -83,7 +185,21 @@ struct JobConfig {
   // report
   std::vector<std::string> report_surfaces;  // empty: every surface
   std::vector<FileLoc> report_surface_locs;
+  // the inverse problem
+  std::optional<LuminaireSearch> search;  // luminaires.mounting_surface and its companions
+  std::vector<GoalSetting> goals;
+  SearchConstraints constraints;
+  Objective objective = Objective::min_power;
+  OptimizerSettings optimizer;
+  VerificationSettings verification;
+  OutputSettings output;
+  std::optional<SweepSetting> sweep;
 };
+
+// Sets the goal parameter `key` ("goals.NAME.average_lux", ".min_lux", ".max_lux" or
+// ".uniformity") to value, checked as the file would be. Throws ConfigError naming
+// the key when no goal has that name and metric or the value breaks the rule.
+void set_goal_parameter(JobConfig& job, const std::string& key, double value);
 
 // Reads and validates a job file. Throws ConfigError "file:line:col: key = value: rule".
 JobConfig load_job_config(const std::string& path);

@@ -122,11 +122,16 @@ JobScene load_job_scene(const JobConfig& job) {
     if (scene.find_surface(job.report_surfaces[k]) < 0)
       throw ConfigError(located(job.report_surface_locs[k], "report.surfaces: unknown surface '" +
                                                                job.report_surfaces[k] + "'"));
+  // The inverse problem's surfaces: those of the mesh (a placed luminaire is no goal).
+  for (const GoalSetting& g : job.goals)
+    for (const std::string& s : g.surfaces) require_surface(s, g.surfaces_loc, "goals." + g.name + ".surface");
+  if (job.search)
+    require_surface(job.search->mounting_surface, job.search->mounting_loc, "luminaires.mounting_surface");
 
   double luminaire_flux_lm = 0.0, surface_flux_lm = 0.0;
   for (const Patch& p : scene.patches)
     (scene.surfaces[p.surface].is_luminaire ? luminaire_flux_lm : surface_flux_lm) += p.area_m2 * p.exitance_lm_per_m2;
-  if (luminaire_flux_lm + surface_flux_lm == 0.0)
+  if (luminaire_flux_lm + surface_flux_lm == 0.0 && !job.search)  // an inverse job places its own
     out.log.push_back("warning: nothing emits light, so every illuminance will be 0 lx "
                       "(add luminaires.placed or scene.emitting_surfaces)");
 

@@ -32,6 +32,7 @@ struct SourceTable {
   std::vector<int> luminaire_patches;   // emitter patches for compute_emitter_form_factors
   std::vector<int> luminaire_patch_source;
   std::vector<int> gathered_of_patch;   // per scene patch: gathered source index or -1
+  std::vector<bool> absorbs;            // per source: a luminaire in the geometry (not a virtual candidate)
 };
 
 SourceTable make_source_table(const Scene& scene, std::span<const LightSource> sources) {
@@ -47,6 +48,7 @@ SourceTable make_source_table(const Scene& scene, std::span<const LightSource> s
     source_of_surface[s] = static_cast<int>(l);
     const bool luminaire = scene.surfaces[s].is_luminaire;
     t.emitting_index.push_back(luminaire ? -1 : static_cast<int>(t.gathered.size()));
+    t.absorbs.push_back(luminaire && !scene.surfaces[s].is_virtual);
     if (!luminaire) t.gathered.push_back(static_cast<int>(l));
   }
   t.area_m2.assign(sources.size(), 0.0);
@@ -136,7 +138,8 @@ Eigen::VectorXd apply_closed_form_loss(RowSums& sums, Eigen::MatrixXd& D, const 
   for (Eigen::Index r = 0; r < scale.size(); ++r) {
     double closed = 0.0;
     for (std::size_t l = 0; l < sources.emitting_index.size(); ++l)
-      if (sources.emitting_index[l] < 0) closed += D(r, static_cast<Eigen::Index>(l)) * sources.area_m2[l];
+      if (sources.emitting_index[l] < 0 && sources.absorbs[l])
+        closed += D(r, static_cast<Eigen::Index>(l)) * sources.area_m2[l];
     if (sums.kept[r] > 0.0) scale[r] = std::max(0.0, sums.kept[r] + sums.luminaire[r] - closed) / sums.kept[r];
   }
   sums.reflecting.array() *= scale.array();

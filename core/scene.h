@@ -26,6 +26,9 @@ struct Surface {
   std::string name;
   double exitance_lm_per_m2 = 0.0;  // emitted, Lambertian, from the front side
   bool is_luminaire = false;        // a square luminaire added from the job, not from the mesh
+  // A candidate luminaire position: it emits, but it was added after the ray caster was
+  // built, so it blocks and absorbs nothing (see optimizer/lighting_model.h).
+  bool is_virtual = false;
 };
 
 struct Patch {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -609,6 +610,732 @@ INSTANTIATE_TEST_SUITE_P(
 
 #undef SCENE_REFL
 #undef SCENE
+
+// ---------------------------------------------------------------------------------
+// The inverse problem: luminaires to place, goals, constraints, objective, optimizer,
+// verification, output and sweep
+
+TEST(ConfigInverse, ReadsAFullInverseJob) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n"                                         // 1
+                                     "  mesh: room.obj\n"                               // 2
+                                     "luminaires:\n"                                    // 3
+                                     "  model: square_lambertian\n"                     // 4
+                                     "  size_m: 0.6\n"                                  // 5
+                                     "  flux_lm: [500, 6000]\n"                         // 6
+                                     "  efficacy_lm_per_w: 120\n"                       // 7
+                                     "  mounting_surface: ceiling\n"                    // 8
+                                     "  mount_offset_m: 0.05\n"                         // 9
+                                     "  candidate_spacing_m: 0.4\n"                     // 10
+                                     "  count: [2, 6]\n"                                // 11
+                                     "  layout: free\n"                                 // 12
+                                     "  placed:\n"                                      // 13
+                                     "    - {name: L1, position_m: [1, 1, 2.9], flux_lm: 100}\n"  // 14
+                                     "goals:\n"                                         // 15
+                                     "  - name: desks\n"                                // 16
+                                     "    surface: [desk_1, desk_2]\n"                  // 17
+                                     "    average_lux: 500\n"                           // 18
+                                     "    uniformity: 0.6\n"                            // 19
+                                     "  - surface: floor\n"                             // 20
+                                     "    max_lux: 900\n"                               // 21
+                                     "    min_lux: 150\n"                               // 22
+                                     "constraints:\n"                                   // 23
+                                     "  max_luminaires: 6\n"                            // 24
+                                     "  min_distance_m: 1.0\n"                          // 25
+                                     "objective: closest_to_target\n"                   // 26
+                                     "optimizer:\n"                                     // 27
+                                     "  global_algorithm: GN_ISRES\n"                   // 28
+                                     "  local_algorithm: LN_COBYLA\n"                   // 29
+                                     "  max_evaluations: 5000\n"                        // 30
+                                     "  local_max_evaluations: 300\n"                   // 31
+                                     "  max_seconds: 12.5\n"                            // 32
+                                     "  seed: 42\n"                                     // 33
+                                     "verification:\n"                                  // 34
+                                     "  method: sample\n"                               // 35
+                                     "  rays_per_patch: 512\n"                          // 36
+                                     "  max_exact_patches: 1000\n"                      // 37
+                                     "  sample_fraction: 0.5\n"                         // 38
+                                     "output:\n"                                        // 39
+                                     "  directory: results/office\n"                    // 40
+                                     "  formats: [csv, ply]\n"                          // 41
+                                     "sweep:\n"                                         // 42
+                                     "  key: goals.desks.average_lux\n"                 // 43
+                                     "  values: [300, 500, 750, 1000]\n");              // 44
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ASSERT_TRUE(job.search.has_value());
+  const ilp::LuminaireSearch& search = *job.search;
+  EXPECT_EQ(search.model, "square_lambertian");
+  EXPECT_DOUBLE_EQ(job.luminaire_size_m, 0.6);
+  EXPECT_DOUBLE_EQ(search.flux_min_lm, 500.0);
+  EXPECT_DOUBLE_EQ(search.flux_max_lm, 6000.0);
+  EXPECT_EQ(search.flux_loc.file, yaml);
+  EXPECT_EQ(search.flux_loc.line, 6);
+  EXPECT_DOUBLE_EQ(search.efficacy_lm_per_w, 120.0);
+  EXPECT_EQ(search.mounting_surface, "ceiling");
+  EXPECT_EQ(search.mounting_loc.line, 8);
+  EXPECT_DOUBLE_EQ(search.mount_offset_m, 0.05);
+  EXPECT_DOUBLE_EQ(search.candidate_spacing_m, 0.4);
+  EXPECT_EQ(search.spacing_loc.line, 10);
+  EXPECT_EQ(search.count_min, 2);
+  EXPECT_EQ(search.count_max, 6);
+  EXPECT_EQ(search.count_loc.line, 11);
+  EXPECT_EQ(search.layout, ilp::LayoutFamily::free);
+  EXPECT_EQ(search.layout_loc.line, 12);
+  EXPECT_FALSE(search.array_spacing_m.has_value());
+  EXPECT_FALSE(search.array_offset_m.has_value());
+  ASSERT_EQ(job.luminaires.size(), 1u);  // fixed luminaires next to the search
+  EXPECT_EQ(job.luminaires[0].name, "L1");
+
+  // One GoalSetting per metric, in the order average, minimum, maximum, uniformity
+  // within an entry, whatever the order in the file.
+  ASSERT_EQ(job.goals.size(), 4u);
+  const std::vector<std::string> desks{"desk_1", "desk_2"}, floor{"floor"};
+  struct Expected {
+    const char* name;
+    std::vector<std::string> surfaces;
+    ilp::GoalMetric metric;
+    double target;
+    int line, surfaces_line;
+  };
+  const Expected expected[] = {{"desks", desks, ilp::GoalMetric::average, 500.0, 18, 17},
+                               {"desks", desks, ilp::GoalMetric::uniformity, 0.6, 19, 17},
+                               {"floor", floor, ilp::GoalMetric::minimum, 150.0, 22, 20},
+                               {"floor", floor, ilp::GoalMetric::maximum, 900.0, 21, 20}};
+  for (std::size_t k = 0; k < 4; ++k) {
+    SCOPED_TRACE(k);
+    const ilp::GoalSetting& g = job.goals[k];
+    EXPECT_EQ(g.name, expected[k].name);
+    EXPECT_EQ(g.surfaces, expected[k].surfaces);
+    EXPECT_EQ(g.metric, expected[k].metric);
+    EXPECT_DOUBLE_EQ(g.target, expected[k].target);
+    EXPECT_EQ(g.loc.file, yaml);
+    EXPECT_EQ(g.loc.line, expected[k].line);
+    EXPECT_EQ(g.surfaces_loc.line, expected[k].surfaces_line);
+  }
+
+  ASSERT_TRUE(job.constraints.max_luminaires.has_value());
+  EXPECT_EQ(*job.constraints.max_luminaires, 6);
+  EXPECT_EQ(job.constraints.max_luminaires_loc.line, 24);
+  EXPECT_DOUBLE_EQ(job.constraints.min_distance_m, 1.0);
+  EXPECT_EQ(job.objective, ilp::Objective::closest_to_target);
+  EXPECT_EQ(job.optimizer.global_algorithm, "GN_ISRES");
+  EXPECT_EQ(job.optimizer.local_algorithm, "LN_COBYLA");
+  EXPECT_EQ(job.optimizer.max_evaluations, 5000);
+  EXPECT_EQ(job.optimizer.local_max_evaluations, 300);
+  EXPECT_DOUBLE_EQ(job.optimizer.max_seconds, 12.5);
+  EXPECT_EQ(job.optimizer.seed, 42u);
+  EXPECT_EQ(job.verification.method, ilp::VerificationMethod::sample);
+  EXPECT_EQ(job.verification.rays_per_patch, 512);
+  EXPECT_EQ(job.verification.max_exact_patches, 1000u);
+  EXPECT_DOUBLE_EQ(job.verification.sample_fraction, 0.5);
+  EXPECT_EQ(job.output.directory, "results/office");
+  EXPECT_FALSE(job.output.json);
+  EXPECT_TRUE(job.output.csv);
+  EXPECT_FALSE(job.output.svg);
+  EXPECT_TRUE(job.output.ply);
+  ASSERT_TRUE(job.sweep.has_value());
+  EXPECT_EQ(job.sweep->key, "goals.desks.average_lux");
+  EXPECT_EQ(job.sweep->values, (std::vector<double>{300, 500, 750, 1000}));
+  EXPECT_EQ(job.sweep->loc.line, 43);
+  EXPECT_DOUBLE_EQ(job.goals[0].target, 500.0);  // checking the sweep left the goals alone
+}
+
+TEST(ConfigInverse, DefaultsWithoutTheInverseSections) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml", "scene:\n  mesh: room.obj\nluminaires:\n  size_m: 0.5\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  EXPECT_FALSE(job.search.has_value());
+  EXPECT_TRUE(job.goals.empty());
+  EXPECT_FALSE(job.constraints.max_luminaires.has_value());
+  EXPECT_DOUBLE_EQ(job.constraints.min_distance_m, 0.0);
+  EXPECT_EQ(job.objective, ilp::Objective::min_power);
+  EXPECT_EQ(job.optimizer.global_algorithm, "GN_CRS2_LM");
+  EXPECT_EQ(job.optimizer.local_algorithm, "LN_SBPLX");
+  EXPECT_EQ(job.optimizer.max_evaluations, 20000);
+  EXPECT_EQ(job.optimizer.local_max_evaluations, 4000);
+  EXPECT_DOUBLE_EQ(job.optimizer.max_seconds, 60.0);
+  EXPECT_EQ(job.optimizer.seed, 1u);
+  EXPECT_EQ(job.verification.method, ilp::VerificationMethod::automatic);
+  EXPECT_EQ(job.verification.rays_per_patch, 1024);
+  EXPECT_EQ(job.verification.max_exact_patches, 30000u);
+  EXPECT_DOUBLE_EQ(job.verification.sample_fraction, 0.25);
+  EXPECT_TRUE(job.output.directory.empty());
+  EXPECT_TRUE(job.output.json && job.output.csv && job.output.svg && job.output.ply);
+  EXPECT_FALSE(job.sweep.has_value());
+}
+
+TEST(ConfigInverse, SearchDefaultsWithOnlyMountingSurfaceAndFlux) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "luminaires:\n"
+                                     "  mounting_surface: ceiling\n"
+                                     "  flux_lm: [0, 3000]\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ASSERT_TRUE(job.search.has_value());
+  EXPECT_EQ(job.search->model, "square_lambertian");
+  EXPECT_DOUBLE_EQ(job.search->flux_min_lm, 0.0);  // 0 is a valid minimum
+  EXPECT_DOUBLE_EQ(job.search->flux_max_lm, 3000.0);
+  EXPECT_DOUBLE_EQ(job.search->efficacy_lm_per_w, 100.0);
+  EXPECT_DOUBLE_EQ(job.search->mount_offset_m, 0.02);
+  EXPECT_DOUBLE_EQ(job.search->candidate_spacing_m, 0.5);
+  EXPECT_EQ(job.search->count_min, 1);
+  EXPECT_EQ(job.search->count_max, 1);
+  EXPECT_EQ(job.search->layout, ilp::LayoutFamily::free);
+  EXPECT_EQ(job.search->layout_loc.line, 4);  // no layout key: where the search is declared
+}
+
+TEST(ConfigInverse, CountAsOneNumber) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "luminaires:\n"
+                                     "  mounting_surface: ceiling\n"
+                                     "  flux_lm: [100, 3000]\n"
+                                     "  count: 4\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ASSERT_TRUE(job.search.has_value());
+  EXPECT_EQ(job.search->count_min, 4);
+  EXPECT_EQ(job.search->count_max, 4);
+  EXPECT_EQ(job.search->count_loc.line, 6);
+}
+
+TEST(ConfigInverse, CountAsRange) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "luminaires:\n"
+                                     "  mounting_surface: ceiling\n"
+                                     "  count: [1, 64]\n"
+                                     "  flux_lm: [100, 3000]\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ASSERT_TRUE(job.search.has_value());
+  EXPECT_EQ(job.search->count_min, 1);
+  EXPECT_EQ(job.search->count_max, 64);
+  EXPECT_EQ(job.search->count_loc.line, 5);
+  // min = max is a range of one
+  const std::string same = dir.write("same.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "luminaires:\n  mounting_surface: ceiling\n  flux_lm: [1, 2]\n  count: [3, 3]\n");
+  const ilp::JobConfig job3 = ilp::load_job_config(same);
+  EXPECT_EQ(job3.search->count_min, 3);
+  EXPECT_EQ(job3.search->count_max, 3);
+}
+
+TEST(ConfigInverse, ArrayLayoutWithSpacingAndOffset) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "luminaires:\n"
+                                     "  mounting_surface: ceiling\n"
+                                     "  flux_lm: [100, 3000]\n"
+                                     "  layout: array\n"
+                                     "  array: {rows: 2, columns: 3, spacing_m: [2.0, 1.5], offset_m: [1.0, 0]}\n"
+                                     "constraints:\n"
+                                     "  max_luminaires: 6\n");  // = rows x columns: allowed
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ASSERT_TRUE(job.search.has_value());
+  EXPECT_EQ(job.search->layout, ilp::LayoutFamily::array);
+  EXPECT_EQ(job.search->layout_loc.line, 6);
+  EXPECT_EQ(job.search->array_rows, 2);
+  EXPECT_EQ(job.search->array_columns, 3);
+  ASSERT_TRUE(job.search->array_spacing_m.has_value());
+  EXPECT_EQ(*job.search->array_spacing_m, Eigen::Vector2d(2.0, 1.5));
+  ASSERT_TRUE(job.search->array_offset_m.has_value());
+  EXPECT_EQ(*job.search->array_offset_m, Eigen::Vector2d(1.0, 0.0));  // 0 is a valid offset
+  EXPECT_EQ(*job.constraints.max_luminaires, 6);
+}
+
+TEST(ConfigInverse, ArrayLayoutWithoutSpacingOrOffset) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "luminaires:\n"
+                                     "  mounting_surface: ceiling\n"
+                                     "  flux_lm: [100, 3000]\n"
+                                     "  layout: array\n"
+                                     "  array:\n"
+                                     "    rows: 1\n"
+                                     "    columns: 32\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ASSERT_TRUE(job.search.has_value());
+  EXPECT_EQ(job.search->layout, ilp::LayoutFamily::array);
+  EXPECT_EQ(job.search->array_rows, 1);
+  EXPECT_EQ(job.search->array_columns, 32);
+  EXPECT_FALSE(job.search->array_spacing_m.has_value());  // searched
+  EXPECT_FALSE(job.search->array_offset_m.has_value());
+}
+
+TEST(ConfigInverse, GoalSurfaceAsOneNameAndDefaultNames) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "goals:\n"
+                                     "  - {surface: floor, min_lux: 0}\n"               // 0 is a valid minimum
+                                     "  - {surface: [desk_1, desk_2], max_lux: 800}\n"
+                                     "  - {surface: floor, max_lux: 1000}\n");           // same goal, another metric
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ASSERT_EQ(job.goals.size(), 3u);
+  EXPECT_EQ(job.goals[0].name, "floor");
+  EXPECT_EQ(job.goals[0].surfaces, std::vector<std::string>{"floor"});
+  EXPECT_EQ(job.goals[0].metric, ilp::GoalMetric::minimum);
+  EXPECT_DOUBLE_EQ(job.goals[0].target, 0.0);
+  EXPECT_EQ(job.goals[1].name, "desk_1+desk_2");
+  EXPECT_EQ(job.goals[1].metric, ilp::GoalMetric::maximum);
+  EXPECT_EQ(job.goals[2].name, "floor");
+  EXPECT_EQ(job.goals[2].loc.line, 6);
+}
+
+TEST(ConfigInverse, GoalBoundsMayMeet) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "goals:\n"
+                                     "  - {surface: floor, min_lux: 300, average_lux: 300, max_lux: 300,\n"
+                                     "     uniformity: 1}\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ASSERT_EQ(job.goals.size(), 4u);
+  EXPECT_EQ(job.goals[3].metric, ilp::GoalMetric::uniformity);
+  EXPECT_DOUBLE_EQ(job.goals[3].target, 1.0);
+}
+
+TEST(ConfigInverse, EveryOutputFormatAndOptimizerNone) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "optimizer:\n  global_algorithm: none\n  local_algorithm: LN_BOBYQA\n"
+                                     "verification:\n  method: none\n"
+                                     "output:\n  formats: [svg]\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  EXPECT_EQ(job.optimizer.global_algorithm, "none");
+  EXPECT_EQ(job.optimizer.local_algorithm, "LN_BOBYQA");
+  EXPECT_EQ(job.verification.method, ilp::VerificationMethod::none);
+  EXPECT_FALSE(job.output.json);
+  EXPECT_FALSE(job.output.csv);
+  EXPECT_TRUE(job.output.svg);
+  EXPECT_FALSE(job.output.ply);
+  const std::string exact = dir.write("exact.yaml",
+                                      "scene:\n  mesh: room.obj\n"
+                                      "optimizer:\n  local_algorithm: none\n"
+                                      "verification:\n  method: exact\n");
+  const ilp::JobConfig job2 = ilp::load_job_config(exact);
+  EXPECT_EQ(job2.optimizer.global_algorithm, "GN_CRS2_LM");
+  EXPECT_EQ(job2.optimizer.local_algorithm, "none");
+  EXPECT_EQ(job2.verification.method, ilp::VerificationMethod::exact);
+}
+
+TEST(ConfigInverse, EmptyConfigNamesEverySection) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml", "# nothing\n");
+  expect_error_at(config_error(yaml), yaml, 0,
+                  {"(scene, luminaires, goals, constraints, objective, solver, optimizer, verification, output, "
+                   "sweep, report)"});
+}
+
+// Every rule of the inverse sections: the message names the key (and value) and the
+// rule, at the offending key's line.
+class ConfigInverseBadValue : public ::testing::TestWithParam<BadValue> {};
+
+TEST_P(ConfigInverseBadValue, NamesFileLineAndKey) {
+  const BadValue& p = GetParam();
+  const std::string text = p.section;
+  const int bad_line = p.line ? p.line : static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  expect_config_error(text, bad_line, {p.key, p.rule}, p.col);
+}
+
+#define SCENE "scene:\n  mesh: room.obj\n"
+// lines 3-5
+#define SEARCH SCENE "luminaires:\n  mounting_surface: ceiling\n  flux_lm: [500, 6000]\n"
+// lines 3-4
+#define GOALS SCENE "goals:\n  - {name: desks, surface: desk_1, average_lux: 500, uniformity: 0.6}\n"
+
+INSTANTIATE_TEST_SUITE_P(
+    ConfigInverse, ConfigInverseBadValue,
+    ::testing::Values(
+        // search keys need mounting_surface; mounting_surface needs flux_lm
+        BadValue{"ModelWithoutMounting", SCENE "luminaires:\n  size_m: 0.6\n  model: square_lambertian\n",
+                 "luminaires.model = square_lambertian", "needs luminaires.mounting_surface"},
+        BadValue{"FluxWithoutMounting", SCENE "luminaires:\n  flux_lm: [1, 2]\n", "luminaires.flux_lm",
+                 "needs luminaires.mounting_surface"},
+        BadValue{"EfficacyWithoutMounting", SCENE "luminaires:\n  efficacy_lm_per_w: 120\n",
+                 "luminaires.efficacy_lm_per_w = 120", "needs luminaires.mounting_surface"},
+        BadValue{"OffsetWithoutMounting", SCENE "luminaires:\n  mount_offset_m: 0.05\n",
+                 "luminaires.mount_offset_m = 0.05", "needs luminaires.mounting_surface"},
+        BadValue{"SpacingWithoutMounting", SCENE "luminaires:\n  candidate_spacing_m: 0.5\n",
+                 "luminaires.candidate_spacing_m = 0.5", "needs luminaires.mounting_surface"},
+        BadValue{"CountWithoutMounting", SCENE "luminaires:\n  count: 3\n", "luminaires.count = 3",
+                 "needs luminaires.mounting_surface"},
+        BadValue{"LayoutWithoutMounting", SCENE "luminaires:\n  layout: free\n", "luminaires.layout = free",
+                 "needs luminaires.mounting_surface"},
+        BadValue{"ArrayWithoutMounting", SCENE "luminaires:\n  array: {rows: 1, columns: 1}\n", "luminaires.array",
+                 "needs luminaires.mounting_surface"},
+        BadValue{"FirstSearchKeyInTheFile", SCENE "luminaires:\n  layout: free\n  count: 3\n",
+                 "luminaires.layout = free", "needs luminaires.mounting_surface", 4},
+        BadValue{"MountingWithoutFlux", SCENE "luminaires:\n  mounting_surface: ceiling\n  count: 2\n",
+                 "luminaires.mounting_surface = ceiling", "needs luminaires.flux_lm: [min, max]", 4},
+        BadValue{"MountingEmpty", SCENE "luminaires:\n  flux_lm: [1, 2]\n  mounting_surface: ''\n",
+                 "luminaires.mounting_surface", "must name a surface"},
+        // search values
+        BadValue{"ModelOther", SEARCH "  model: cylinder\n", "luminaires.model = cylinder",
+                 "must be square_lambertian"},
+        BadValue{"FluxOneNumber", SCENE "luminaires:\n  mounting_surface: ceiling\n  flux_lm: 500\n",
+                 "luminaires.flux_lm = 500", "must be a list [min, max]"},
+        BadValue{"FluxThreeNumbers", SCENE "luminaires:\n  mounting_surface: ceiling\n  flux_lm: [1, 2, 3]\n",
+                 "luminaires.flux_lm", "must be a list [min, max]"},
+        BadValue{"FluxMinNegative", SCENE "luminaires:\n  mounting_surface: ceiling\n  flux_lm: [-1, 100]\n",
+                 "luminaires.flux_lm[0] = -1", "must be >= 0"},
+        BadValue{"FluxMaxEqualsMin", SCENE "luminaires:\n  mounting_surface: ceiling\n  flux_lm: [500, 500]\n",
+                 "luminaires.flux_lm[1] = 500", "must be above the minimum"},
+        BadValue{"FluxNotANumber", SCENE "luminaires:\n  mounting_surface: ceiling\n  flux_lm: [a, 500]\n",
+                 "luminaires.flux_lm[0] = a", "must be a number"},
+        BadValue{"EfficacyZero", SEARCH "  efficacy_lm_per_w: 0\n", "luminaires.efficacy_lm_per_w = 0", "must be > 0"},
+        BadValue{"MountOffsetZero", SEARCH "  mount_offset_m: 0\n", "luminaires.mount_offset_m = 0",
+                 "must be in (0, 10)"},
+        BadValue{"MountOffsetTen", SEARCH "  mount_offset_m: 10\n", "luminaires.mount_offset_m = 10",
+                 "must be in (0, 10)"},
+        BadValue{"CandidateSpacingNegative", SEARCH "  candidate_spacing_m: -0.5\n",
+                 "luminaires.candidate_spacing_m = -0.5", "must be > 0"},
+        BadValue{"CountZero", SEARCH "  count: 0\n", "luminaires.count = 0", "must be between 1 and 64"},
+        BadValue{"Count65", SEARCH "  count: 65\n", "luminaires.count = 65", "must be between 1 and 64"},
+        BadValue{"CountFraction", SEARCH "  count: 2.5\n", "luminaires.count = 2.5", "must be a whole number"},
+        BadValue{"CountRangeMinZero", SEARCH "  count: [0, 3]\n", "luminaires.count[0] = 0",
+                 "must be between 1 and 64"},
+        BadValue{"CountRangeMax65", SEARCH "  count: [1, 65]\n", "luminaires.count[1] = 65",
+                 "must be between 1 and 64"},
+        BadValue{"CountRangeReversed", SEARCH "  count: [4, 2]\n", "luminaires.count[1] = 2",
+                 "must be >= the minimum"},
+        BadValue{"CountRangeThree", SEARCH "  count: [1, 2, 3]\n", "luminaires.count",
+                 "must be a whole number N or a list [min, max]"},
+        BadValue{"LayoutGrid", SEARCH "  layout: grid\n", "luminaires.layout = grid", "must be free or array"},
+        BadValue{"ArrayLayoutWithoutBlock", SEARCH "  layout: array\n", "luminaires.layout = array",
+                 "needs luminaires.array"},
+        BadValue{"ArrayWithFreeLayout", SEARCH "  layout: free\n  array: {rows: 2, columns: 2}\n", "luminaires.array",
+                 "needs luminaires.layout: array"},
+        BadValue{"ArrayWithoutLayout", SEARCH "  array: {rows: 2, columns: 2}\n", "luminaires.array",
+                 "needs luminaires.layout: array"},
+        BadValue{"CountWithArrayLayout", SEARCH "  count: 4\n  layout: array\n  array: {rows: 2, columns: 2}\n",
+                 "luminaires.count = 4", "the array fixes the count", 6},
+        BadValue{"ArrayRowsZero", SEARCH "  layout: array\n  array: {rows: 0, columns: 2}\n",
+                 "luminaires.array.rows = 0", "must be between 1 and 32"},
+        BadValue{"ArrayColumns33", SEARCH "  layout: array\n  array:\n    rows: 2\n    columns: 33\n",
+                 "luminaires.array.columns = 33", "must be between 1 and 32"},
+        BadValue{"ArrayWithoutColumns", SEARCH "  layout: array\n  array:\n    rows: 2\n", "luminaires.array.columns",
+                 "required key is missing", 8},
+        BadValue{"ArrayNotAMap", SEARCH "  layout: array\n  array: [2, 3]\n", "luminaires.array",
+                 "must be a map of keys"},
+        BadValue{"ArraySpacingOneNumber",
+                 SEARCH "  layout: array\n  array:\n    rows: 2\n    columns: 2\n    spacing_m: 2\n",
+                 "luminaires.array.spacing_m = 2", "must be a list of 2 numbers"},
+        BadValue{"ArraySpacingZero",
+                 SEARCH "  layout: array\n  array:\n    rows: 2\n    columns: 2\n    spacing_m: [0, 1]\n",
+                 "luminaires.array.spacing_m[0] = 0", "must be > 0"},
+        BadValue{"ArrayOffsetNegative",
+                 SEARCH "  layout: array\n  array:\n    rows: 2\n    columns: 2\n    offset_m: [1, -1]\n",
+                 "luminaires.array.offset_m[1] = -1", "must be >= 0"},
+        // unknown keys
+        BadValue{"TypoLuminairesMounting", SCENE "luminaires:\n  mounting: ceiling\n", "'luminaires.mounting'",
+                 "unknown key"},
+        BadValue{"TypoArrayKey",
+                 SEARCH "  layout: array\n  array:\n    rows: 2\n    columns: 2\n    spacing: [1, 1]\n",
+                 "'luminaires.array.spacing'", "unknown key"},
+        BadValue{"TypoGoalKey", SCENE "goals:\n  - {surface: floor, average: 500}\n", "'goals[0].average'",
+                 "unknown key"},
+        BadValue{"TypoConstraintsKey", SCENE "constraints:\n  min_distance: 1\n", "'constraints.min_distance'",
+                 "unknown key"},
+        BadValue{"TypoOptimizerKey", SCENE "optimizer:\n  seed: 1\n  algorithm: GN_ESCH\n", "'optimizer.algorithm'",
+                 "unknown key"},
+        BadValue{"TypoVerificationKey", SCENE "verification:\n  rays: 64\n", "'verification.rays'", "unknown key"},
+        BadValue{"TypoOutputKey", SCENE "output:\n  format: [json]\n", "'output.format'", "unknown key"},
+        BadValue{"TypoSweepKey", GOALS "sweep:\n  key: goals.desks.average_lux\n  value: [1]\n", "'sweep.value'",
+                 "unknown key"},
+        BadValue{"TypoGoalSection", SCENE "goal:\n  - {surface: floor, average_lux: 500}\n", "'goal'",
+                 "unknown key", 3},
+        // goals
+        BadValue{"GoalsNotAList", SCENE "goals: {surface: floor, average_lux: 1}\n", "goals", "must be a list"},
+        BadValue{"GoalsEmpty", SCENE "goals: []\n", "goals", "must list at least one goal"},
+        BadValue{"GoalEntryNotAMap", SCENE "goals:\n  - floor\n", "goals[0] = floor", "must be a map of keys"},
+        BadValue{"GoalWithoutMetric", SCENE "goals:\n  - surface: floor\n    name: f\n", "goals[0]",
+                 "needs at least one of average_lux, min_lux, max_lux, uniformity", 4},
+        BadValue{"GoalWithoutSurface", SCENE "goals:\n  - average_lux: 500\n", "goals[0].surface",
+                 "required key is missing"},
+        BadValue{"GoalSurfaceEmptyList", SCENE "goals:\n  - surface: []\n    average_lux: 500\n", "goals[0].surface",
+                 "must be a surface name or a non-empty list of names", 4},
+        BadValue{"GoalSurfaceMap", SCENE "goals:\n  - surface: {a: 1}\n    average_lux: 500\n", "goals[0].surface",
+                 "must be a string", 4},
+        BadValue{"GoalNameEmpty", SCENE "goals:\n  - surface: floor\n    name: ''\n    average_lux: 5\n",
+                 "goals[0].name", "must not be empty", 5},
+        BadValue{"AverageZero", SCENE "goals:\n  - surface: floor\n    average_lux: 0\n", "goals[0].average_lux = 0",
+                 "must be > 0"},
+        BadValue{"MinNegative", SCENE "goals:\n  - surface: floor\n    min_lux: -1\n", "goals[0].min_lux = -1",
+                 "must be >= 0"},
+        BadValue{"MaxZero", SCENE "goals:\n  - surface: floor\n    max_lux: 0\n", "goals[0].max_lux = 0",
+                 "must be > 0"},
+        BadValue{"UniformityAboveOne", SCENE "goals:\n  - surface: floor\n    uniformity: 1.5\n",
+                 "goals[0].uniformity = 1.5", "must be in (0, 1]"},
+        BadValue{"UniformityZero", SCENE "goals:\n  - surface: floor\n    uniformity: 0\n", "goals[0].uniformity = 0",
+                 "must be in (0, 1]"},
+        BadValue{"AverageNotANumber", SCENE "goals:\n  - surface: floor\n    average_lux: bright\n",
+                 "goals[0].average_lux = bright", "must be a number"},
+        BadValue{"MinAboveMax", SCENE "goals:\n  - surface: floor\n    max_lux: 100\n    min_lux: 150\n",
+                 "goals[0].max_lux = 100", "must be >= min_lux (150)", 5},
+        BadValue{"AverageAboveMax", SCENE "goals:\n  - surface: floor\n    average_lux: 500\n    max_lux: 400\n",
+                 "goals[0].max_lux = 400", "must be >= average_lux (500)"},
+        BadValue{"MinAboveMaxOfAnEarlierEntry",
+                 SCENE "goals:\n  - {surface: floor, max_lux: 100}\n  - {surface: floor, min_lux: 150}\n",
+                 "goals[1].min_lux = 150", "must be <= max_lux (100) of goal 'floor'"},
+        BadValue{"GoalMetricTwice",
+                 SCENE "goals:\n  - {name: desks, surface: [desk_1, desk_2], average_lux: 500}\n"
+                       "  - name: desks\n    surface: desk_1\n    average_lux: 300\n",
+                 "goals[1].average_lux = 300", "goal 'desks' already has average_lux"},
+        BadValue{"DefaultNamedGoalMetricTwice",
+                 SCENE "goals:\n  - {surface: floor, min_lux: 1}\n  - {surface: [floor], min_lux: 2}\n",
+                 "goals[1].min_lux = 2", "goal 'floor' already has min_lux"},
+        // constraints
+        BadValue{"MaxLuminairesZero", SCENE "constraints:\n  max_luminaires: 0\n", "constraints.max_luminaires = 0",
+                 "must be between 1 and"},
+        BadValue{"MaxLuminairesFraction", SCENE "constraints:\n  max_luminaires: 2.5\n",
+                 "constraints.max_luminaires = 2.5", "must be a whole number"},
+        BadValue{"MaxLuminairesBelowCount",
+                 SEARCH "  count: [3, 6]\nconstraints:\n  max_luminaires: 2\n  min_distance_m: 1\n",
+                 "constraints.max_luminaires = 2", "below the least luminaires.count (3)", 8},
+        BadValue{"MaxLuminairesBelowArray",
+                 SEARCH "  layout: array\n  array: {rows: 2, columns: 3}\nconstraints:\n  max_luminaires: 5\n",
+                 "constraints.max_luminaires = 5", "below the array's rows x columns (6)"},
+        BadValue{"MinDistanceNegative", SCENE "constraints:\n  min_distance_m: -1\n", "constraints.min_distance_m = -1",
+                 "must be >= 0"},
+        // objective
+        BadValue{"ObjectiveOther", SCENE "objective: max_light\n", "objective = max_light",
+                 "must be min_power or closest_to_target"},
+        BadValue{"ObjectiveMap", SCENE "objective: {kind: min_power}\n", "objective", "must be a string"},
+        BadValue{"ClosestToTargetWithoutAverage",
+                 SCENE "goals:\n  - {surface: floor, min_lux: 100, uniformity: 0.5}\nobjective: closest_to_target\n"
+                       "solver:\n  seed: 1\n",
+                 "objective = closest_to_target", "needs at least one goal with average_lux", 5},
+        BadValue{"ClosestToTargetWithoutGoals", SCENE "objective: closest_to_target\n",
+                 "objective = closest_to_target", "needs at least one goal with average_lux"},
+        // optimizer
+        BadValue{"GlobalAlgorithmOther", SCENE "optimizer:\n  global_algorithm: GN_MLSL\n",
+                 "optimizer.global_algorithm = GN_MLSL", "must be one of GN_CRS2_LM, GN_ISRES"},
+        BadValue{"LocalAlgorithmGradient", SCENE "optimizer:\n  local_algorithm: LD_LBFGS\n",
+                 "optimizer.local_algorithm = LD_LBFGS", "must be one of LN_SBPLX, LN_COBYLA"},
+        BadValue{"BothAlgorithmsNone",
+                 SCENE "optimizer:\n  global_algorithm: none\n  local_algorithm: none\n  seed: 3\n",
+                 "optimizer.local_algorithm = none", "cannot both be none", 5},
+        BadValue{"BothAlgorithmsNoneLocalFirst",
+                 SCENE "optimizer:\n  local_algorithm: none\n  global_algorithm: none\n",
+                 "optimizer.local_algorithm = none", "cannot both be none", 4},
+        BadValue{"MaxEvaluationsZero", SCENE "optimizer:\n  max_evaluations: 0\n", "optimizer.max_evaluations = 0",
+                 "must be between 1 and 100000000"},
+        BadValue{"LocalMaxEvaluationsTooMany", SCENE "optimizer:\n  local_max_evaluations: 200000000\n",
+                 "optimizer.local_max_evaluations = 200000000", "must be between 1 and 100000000"},
+        BadValue{"MaxSecondsZero", SCENE "optimizer:\n  max_seconds: 0\n", "optimizer.max_seconds = 0", "must be > 0"},
+        BadValue{"OptimizerSeedNegative", SCENE "optimizer:\n  seed: -1\n", "optimizer.seed = -1",
+                 "must be between 0 and"},
+        // verification
+        BadValue{"VerificationMethodOther", SCENE "verification:\n  method: approximate\n",
+                 "verification.method = approximate", "must be auto, exact, sample or none"},
+        BadValue{"VerificationRaysZero", SCENE "verification:\n  rays_per_patch: 0\n",
+                 "verification.rays_per_patch = 0", "must be between 1 and"},
+        BadValue{"MaxExactPatchesZero", SCENE "verification:\n  max_exact_patches: 0\n",
+                 "verification.max_exact_patches = 0", "must be between 1 and"},
+        BadValue{"VerificationFractionZero", SCENE "verification:\n  sample_fraction: 0\n",
+                 "verification.sample_fraction = 0", "must be in (0, 1]"},
+        BadValue{"VerificationFractionAboveOne", SCENE "verification:\n  sample_fraction: 1.5\n",
+                 "verification.sample_fraction = 1.5", "must be in (0, 1]"},
+        // output
+        BadValue{"OutputDirectoryEmpty", SCENE "output:\n  directory: ''\n", "output.directory", "must not be empty"},
+        BadValue{"OutputDirectoryList", SCENE "output:\n  directory: [a]\n", "output.directory", "must be a string"},
+        BadValue{"FormatsEmpty", SCENE "output:\n  formats: []\n", "output.formats",
+                 "must list at least one of json, csv, svg, ply"},
+        BadValue{"FormatsNotAList", SCENE "output:\n  formats: json\n", "output.formats = json", "must be a list"},
+        BadValue{"FormatOther", SCENE "output:\n  formats: [json, pdf]\n", "output.formats[1] = pdf",
+                 "must be json, csv, svg or ply"},
+        BadValue{"FormatTwice", SCENE "output:\n  formats:\n    - json\n    - csv\n    - json\n",
+                 "output.formats[2] = json", "is listed twice"},
+        // sweep: checked by applying each value as `ilp sweep` will
+        BadValue{"SweepWithoutGoals", SCENE "sweep:\n  key: goals.desks.average_lux\n  values: [300]\n",
+                 "sweep: needs goals", "goal parameter", 3, 1},  // at the sweep key itself
+        BadValue{"SweepWithoutKey", GOALS "sweep:\n  values: [300]\n", "sweep.key", "required key is missing", 6},
+        BadValue{"SweepWithoutValues", GOALS "sweep:\n  key: goals.desks.average_lux\n", "sweep.values",
+                 "required key is missing", 6},
+        BadValue{"SweepValuesEmpty", GOALS "sweep:\n  key: goals.desks.average_lux\n  values: []\n", "sweep.values",
+                 "must list at least one number"},
+        BadValue{"SweepValuesNotAList", GOALS "sweep:\n  key: goals.desks.average_lux\n  values: 300\n",
+                 "sweep.values = 300", "must be a list"},
+        BadValue{"SweepUnknownGoal", GOALS "sweep:\n  key: goals.desk.average_lux\n  values: [300, 500]\n",
+                 "sweep.key = goals.desk.average_lux",
+                 "no goal parameter goals.desk.average_lux; the job has goals.desks.average_lux, "
+                 "goals.desks.uniformity",
+                 6},
+        BadValue{"SweepMetricTheGoalLacks", GOALS "sweep:\n  key: goals.desks.min_lux\n  values: [300]\n",
+                 "sweep.key = goals.desks.min_lux", "no goal parameter goals.desks.min_lux", 6},
+        BadValue{"SweepKeyNotAGoal", GOALS "sweep:\n  key: solver.seed\n  values: [1]\n", "sweep.key = solver.seed",
+                 "no goal parameter solver.seed", 6},
+        BadValue{"SweepUniformityAboveOne",
+                 GOALS "sweep:\n  key: goals.desks.uniformity\n  values:\n    - 0.5\n    - 1.5\n    - 0.7\n",
+                 "sweep.values[1] = 1.5", "must be in (0, 1]", 9},
+        BadValue{"SweepAverageNegative", GOALS "sweep:\n  key: goals.desks.average_lux\n  values: [300, -1]\n",
+                 "sweep.values[1] = -1", "must be > 0"},
+        BadValue{"SweepValueNotANumber", GOALS "sweep:\n  key: goals.desks.average_lux\n  values: [300, lots]\n",
+                 "sweep.values[1] = lots", "must be a number"},
+        BadValue{"SweepMinAboveMax",
+                 SCENE "goals:\n  - {surface: floor, min_lux: 100, max_lux: 800}\n"
+                       "sweep:\n  key: goals.floor.min_lux\n  values: [200, 900]\n",
+                 "sweep.values[1] = 900", "must be <= max_lux (800)"}),
+    [](const ::testing::TestParamInfo<BadValue>& info) { return std::string(info.param.name); });
+
+#undef GOALS
+#undef SEARCH
+#undef SCENE
+
+// set_goal_parameter: what `ilp sweep` and `--set` use.
+
+ilp::JobConfig goal_job(const TempDir& dir) {
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "goals:\n"
+                                     "  - {name: desks, surface: [desk_1, desk_2], average_lux: 500, uniformity: 0.6}\n"
+                                     "  - {surface: floor, min_lux: 150, max_lux: 800}\n");
+  return ilp::load_job_config(yaml);
+}
+
+std::vector<double> targets(const ilp::JobConfig& job) {
+  std::vector<double> out;
+  for (const ilp::GoalSetting& g : job.goals) out.push_back(g.target);
+  return out;
+}
+
+TEST(ConfigGoalParameter, SetsTheNamedTarget) {
+  TempDir dir;
+  ilp::JobConfig job = goal_job(dir);
+  ASSERT_EQ(targets(job), (std::vector<double>{500, 0.6, 150, 800}));
+  ilp::set_goal_parameter(job, "goals.desks.average_lux", 750);
+  EXPECT_EQ(targets(job), (std::vector<double>{750, 0.6, 150, 800}));
+  ilp::set_goal_parameter(job, "goals.desks.uniformity", 1.0);
+  ilp::set_goal_parameter(job, "goals.floor.min_lux", 0.0);
+  ilp::set_goal_parameter(job, "goals.floor.max_lux", 150.0);
+  EXPECT_EQ(targets(job), (std::vector<double>{750, 1.0, 0, 150}));
+  EXPECT_EQ(job.goals[0].loc.line, 4);  // the rest of the setting is untouched
+  EXPECT_EQ(job.goals[0].metric, ilp::GoalMetric::average);
+}
+
+TEST(ConfigGoalParameter, GoalNamesMayHoldDots) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"
+                                     "goals:\n  - {surface: desk.top, average_lux: 300}\n");
+  ilp::JobConfig job = ilp::load_job_config(yaml);
+  ilp::set_goal_parameter(job, "goals.desk.top.average_lux", 400);
+  EXPECT_DOUBLE_EQ(job.goals[0].target, 400.0);
+}
+
+TEST(ConfigGoalParameter, UnknownKeyListsTheJobsParameters) {
+  TempDir dir;
+  ilp::JobConfig job = goal_job(dir);
+  const std::string available =
+      "the job has goals.desks.average_lux, goals.desks.uniformity, goals.floor.min_lux, goals.floor.max_lux";
+  for (const std::string key : {"goals.desk.average_lux", "goals.desks.min_lux", "goals.desks.lux", "desks.average_lux",
+                                "goals.desks", "goals..average_lux", "goals.desks.average_lux.x", ""}) {
+    SCOPED_TRACE(key);
+    const std::string msg = error_of<ilp::ConfigError>([&] { ilp::set_goal_parameter(job, key, 600); });
+    expect_message(msg, "--set " + key + ": ", {"no goal parameter " + key + "; " + available});
+  }
+  EXPECT_EQ(targets(job), (std::vector<double>{500, 0.6, 150, 800}));
+}
+
+TEST(ConfigGoalParameter, JobWithoutGoals) {
+  ilp::JobConfig job;
+  const std::string msg =
+      error_of<ilp::ConfigError>([&] { ilp::set_goal_parameter(job, "goals.desks.average_lux", 600); });
+  expect_message(msg, "--set goals.desks.average_lux: ", {"the job has no goals"});
+}
+
+TEST(ConfigGoalParameter, BadValueBreaksTheFilesRule) {
+  TempDir dir;
+  ilp::JobConfig job = goal_job(dir);
+  struct Case {
+    const char* key;
+    double value;
+    const char* start;
+    const char* rule;
+  };
+  const Case cases[] = {
+      {"goals.desks.average_lux", -5, "--set goals.desks.average_lux = -5: ", "must be > 0"},
+      {"goals.desks.average_lux", 0, "--set goals.desks.average_lux = 0: ", "must be > 0"},
+      {"goals.desks.uniformity", 1.5, "--set goals.desks.uniformity = 1.5: ", "must be in (0, 1]"},
+      {"goals.floor.min_lux", -0.5, "--set goals.floor.min_lux = -0.5: ", "must be >= 0"},
+      {"goals.floor.max_lux", 0, "--set goals.floor.max_lux = 0: ", "must be > 0"},
+      {"goals.floor.min_lux", 900, "--set goals.floor.min_lux = 900: ", "must be <= max_lux (800) of goal 'floor'"},
+      {"goals.floor.max_lux", 100, "--set goals.floor.max_lux = 100: ", "must be >= min_lux (150) of goal 'floor'"},
+      {"goals.desks.average_lux", std::numeric_limits<double>::quiet_NaN(), "--set goals.desks.average_lux = nan: ",
+       "must be a finite number"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.start);
+    const std::string msg = error_of<ilp::ConfigError>([&] { ilp::set_goal_parameter(job, c.key, c.value); });
+    expect_message(msg, c.start, {c.rule});
+  }
+  EXPECT_EQ(targets(job), (std::vector<double>{500, 0.6, 150, 800}));  // nothing set
+}
+
+TEST(ConfigGoalParameter, MetricNames) {
+  EXPECT_EQ(ilp::to_string(ilp::GoalMetric::average), "average");
+  EXPECT_EQ(ilp::to_string(ilp::GoalMetric::minimum), "minimum");
+  EXPECT_EQ(ilp::to_string(ilp::GoalMetric::maximum), "maximum");
+  EXPECT_EQ(ilp::to_string(ilp::GoalMetric::uniformity), "uniformity");
+}
+
+// Surface names of the inverse problem are checked against the mesh by
+// load_job_scene, at the config's line.
+
+std::string office_job(const std::string& luminaires, const std::string& goals) {
+  return std::string("scene:\n  mesh: ") + ILP_SOURCE_DIR + "/data/office.obj\n" + luminaires + goals;
+}
+
+TEST(ConfigInverseScene, OfficeNamesLoad) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml", office_job("luminaires:\n  mounting_surface: ceiling\n"
+                                                            "  flux_lm: [500, 6000]\n",
+                                                            "goals:\n"
+                                                            "  - {surface: [desk_1, desk_2], average_lux: 500}\n"
+                                                            "  - {surface: floor, min_lux: 100}\n"));
+  ilp::JobScene loaded;
+  ASSERT_NO_THROW(loaded = ilp::load_job_scene(ilp::load_job_config(yaml)));
+  EXPECT_GE(loaded.scene.find_surface("desk_2"), 0);
+}
+
+TEST(ConfigInverseScene, GoalSurfaceMissingFromTheMesh) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml", office_job("luminaires:\n  mounting_surface: ceiling\n"
+                                                            "  flux_lm: [500, 6000]\n",
+                                                            "goals:\n"                                       // 6
+                                                            "  - {surface: floor, min_lux: 100}\n"          // 7
+                                                            "  - name: desks\n"                             // 8
+                                                            "    surface: [desk_1, desk_3]\n"               // 9
+                                                            "    average_lux: 500\n"));                     // 10
+  expect_error_at(scene_error<ilp::ConfigError>(yaml), yaml, 9,
+                  {"goals.desks.surface", "unknown surface 'desk_3'", "desk_1, desk_1_frame, desk_2"});
+}
+
+TEST(ConfigInverseScene, MountingSurfaceMissingFromTheMesh) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml", office_job("luminaires:\n"                                 // 3
+                                                            "  flux_lm: [500, 6000]\n"                      // 4
+                                                            "  mounting_surface: roof\n"                    // 5
+                                                            "  count: 2\n",                                 // 6
+                                                            "goals:\n  - {surface: floor, min_lux: 100}\n"));
+  expect_error_at(scene_error<ilp::ConfigError>(yaml), yaml, 5,
+                  {"luminaires.mounting_surface", "unknown surface 'roof'", "ceiling"});
+}
+
+TEST(ConfigInverseScene, PlacedLuminaireIsNoGoalSurface) {
+  TempDir dir;
+  const std::string yaml = dir.write(
+      "job.yaml", office_job("luminaires:\n  placed:\n    - {name: L1, position_m: [1.5, 1.0, 2.95], flux_lm: 3400}\n",
+                             "goals:\n  - {surface: L1, average_lux: 100}\n"));  // line 7
+  expect_error_at(scene_error<ilp::ConfigError>(yaml), yaml, 7, {"goals.L1.surface", "unknown surface 'L1'"});
+}
 
 // ---------------------------------------------------------------------------------
 // Defects in the mesh, found by load_job_scene

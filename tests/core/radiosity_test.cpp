@@ -97,7 +97,7 @@ TEST(Radiosity, IlluminanceUnderALuminaireMatchesClosedForm) {
 // nothing reflecting, every lumen the four panels emit lands on some surface of the
 // closed room, so the area-weighted direct illuminance adds up to their flux.
 TEST(Radiosity, OfficeSurfacesReceiveAllLuminaireFluxWhenNothingReflects) {
-  const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office.yaml");
+  const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
   Scene scene = load_job_scene(job).scene;
   double flux_lm = 0.0;
   for (Patch& p : scene.patches) {
@@ -119,7 +119,7 @@ TEST(Radiosity, OfficeSurfacesReceiveAllLuminaireFluxWhenNothingReflects) {
 // escapes, adds up to the emitted flux. Reciprocity holds only to ray noise: measured
 // 0.1 % off at 128 rays per patch, allowed 0.5 %.
 TEST(Radiosity, OfficeAbsorbsTheFluxItsLuminairesEmit) {
-  const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office.yaml");
+  const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
   const Scene scene = load_job_scene(job).scene;
   const RayCaster caster(scene);
   FormFactorOptions ff;

@@ -15,7 +15,7 @@ namespace {
 
 // The shipped office, meshed coarsely (about 1,900 patches) so that k = n stays cheap.
 Scene coarse_office(double max_edge_m = 0.6) {
-  JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office.yaml");
+  JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
   job.scene.max_patch_edge_m = max_edge_m;
   return load_job_scene(job).scene;
 }

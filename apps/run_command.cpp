@@ -1,0 +1,307 @@
+// ilp run, ilp sweep, ilp print: the inverse-lighting job from a YAML file to the
+// layout table and the files of the output folder.
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "apps/cli_support.h"
+#include "apps/commands.h"
+#include "core/config.h"
+#include "optimizer/job_runner.h"
+#include "output/atomic_file.h"
+#include "output/colour_map.h"
+#include "output/plan_svg.h"
+#include "output/ply_writer.h"
+#include "output/result_record.h"
+#include "output/svg_plot.h"
+
+namespace ilp::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr const char* kVersion = "ilp 0.1.0";
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+JobConfig load_for_run(const std::string& path, int threads) {
+  JobConfig job = load_job_config(path);
+  if (threads >= 0) job.form_factors.threads = job.direct_light.threads = threads;
+  return job;
+}
+
+std::string output_directory(const JobConfig& job, const std::string& override_dir) {
+  if (!override_dir.empty()) return override_dir;
+  if (!job.output.directory.empty()) return job.output.directory;
+  return (std::filesystem::path("results") / std::filesystem::path(job.path).stem()).string();
+}
+
+PreparedJob prepare_and_log(const JobConfig& job, const ProgressCallback& progress) {
+  PreparedJob prepared = prepare_job(job, progress);
+  for (const std::string& line : prepared.loaded.log) std::cerr << line << "\n";
+  for (const std::string& line : prepared.model.log) std::cerr << line << "\n";
+  const SampleOperatorStats& st = prepared.model.stats;
+  std::cerr << std::fixed << std::setprecision(3) << "operator built once in " << prepared.model.build_seconds
+            << " s (goal rows " << st.goal_seconds << " s, sample rows " << st.sample_row_seconds
+            << " s, direct light " << st.direct_seconds << " s, solve " << st.solve_seconds << " s, T "
+            << st.response_seconds << " s): " << prepared.model.goal_patches.size() << " goal patches x "
+            << prepared.model.grid.size() << " candidates\n";
+  return prepared;
+}
+
+std::string unit_of(GoalMetric metric) { return metric == GoalMetric::uniformity ? "" : "lx"; }
+
+ResultRecord make_record(const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
+                         const std::vector<std::pair<std::string, double>>& timings) {
+  ResultRecord r;
+  r.program_version = kVersion;
+  r.config = job.path;
+  r.objective = job.objective == Objective::min_power ? "min_power" : "closest_to_target";
+  for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
+    const PlacedLuminaire& l = outcome.luminaires[j];
+    r.luminaires.push_back({luminaire_name(j), l.position_m.x(), l.position_m.y(), l.position_m.z(), l.flux_lm, l.power_w});
+  }
+  for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
+    const GoalOutcome& o = outcome.goals[g];
+    GoalRecord rec;
+    rec.name = o.predicted.name;
+    rec.surfaces = job.goals[g].surfaces;
+    rec.metric = std::string(to_string(o.predicted.metric));
+    rec.unit = unit_of(o.predicted.metric);
+    rec.target = o.predicted.target;
+    rec.predicted = o.predicted.value;
+    if (o.verified) rec.verified = o.verified->value;
+    rec.met = o.met;
+    rec.fails_only_on_verification = o.fails_only_on_verification;
+    rec.tolerance = o.tolerance;
+    r.goals.push_back(rec);
+  }
+  r.power_w = outcome.power_w;
+  r.mounting_area_m2 = outcome.mounting_area_m2;
+  r.power_density_w_per_m2 = outcome.power_density_w_per_m2;
+  r.fixed_flux_lm = outcome.fixed_flux_lm;
+  r.feasible = outcome.feasible;
+  r.all_met = outcome.all_met;
+  r.flux_correction = outcome.flux_correction;
+  r.verification = outcome.verification.method;
+  r.verification_rays_per_patch = outcome.verification.rays_per_patch;
+  r.sample_size = prepared.model.sample_size;
+  r.population = static_cast<int>(prepared.model.stats.population);
+  r.patches = static_cast<int>(prepared.loaded.scene.patches.size());
+  r.candidates = static_cast<int>(prepared.model.grid.size());
+  r.seed = job.form_factors.seed;
+  r.optimizer_seed = job.optimizer.seed;
+  r.evaluations = outcome.search.evaluations;
+  r.time_limited = outcome.search.time_limited;
+  r.timings_s = timings;
+  for (const CountAttempt& a : outcome.search.attempts)
+    r.attempts.push_back({a.luminaires, a.evaluations, a.seconds, a.feasible, a.power_w, a.global_stop, a.local_stop});
+  return r;
+}
+
+// Verified illuminance per scene patch where known (NaN elsewhere).
+Eigen::VectorXd verified_lux_per_patch(const Scene& scene, const JobOutcome& outcome) {
+  Eigen::VectorXd lux = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(scene.patches.size()),
+                                                  std::numeric_limits<double>::quiet_NaN());
+  const Verification& v = outcome.verification;
+  for (std::size_t k = 0; k < v.patches.size(); ++k)
+    if (v.patches[k] < static_cast<int>(scene.patches.size())) lux[v.patches[k]] = v.lux[static_cast<Eigen::Index>(k)];
+  return lux;
+}
+
+void write_illuminance_csv(const std::string& path, const PreparedJob& prepared, const JobOutcome& outcome) {
+  const Scene& scene = prepared.loaded.scene;
+  const std::vector<int>& goals = prepared.model.goal_patches;
+  const Eigen::VectorXd verified = verified_lux_per_patch(scene, outcome);
+  Eigen::VectorXd verified_direct = Eigen::VectorXd::Constant(verified.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t k = 0; k < outcome.verification.patches.size(); ++k)
+    if (outcome.verification.patches[k] < static_cast<int>(scene.patches.size()))
+      verified_direct[outcome.verification.patches[k]] = outcome.verification.direct_lux[static_cast<Eigen::Index>(k)];
+  auto field = [](double v) { return std::isnan(v) ? std::string() : (std::ostringstream() << std::setprecision(9) << v).str(); };
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << std::setprecision(9);
+    out << "patch,surface,centroid_x_m,centroid_y_m,centroid_z_m,normal_x,normal_y,normal_z,area_m2,"
+           "predicted_direct_lux,predicted_total_lux,verified_direct_lux,verified_total_lux\n";
+    for (std::size_t r = 0; r < goals.size(); ++r) {
+      const Patch& p = scene.patches[static_cast<std::size_t>(goals[r])];
+      const auto row = static_cast<Eigen::Index>(r);
+      out << goals[r] << ',' << csv_field(scene.surfaces[static_cast<std::size_t>(p.surface)].name) << ','
+          << p.centroid_m.x() << ',' << p.centroid_m.y() << ',' << p.centroid_m.z() << ',' << p.normal.x() << ','
+          << p.normal.y() << ',' << p.normal.z() << ',' << p.area_m2 << ',' << outcome.predicted_direct_lux[row] << ','
+          << outcome.predicted_lux[row] << ',' << field(verified_direct[goals[r]]) << ',' << field(verified[goals[r]])
+          << '\n';
+    }
+  });
+}
+
+// result.json, illuminance.csv, plan.svg and scene.ply as the job's output.formats asks.
+std::vector<std::string> write_outputs(const std::string& dir, const PreparedJob& prepared, const JobConfig& job,
+                                       const JobOutcome& outcome, const ResultRecord& record) {
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path folder(dir);
+  const Scene& scene = prepared.loaded.scene;
+  std::vector<std::string> written;
+  if (job.output.json) {
+    write_result_json((folder / "result.json").string(), record);
+    written.push_back((folder / "result.json").string());
+  }
+  if (job.output.csv) {
+    write_illuminance_csv((folder / "illuminance.csv").string(), prepared, outcome);
+    written.push_back((folder / "illuminance.csv").string());
+  }
+  // Pictures show the verified illuminance where there is one, else the predicted.
+  const bool verified = outcome.verification.method != "none";
+  Eigen::VectorXd goal_lux = outcome.predicted_lux;
+  if (verified) {
+    const Eigen::VectorXd per_patch = verified_lux_per_patch(scene, outcome);
+    for (std::size_t r = 0; r < prepared.model.goal_patches.size(); ++r)
+      goal_lux[static_cast<Eigen::Index>(r)] = per_patch[prepared.model.goal_patches[r]];
+  }
+  if (job.output.svg) {
+    PlanView view;
+    std::ostringstream title;
+    title << std::fixed << std::setprecision(1) << std::filesystem::path(job.path).stem().string() << ": "
+          << outcome.luminaires.size() << " luminaires, " << outcome.power_w << " W, " << (verified ? "verified" : "predicted")
+          << " illuminance";
+    view.title = title.str();
+    view.goal_patches = prepared.model.goal_patches;
+    view.goal_lux = goal_lux;
+    view.outline_patches = prepared.model.grid.mounting_patches();
+    for (std::size_t j = 0; j < outcome.luminaires.size(); ++j)
+      view.luminaires.push_back({luminaire_name(j), outcome.luminaires[j].position_m, job.luminaire_size_m,
+                                 outcome.luminaires[j].flux_lm});
+    const std::string svg = render_plan_svg(scene, view);
+    write_file_atomically((folder / "plan.svg").string(), [&](std::ostream& out) { out << svg; });
+    written.push_back((folder / "plan.svg").string());
+  }
+  if (job.output.ply) {
+    Eigen::VectorXd lux = verified_lux_per_patch(scene, outcome);
+    if (!verified)
+      for (std::size_t r = 0; r < prepared.model.goal_patches.size(); ++r)
+        lux[prepared.model.goal_patches[r]] = outcome.predicted_lux[static_cast<Eigen::Index>(r)];
+    write_illuminance_ply((folder / "scene.ply").string(), scene, lux, colour_scale_for(lux));
+    written.push_back((folder / "scene.ply").string());
+  }
+  return written;
+}
+
+// Parses "KEY=V1,V2,..." into a sweep.
+SweepSetting parse_set(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw ConfigError("--set " + text + ": expected KEY=V1,V2,... (e.g. goals.desks.average_lux=300,500,750)");
+  SweepSetting sweep;
+  sweep.key = text.substr(0, eq);
+  std::stringstream values(text.substr(eq + 1));
+  for (std::string item; std::getline(values, item, ',');) {
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !std::isfinite(v))
+      throw ConfigError("--set " + sweep.key + ": '" + item + "' is not a number");
+    sweep.values.push_back(v);
+  }
+  return sweep;
+}
+
+}  // namespace
+
+int run_job(const RunArgs& args) {
+  const auto start = Clock::now();
+  const JobConfig job = load_for_run(args.config, args.threads);
+  const ProgressCallback progress = make_progress(args.quiet);
+  const std::string dir = output_directory(job, args.out_dir);
+  const PreparedJob prepared = prepare_and_log(job, progress);
+  const JobOutcome outcome = solve_prepared(prepared, job, progress);
+  const std::vector<std::pair<std::string, double>> timings{
+      {"scene", prepared.scene_seconds},
+      {"BVH", prepared.bvh_seconds},
+      {"operator", prepared.model.build_seconds},
+      {"search", outcome.search.seconds},
+      {"verification", outcome.verify_seconds},
+      {"total", seconds_since(start)}};
+  const ResultRecord record = make_record(prepared, job, outcome, timings);
+  print_result(std::cout, record);
+  for (const std::string& file : write_outputs(dir, prepared, job, outcome, record)) std::cout << "wrote " << file << "\n";
+  return outcome.all_met ? 0 : 2;
+}
+
+int run_sweep(const SweepArgs& args) {
+  const auto start = Clock::now();
+  const JobConfig job = load_for_run(args.config, args.threads);
+  SweepSetting sweep;
+  if (!args.set.empty()) {
+    sweep = parse_set(args.set);
+    JobConfig probe = job;
+    for (double v : sweep.values) set_goal_parameter(probe, sweep.key, v);  // bad keys and values fail before any work
+  } else if (job.sweep) {
+    sweep = *job.sweep;
+  } else {
+    throw ConfigError(job.path + ": nothing to sweep: add a sweep block (sweep: {key: goals.NAME.average_lux, values: "
+                                 "[...]}) or pass --set KEY=V1,V2,...");
+  }
+  const ProgressCallback progress = make_progress(args.quiet);
+  const std::string dir = output_directory(job, args.out_dir);
+  const PreparedJob prepared = prepare_and_log(job, progress);
+
+  std::ostringstream csv;
+  csv << std::setprecision(9) << csv_field(sweep.key)
+      << ",luminaires,power_w,power_density_w_per_m2,feasible,all_met,flux_correction,evaluations,search_s,verification_s";
+  for (const GoalSetting& g : job.goals) {
+    const std::string label = g.name + "." + std::string(to_string(g.metric));
+    csv << "," << csv_field(label + ".target") << "," << csv_field(label + ".predicted") << ","
+        << csv_field(label + ".verified");
+  }
+  csv << "\n";
+  std::vector<double> xs, powers;
+  std::cout << std::left << std::setw(28) << sweep.key << std::right << std::setw(12) << "luminaires" << std::setw(11)
+            << "power W" << std::setw(10) << "W/m²" << "  goals\n";
+  for (std::size_t i = 0; i < sweep.values.size(); ++i) {
+    JobConfig point = job;
+    set_goal_parameter(point, sweep.key, sweep.values[i]);
+    std::cerr << "sweep point " << i + 1 << " of " << sweep.values.size() << ": " << sweep.key << " = "
+              << sweep.values[i] << "\n";
+    const JobOutcome outcome = solve_prepared(prepared, point, progress);
+    csv << sweep.values[i] << ',' << outcome.luminaires.size() << ',' << outcome.power_w << ','
+        << outcome.power_density_w_per_m2 << ',' << outcome.feasible << ',' << outcome.all_met << ','
+        << outcome.flux_correction << ',' << outcome.search.evaluations << ',' << outcome.search.seconds << ','
+        << outcome.verify_seconds;
+    for (const GoalOutcome& g : outcome.goals) {
+      csv << ',' << g.predicted.target << ',' << g.predicted.value << ',';
+      if (g.verified) csv << g.verified->value;
+    }
+    csv << "\n";
+    std::cout << std::left << std::setw(28) << sweep.values[i] << std::right << std::setw(12) << outcome.luminaires.size()
+              << std::setw(11) << std::fixed << std::setprecision(1) << outcome.power_w << std::setw(10)
+              << std::setprecision(2) << outcome.power_density_w_per_m2 << "  "
+              << (outcome.all_met ? "all met" : outcome.feasible ? "missed on verification" : "infeasible") << "\n"
+              << std::defaultfloat;
+    if (outcome.all_met) {
+      xs.push_back(sweep.values[i]);
+      powers.push_back(outcome.power_w);
+    }
+  }
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path folder(dir);
+  write_file_atomically((folder / "sweep.csv").string(), [&](std::ostream& out) { out << csv.str(); });
+  const std::string plot = render_svg_plot(
+      {.title = "Power against " + sweep.key, .x_label = sweep.key, .y_label = "electric power (W)"},
+      {PlotSeries{"layouts meeting every goal", xs, powers}});
+  write_file_atomically((folder / "sweep.svg").string(), [&](std::ostream& out) { out << plot; });
+  std::cout << "operator built once for " << sweep.values.size() << " points; total " << std::fixed
+            << std::setprecision(2) << seconds_since(start) << " s\n";
+  std::cout << "wrote " << (folder / "sweep.csv").string() << "\nwrote " << (folder / "sweep.svg").string() << "\n";
+  return 0;
+}
+
+int run_print(const PrintArgs& args) {
+  print_result(std::cout, read_result_json(args.result));
+  return 0;
+}
+
+}  // namespace ilp::cli

@@ -1,0 +1,161 @@
+#include "optimizer/candidate_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+namespace ilp {
+namespace {
+
+// A patch counts as facing down when its normal is within about 2.6 degrees of -z.
+constexpr double kFacingDownCos = 0.999;
+
+// Height of the mounting surface above (x, y): the patch whose top-view triangle
+// holds the point, if any.
+std::optional<double> surface_height(const Scene& scene, const std::vector<int>& patches, const Eigen::Vector2d& xy) {
+  constexpr double kInsideTolerance = 1e-9;
+  for (int index : patches) {
+    const Patch& p = scene.patches[static_cast<std::size_t>(index)];
+    const Eigen::Vector2d a = p.vertices_m[0].head<2>(), b = p.vertices_m[1].head<2>(), c = p.vertices_m[2].head<2>();
+    const double area2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    if (std::abs(area2) <= 0.0) continue;
+    const double l1 = ((b - xy).x() * (c - xy).y() - (b - xy).y() * (c - xy).x()) / area2;
+    const double l2 = ((c - xy).x() * (a - xy).y() - (c - xy).y() * (a - xy).x()) / area2;
+    const double l3 = 1.0 - l1 - l2;
+    if (l1 >= -kInsideTolerance && l2 >= -kInsideTolerance && l3 >= -kInsideTolerance)
+      return l1 * p.vertices_m[0].z() + l2 * p.vertices_m[1].z() + l3 * p.vertices_m[2].z();
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const CandidateGridOptions& options) {
+  if (mounting_surface < 0 || mounting_surface >= static_cast<int>(scene.surfaces.size()))
+    throw std::invalid_argument("mounting surface: no surface with index " + std::to_string(mounting_surface));
+  const std::string& name = scene.surfaces[static_cast<std::size_t>(mounting_surface)].name;
+  if (!(options.spacing_m > 0.0) || !(options.luminaire_size_m > 0.0) || !(options.mount_offset_m > 0.0))
+    throw std::invalid_argument("mounting surface '" + name + "': spacing, luminaire size and offset must be > 0");
+  Eigen::AlignedBox2d box;
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& p = scene.patches[i];
+    if (p.surface != mounting_surface) continue;
+    if (p.normal.z() > -kFacingDownCos) {
+      ++ignored_patches_;
+      continue;
+    }
+    mounting_patches_.push_back(static_cast<int>(i));
+    mounting_area_m2_ += p.area_m2;
+    for (const auto& v : p.vertices_m) box.extend(v.head<2>());
+  }
+  if (mounting_patches_.empty())
+    throw std::invalid_argument("mounting surface '" + name +
+                                "' has no patch facing down: luminaires hang under a horizontal ceiling");
+
+  const double half = 0.5 * options.luminaire_size_m;
+  lower_ = box.min().array() + half;
+  upper_ = box.max().array() - half;
+  if ((upper_.array() < lower_.array()).any())
+    throw std::invalid_argument("mounting surface '" + name + "' is smaller than one luminaire");
+  const Eigen::Vector2d extent = upper_ - lower_;
+  nx_ = std::max(1, static_cast<int>(std::ceil(extent.x() / options.spacing_m - 1e-9)));
+  ny_ = std::max(1, static_cast<int>(std::ceil(extent.y() / options.spacing_m - 1e-9)));
+  step_ = Eigen::Vector2d(extent.x() / nx_, extent.y() / ny_);
+
+  // A candidate exists where the centre and the four corners of the square (just
+  // inside) all lie over the surface.
+  candidate_of_node_.assign(static_cast<std::size_t>((nx_ + 1) * (ny_ + 1)), -1);
+  const double corner = 0.999 * half;
+  for (int j = 0; j <= ny_; ++j)
+    for (int i = 0; i <= nx_; ++i) {
+      const Eigen::Vector2d xy = lower_ + Eigen::Vector2d(i * step_.x(), j * step_.y());
+      const std::optional<double> z = surface_height(scene, mounting_patches_, xy);
+      bool fits = z.has_value();
+      for (const Eigen::Vector2d& d : {Eigen::Vector2d(-corner, -corner), Eigen::Vector2d(corner, -corner),
+                                      Eigen::Vector2d(-corner, corner), Eigen::Vector2d(corner, corner)})
+        fits = fits && surface_height(scene, mounting_patches_, xy + d).has_value();
+      if (!fits) continue;
+      candidate_of_node_[static_cast<std::size_t>(j * (nx_ + 1) + i)] = static_cast<int>(positions_.size());
+      positions_.emplace_back(xy.x(), xy.y(), *z - options.mount_offset_m);
+    }
+  if (positions_.empty())
+    throw std::invalid_argument("mounting surface '" + name + "': no position where a whole " +
+                                std::to_string(options.luminaire_size_m) + " m luminaire fits");
+}
+
+namespace {
+
+// Catmull-Rom weights of the four nodes around a point at fraction t of its cell.
+std::array<double, 4> catmull_rom(double t) {
+  const double t2 = t * t, t3 = t2 * t;
+  return {0.5 * (-t3 + 2 * t2 - t), 0.5 * (3 * t3 - 5 * t2 + 2), 0.5 * (-3 * t3 + 4 * t2 + t), 0.5 * (t3 - t2)};
+}
+
+}  // namespace
+
+GridPoint CandidateGrid::locate(const Eigen::Vector2d& xy_m) const {
+  const Eigen::Vector2d xy = xy_m.cwiseMax(lower_).cwiseMin(upper_);
+  const Eigen::Vector2d cell = ((xy - lower_).array() / step_.array().max(1e-300)).matrix();
+  const int i = std::clamp(static_cast<int>(std::floor(cell.x())), 0, nx_ - 1);
+  const int j = std::clamp(static_cast<int>(std::floor(cell.y())), 0, ny_ - 1);
+  const double u = std::clamp(cell.x() - i, 0.0, 1.0), v = std::clamp(cell.y() - j, 0.0, 1.0);
+  GridPoint out;
+  auto finish = [&](int used) {
+    out.position_m.setZero();
+    for (int k = 0; k < used; ++k)
+      if (out.candidates[k] >= 0) out.position_m += out.weights[k] * positions_[static_cast<std::size_t>(out.candidates[k])];
+    out.position_m.head<2>() = xy;  // the blend's z; x, y as asked
+    return out;
+  };
+  // Catmull-Rom: 4 x 4 nodes, indices clamped at the edges (the weights of a clamped
+  // node add up, so the blend still reproduces constants).
+  {
+    const std::array<double, 4> wx = catmull_rom(u), wy = catmull_rom(v);
+    bool complete = true;
+    int used = 0;
+    for (int b = 0; b < 4 && complete; ++b)
+      for (int a = 0; a < 4 && complete; ++a) {
+        const int c = node(std::clamp(i - 1 + a, 0, nx_), std::clamp(j - 1 + b, 0, ny_));
+        const double w = wx[a] * wy[b];
+        if (w == 0.0) continue;
+        if (c < 0) {
+          complete = false;
+          break;
+        }
+        int slot = 0;
+        while (slot < used && out.candidates[slot] != c) ++slot;
+        if (slot == used) out.candidates[used++] = c;
+        out.weights[slot] += w;
+      }
+    if (complete) return finish(used);
+    out = GridPoint();
+  }
+  const std::array<int, 4> corners{node(i, j), node(i + 1, j), node(i, j + 1), node(i + 1, j + 1)};
+  const std::array<double, 4> weights{(1 - u) * (1 - v), u * (1 - v), (1 - u) * v, u * v};
+  bool complete = true;
+  for (int k = 0; k < 4; ++k) complete = complete && (corners[k] >= 0 || weights[k] == 0.0);
+  if (complete) {
+    for (int k = 0; k < 4; ++k) {
+      if (weights[k] == 0.0) continue;
+      out.candidates[k] = corners[k];
+      out.weights[k] = weights[k];
+    }
+    return finish(4);
+  }
+  // Off the surface (or over a hole): the nearest candidate.
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < positions_.size(); ++c) {
+    const double d = (positions_[c].head<2>() - xy_m).squaredNorm();
+    if (d < best) {
+      best = d;
+      out.candidates[0] = static_cast<int>(c);
+    }
+  }
+  out.weights[0] = 1.0;
+  out.position_m = positions_[static_cast<std::size_t>(out.candidates[0])];
+  return out;
+}
+
+}  // namespace ilp

@@ -1,0 +1,82 @@
+// Where luminaires may go: a regular grid of candidate positions on a mounting
+// surface that faces down (a ceiling). The operator gets one column of T per
+// candidate; a luminaire between candidates gets a blend of the columns around it,
+// which makes positions continuous for the search.
+//
+// The blend is Catmull-Rom (bicubic, 16 candidates): it reproduces the candidates
+// exactly, is continuous with its slope, and can peak between candidates, which a
+// bilinear blend cannot (its maximum over a cell is always at a corner, so a search
+// on it would snap luminaires to the grid). A luminaire's light at a receiver varies
+// smoothly with its position on the scale of the mounting height (cos^4 / h^2 falls
+// off over about h), and the spacing is kept well below it; the verification places
+// the real luminaires and measures what the blend missed. Near holes in the grid the
+// blend falls back to bilinear, then to the nearest candidate.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace ilp {
+
+struct CandidateGridOptions {
+  double spacing_m = 0.5;       // at most this between neighbouring candidates
+  double luminaire_size_m = 0.6;  // the whole square must lie on the surface
+  double mount_offset_m = 0.02;   // the emitting face hangs this far below the surface
+};
+
+// One point of a continuous layout, resolved against the grid.
+struct GridPoint {
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // where the luminaire is (snapped onto the surface if it was off it)
+  static constexpr int kMaxCandidates = 16;
+  std::array<int, kMaxCandidates> candidates;     // columns blended (-1: unused)
+  std::array<double, kMaxCandidates> weights;     // summing to 1 (Catmull-Rom weights can be negative)
+  GridPoint() {
+    candidates.fill(-1);
+    weights.fill(0.0);
+  }
+};
+
+class CandidateGrid {
+ public:
+  // Throws std::invalid_argument naming the surface if it has no patch facing down
+  // or no position where a whole luminaire fits.
+  CandidateGrid(const Scene& scene, int mounting_surface, const CandidateGridOptions& options);
+  CandidateGrid() = default;  // empty: no candidates
+
+  std::size_t size() const { return positions_.size(); }
+  // Centre of the emitting face of each candidate (z: surface height - offset), m.
+  const std::vector<Eigen::Vector3d>& positions_m() const { return positions_; }
+  // Where centres may lie: [lower, upper] in x and y, m.
+  Eigen::Vector2d lower_m() const { return lower_; }
+  Eigen::Vector2d upper_m() const { return upper_; }
+  Eigen::Vector2d spacing_m() const { return step_; }
+  int nodes_x() const { return nx_ + 1; }
+  int nodes_y() const { return ny_ + 1; }
+  // Patches of the mounting surface facing down (the ones candidates sit under).
+  const std::vector<int>& mounting_patches() const { return mounting_patches_; }
+  std::size_t ignored_patches() const { return ignored_patches_; }  // of the surface, not facing down
+  double mounting_area_m2() const { return mounting_area_m2_; }     // of the patches facing down
+
+  // The blend for a centre at (x, y), clamped to the grid's extent: Catmull-Rom over
+  // the 4 x 4 candidates around its cell when all exist (indices clamped at the
+  // grid's edges), else bilinear over the cell's four, else the nearest candidate
+  // (positions off the surface snap to it).
+  GridPoint locate(const Eigen::Vector2d& xy_m) const;
+
+ private:
+  int node(int i, int j) const { return candidate_of_node_[static_cast<std::size_t>(j * (nx_ + 1) + i)]; }
+
+  Eigen::Vector2d lower_, upper_, step_;
+  int nx_ = 0, ny_ = 0;                  // cells per axis
+  std::vector<int> candidate_of_node_;   // -1 where no luminaire fits
+  std::vector<Eigen::Vector3d> positions_;
+  std::vector<int> mounting_patches_;
+  std::size_t ignored_patches_ = 0;
+  double mounting_area_m2_ = 0.0;
+};
+
+}  // namespace ilp

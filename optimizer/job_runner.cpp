@@ -1,0 +1,272 @@
+#include "optimizer/job_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/exact_solver.h"
+#include "core/operator_setup.h"
+#include "core/sample_operator.h"
+
+namespace ilp {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The verification's rays are independent of the operator's.
+constexpr std::uint64_t kVerificationSeedSalt = 0x5EED5EEDull;
+
+Verification verify(const PreparedJob& prepared, const JobConfig& job, const std::vector<PlacedLuminaire>& layout,
+                    const ProgressCallback& progress) {
+  Verification out;
+  const VerificationSettings& settings = job.verification;
+  if (settings.method == VerificationMethod::none) return out;
+  const auto start = Clock::now();
+  Scene scene = prepared.loaded.scene;
+  for (std::size_t j = 0; j < layout.size(); ++j)
+    add_square_luminaire(scene, luminaire_name(j), layout[j].position_m, job.luminaire_size_m,
+                         layout[j].flux_lm);
+  const bool exact = settings.method == VerificationMethod::exact ||
+                     (settings.method == VerificationMethod::automatic && scene.patches.size() <= settings.max_exact_patches);
+  out.rays_per_patch = settings.rays_per_patch;
+  if (exact) {
+    ExactSolveOptions options{job.form_factors, job.direct_light, job.radiosity};
+    options.form_factors.rays_per_patch = settings.rays_per_patch;
+    options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
+    options.direct_light.seed = options.form_factors.seed;
+    const ExactSolution solution = solve_exact(scene, options, progress);
+    out.method = "exact";
+    out.patches = scene.all_patches();
+    out.lux = solution.radiosity.total_lux;
+    out.direct_lux = solution.radiosity.direct_lux;
+  } else {
+    const RayCaster caster(scene, job.form_factors.threads);
+    const std::vector<LightSource> sources = scene_light_sources(scene);
+    SampleOperatorOptions options = sample_operator_options(job);
+    options.form_factors.rays_per_patch = settings.rays_per_patch;
+    options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
+    options.direct_light.seed = options.form_factors.seed;
+    options.sample_seed = job.sample.seed ^ kVerificationSeedSalt;
+    const std::size_t population = reflecting_patches(scene).size();
+    options.sample_size = std::max(1, static_cast<int>(std::lround(settings.sample_fraction * static_cast<double>(population))));
+    const GoalRows rows = compute_goal_rows(scene, caster, prepared.model.goal_patches, sources, options, progress);
+    const SampleOperator op = build_sample_operator(scene, caster, rows, options, progress);
+    const Eigen::VectorXd flux = source_flux_lm(scene, sources);
+    out.method = "sample";
+    out.sample_size = op.stats.direct_only ? 0 : static_cast<int>(op.stats.sample_patches);
+    out.patches = prepared.model.goal_patches;
+    out.lux = op.illuminance_lux(flux);
+    out.direct_lux = op.direct_lux(flux);
+  }
+  out.seconds = seconds_since(start);
+  return out;
+}
+
+// Illuminance at the model's goal patches from a verification over `patches`.
+Eigen::VectorXd at_goal_patches(const LightingModel& model, const Verification& v) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(model.goal_patches.size()));
+  std::size_t k = 0;
+  for (std::size_t r = 0; r < model.goal_patches.size(); ++r) {
+    while (v.patches[k] < model.goal_patches[r]) ++k;  // both ascending; the goal patches are among them
+    out[static_cast<Eigen::Index>(r)] = v.lux[static_cast<Eigen::Index>(k)];
+  }
+  return out;
+}
+
+// The flux scale that makes the verified values just meet the lower-bound goals
+// (min_power) or fit the average targets best (closest_to_target): illuminance is
+// linear in flux, so scaling every flux scales the verified values exactly.
+double verified_flux_scale(const JobConfig& job, const std::vector<GoalJudgement>& verified,
+                           const std::vector<PlacedLuminaire>& layout) {
+  double scale = 0.0, num = 0.0, den = 0.0;
+  for (const GoalJudgement& g : verified) {
+    if (g.metric == GoalMetric::average && job.objective == Objective::closest_to_target) {
+      num += g.value / g.target;
+      den += g.value * g.value / (g.target * g.target);
+    } else if ((g.metric == GoalMetric::average || g.metric == GoalMetric::minimum) && g.target > 0.0) {
+      if (!(g.value > 0.0)) return 1.0;
+      scale = std::max(scale, g.target / g.value);
+    }
+  }
+  if (job.objective == Objective::closest_to_target) scale = den > 0.0 ? num / den : 1.0;
+  if (!(scale > 0.0)) return 1.0;
+  double flux_high = 0.0, flux_low = std::numeric_limits<double>::infinity();
+  for (const PlacedLuminaire& l : layout) {
+    flux_high = std::max(flux_high, l.flux_lm);
+    flux_low = std::min(flux_low, l.flux_lm);
+  }
+  if (flux_high > 0.0) scale = std::min(scale, job.search->flux_max_lm / flux_high);
+  if (flux_low > 0.0) scale = std::max(scale, job.search->flux_min_lm / flux_low);
+  return scale;
+}
+
+}  // namespace
+
+std::string luminaire_name(std::size_t j) {
+  std::string name = "L";  // (not "L" + ...: GCC 12 warns falsely on operator+(const char*, string&&))
+  return name.append(std::to_string(j + 1));
+}
+
+PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress) {
+  if (!job.search)
+    throw ConfigError(job.path + ": luminaires.mounting_surface is missing: an inverse job says where luminaires may "
+                                 "go (see docs/user-guide.md)");
+  if (job.goals.empty()) throw ConfigError(job.path + ": goals are missing: an inverse job says what surfaces must receive");
+  PreparedJob out;
+  out.job = job;
+  auto start = Clock::now();
+  out.loaded = load_job_scene(job);
+  out.scene_seconds = seconds_since(start);
+  start = Clock::now();
+  out.caster = std::make_unique<RayCaster>(out.loaded.scene, job.form_factors.threads);
+  out.bvh_seconds = seconds_since(start);
+  out.model = build_lighting_model(out.loaded.scene, *out.caster, job, progress);
+  return out;
+}
+
+namespace {
+
+// One search (with the search targets of `search_job`) and its verification, judged
+// against the real targets of `job`.
+JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, const JobConfig& search_job,
+                             const ProgressCallback& progress) {
+  const LightingModel& model = prepared.model;
+  JobOutcome out;
+  out.search = search_layout(model, search_job, progress);
+  const LayoutEvaluation& best = out.search.best;
+  out.luminaires = best.luminaires;
+  out.predicted_lux = best.lux;
+  {
+    Eigen::VectorXd a = model.fixed_direct_lux;
+    for (const PlacedLuminaire& l : best.luminaires)
+      for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
+        if (l.blend.candidates[k] >= 0)
+          a += (l.flux_lm * l.blend.weights[k]) * model.candidate_direct_lux_per_lm.col(l.blend.candidates[k]);
+    out.predicted_direct_lux = a.cwiseMax(0.0);
+  }
+  // Met as predicted is judged on the search's own layout, before any flux correction.
+  const std::vector<GoalJudgement> as_searched = judge_goals(model, job, out.predicted_lux);
+  std::vector<GoalJudgement> predicted = as_searched;
+
+  out.verification = verify(prepared, job, out.luminaires, progress);
+  out.verify_seconds = out.verification.seconds;
+  std::optional<std::vector<GoalJudgement>> verified;
+  if (out.verification.method != "none") {
+    verified = judge_goals(model, job, at_goal_patches(model, out.verification));
+    // Without fixed sources every illuminance is proportional to the common flux scale.
+    const bool no_fixed = model.fixed_lux.cwiseAbs().maxCoeff() == 0.0;
+    if (no_fixed && !out.luminaires.empty()) {
+      out.flux_correction = verified_flux_scale(job, *verified, out.luminaires);
+      if (std::abs(out.flux_correction - 1.0) > 1e-12) {
+        for (PlacedLuminaire& l : out.luminaires) {
+          l.flux_lm *= out.flux_correction;
+          l.power_w *= out.flux_correction;
+        }
+        out.predicted_lux *= out.flux_correction;
+        out.predicted_direct_lux *= out.flux_correction;
+        out.verification.lux *= out.flux_correction;
+        out.verification.direct_lux *= out.flux_correction;
+        predicted = judge_goals(model, job, out.predicted_lux);
+        verified = judge_goals(model, job, at_goal_patches(model, out.verification));
+      }
+    }
+  }
+  for (const PlacedLuminaire& l : out.luminaires) out.power_w += l.power_w;
+  out.fixed_flux_lm = model.fixed_flux_lm;
+  out.mounting_area_m2 = model.grid.mounting_area_m2();
+  out.power_density_w_per_m2 = out.mounting_area_m2 > 0.0 ? out.power_w / out.mounting_area_m2 : 0.0;
+  // Feasible as predicted: against the real targets, with the distance constraint.
+  out.feasible = best.distance_violation <= 1e-4;
+  out.all_met = out.feasible;
+  for (std::size_t g = 0; g < predicted.size(); ++g) {
+    GoalOutcome o;
+    o.predicted = predicted[g];
+    o.tolerance = goal_tolerance(job, predicted[g].metric);
+    // The closed-form scale meets goals to round-off; allow for it.
+    const bool predicted_met = as_searched[g].violation <= o.tolerance + 1e-9;
+    if (!(job.objective == Objective::closest_to_target && predicted[g].metric == GoalMetric::average))
+      out.feasible = out.feasible && predicted_met;
+    if (verified) {
+      o.verified = (*verified)[g];
+      o.met = o.verified->violation <= o.tolerance + 1e-9;
+      o.fails_only_on_verification = predicted_met && !o.met;
+    } else {
+      o.met = predicted_met;
+    }
+    out.all_met = out.all_met && o.met;
+    out.goals.push_back(o);
+  }
+  return out;
+}
+
+double total_missed(const JobOutcome& o) {
+  double sum = 0.0;
+  for (const GoalOutcome& g : o.goals) sum += (g.verified ? g.verified->violation : g.predicted.violation);
+  return sum;
+}
+
+// Is a better than b? Every goal met first, then less power (min_power) or less
+// deviation; otherwise less missed.
+bool better_outcome(const JobOutcome& a, const JobOutcome& b, Objective objective) {
+  if (a.all_met != b.all_met) return a.all_met;
+  if (a.all_met && objective == Objective::min_power) return a.power_w < b.power_w;
+  return total_missed(a) < total_missed(b);
+}
+
+}  // namespace
+
+JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress) {
+  JobConfig search_job = job;
+  std::optional<JobOutcome> best;
+  const int rounds = job.verification.method == VerificationMethod::none ? 1 : job.verification.rounds;
+  int searches = 0, evaluations = 0;
+  double search_seconds = 0.0, verify_seconds = 0.0;
+  for (int round = 0; round < rounds; ++round) {
+    JobOutcome outcome = search_and_verify(prepared, job, search_job, progress);
+    ++searches;
+    evaluations += outcome.search.evaluations;
+    search_seconds += outcome.search.seconds;
+    verify_seconds += outcome.verify_seconds;
+    // Defect correction: a goal that fails on verification is searched for again with
+    // its target scaled by how far the prediction overshot the verified value.
+    bool recalibrated = false;
+    for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
+      const GoalOutcome& o = outcome.goals[g];
+      if (o.met || !o.verified || !(o.verified->value > 0.0) || !(o.predicted.value > 0.0)) continue;
+      if (job.objective == Objective::closest_to_target && o.predicted.metric == GoalMetric::average) continue;
+      GoalSetting& goal = search_job.goals[g];
+      constexpr double kMargin = 0.002;  // aim just past the target, not at it
+      const double ratio = o.predicted.value / o.verified->value;
+      const double next = o.predicted.metric == GoalMetric::maximum
+                              ? std::min(goal.target, job.goals[g].target * ratio * (1.0 - kMargin))
+                              : std::max(goal.target, job.goals[g].target * ratio * (1.0 + kMargin));
+      if (next == goal.target) continue;
+      goal.target = o.predicted.metric == GoalMetric::uniformity ? std::min(next, 1.0) : next;
+      std::ostringstream line;
+      line << std::setprecision(4) << "round " << round + 1 << ": " << goal.name << " " << to_string(goal.metric)
+           << " predicted " << o.predicted.value << ", verified " << o.verified->value << "; the next search aims at "
+           << goal.target << " for " << job.goals[g].target;
+      outcome.calibration.push_back(line.str());
+      recalibrated = true;
+    }
+    std::vector<std::string> calibration = best ? best->calibration : std::vector<std::string>{};
+    calibration.insert(calibration.end(), outcome.calibration.begin(), outcome.calibration.end());
+    const bool done = outcome.all_met || !recalibrated;
+    if (!best || better_outcome(outcome, *best, job.objective)) best = std::move(outcome);
+    best->calibration = std::move(calibration);
+    if (done) break;
+  }
+  best->searches = searches;
+  best->search.evaluations = evaluations;
+  best->search.seconds = search_seconds;
+  best->verify_seconds = verify_seconds;
+  return std::move(*best);
+}
+
+}  // namespace ilp

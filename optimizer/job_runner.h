@@ -1,0 +1,82 @@
+// An inverse-lighting job from start to finish: the scene and the lighting model
+// (built once, shared by every sweep point), the layout search, and the verification
+// that places the luminaires found as real ones and solves again with the exact
+// direct light and a high-accuracy indirect term.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/config.h"
+#include "core/job.h"
+#include "core/progress.h"
+#include "core/ray_caster.h"
+#include "optimizer/layout_search.h"
+#include "optimizer/lighting_model.h"
+
+namespace ilp {
+
+// The expensive part, independent of goal targets.
+struct PreparedJob {
+  JobConfig job;
+  JobScene loaded;
+  std::unique_ptr<RayCaster> caster;
+  LightingModel model;
+  double scene_seconds = 0.0;  // mesh loading and meshing
+  double bvh_seconds = 0.0;
+};
+
+// Throws ConfigError when the job does not describe an inverse problem (no
+// luminaires.mounting_surface or no goals), naming the file.
+PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress = {});
+
+struct GoalOutcome {
+  GoalJudgement predicted;                 // through the operator
+  std::optional<GoalJudgement> verified;   // through the verification solve
+  bool met = false;                        // judged on the verified value (predicted if unverified)
+  bool fails_only_on_verification = false;
+  double tolerance = 0.0;                  // relative violation accepted as met
+};
+
+struct Verification {
+  std::string method = "none";  // "exact", "sample" or "none"
+  int rays_per_patch = 0;
+  int sample_size = 0;          // sample method: k
+  double seconds = 0.0;
+  std::vector<int> patches;     // where lux is known: every patch (exact) or the goal patches (sample)
+  Eigen::VectorXd lux, direct_lux;
+};
+
+struct JobOutcome {
+  std::vector<PlacedLuminaire> luminaires;  // named L1, L2, ... in this order
+  std::vector<GoalOutcome> goals;
+  double power_w = 0.0;                     // of the luminaires placed
+  double fixed_flux_lm = 0.0;               // placed in the config (not counted in power_w)
+  double mounting_area_m2 = 0.0;            // for the power density
+  double power_density_w_per_m2 = 0.0;      // power_w / mounting_area_m2
+  bool feasible = false;                    // predicted: every constraint met
+  bool all_met = false;                     // judged as `met` is
+  double flux_correction = 1.0;             // every flux was scaled by this after verification
+  SearchResult search;
+  Verification verification;
+  Eigen::VectorXd predicted_lux, predicted_direct_lux;  // at model.goal_patches
+  double verify_seconds = 0.0;             // all verification rounds
+  int searches = 1;                         // search rounds run (see VerificationSettings::rounds)
+  std::vector<std::string> calibration;     // what each round changed in the search targets
+};
+
+// "L1", "L2", ...: the name of the j-th (0-based) luminaire of a layout.
+std::string luminaire_name(std::size_t j);
+
+// Searches and verifies with `job`'s goals. When a goal fails only on verification,
+// searches again (up to job.verification.rounds in all) with that goal's search
+// target scaled by predicted / verified, and returns the best round: every goal met
+// and least power first. search.evaluations, search.seconds and verify_seconds add
+// up all rounds; search.attempts are the returned round's. `job`'s goals may differ
+// from prepared.job's in targets, as in a sweep; the goal surfaces must be the same.
+JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress = {});
+
+}  // namespace ilp

@@ -1,0 +1,420 @@
+#include "optimizer/layout_search.h"
+
+#include <nlopt.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include "core/error.h"
+
+namespace ilp {
+namespace {
+
+constexpr double kPenaltyWeight = 10.0;
+// A constraint counts as met up to this relative violation (round-off of the closed-form scale).
+constexpr double kConstraintTolerance = 1e-4;
+// closest_to_target: an average goal within this of its target counts as met.
+constexpr double kTargetTolerance = 0.05;
+
+using Clock = std::chrono::steady_clock;
+
+bool is_lower_bound(GoalMetric m) { return m != GoalMetric::maximum; }
+
+std::vector<int> goal_areas(const LightingModel& model, const JobConfig& job) {
+  std::vector<int> out;
+  for (const GoalSetting& g : job.goals) {
+    const int a = find_goal_area(model, g.name);
+    if (a < 0) throw std::invalid_argument("goal '" + g.name + "' is not in the lighting model");
+    out.push_back(a);
+  }
+  return out;
+}
+
+double area_average(const GoalArea& area, const Eigen::VectorXd& lux) {
+  double sum = 0.0;
+  for (std::size_t r = 0; r < area.rows.size(); ++r) sum += area.area_weights[static_cast<Eigen::Index>(r)] * lux[area.rows[r]];
+  return sum;
+}
+
+// One search variable layout: how a point x of the search space becomes positions
+// and relative fluxes.
+class LayoutCoding {
+ public:
+  LayoutCoding(const LightingModel& model, const JobConfig& job, int luminaires) : job_(job), n_(luminaires) {
+    const LuminaireSearch& s = *job.search;
+    lo_ = model.grid.lower_m();
+    hi_ = model.grid.upper_m();
+    if (s.layout == LayoutFamily::free) {
+      const double w_lo = s.flux_max_lm > 0.0 ? s.flux_min_lm / s.flux_max_lm : 0.0;
+      for (int j = 0; j < n_; ++j) {
+        lower_.insert(lower_.end(), {lo_.x(), lo_.y(), w_lo});
+        upper_.insert(upper_.end(), {hi_.x(), hi_.y(), 1.0});
+      }
+      // Start: spread evenly over the surface in a near-square arrangement.
+      const Eigen::Vector2d extent = hi_ - lo_ + Eigen::Vector2d::Constant(1e-9);
+      int columns = std::clamp(static_cast<int>(std::lround(std::sqrt(n_ * extent.x() / extent.y()))), 1, n_);
+      const int rows = (n_ + columns - 1) / columns;
+      for (int j = 0; j < n_; ++j) {
+        const int c = j % columns, r = j / columns;
+        const int in_row = std::min(columns, n_ - r * columns);
+        initial_.insert(initial_.end(), {lo_.x() + (c + 0.5) / in_row * (hi_.x() - lo_.x()),
+                                         lo_.y() + (r + 0.5) / rows * (hi_.y() - lo_.y()), 1.0});
+      }
+      return;
+    }
+    // Array: per axis an offset (first centre) and a spacing, each fixed or searched.
+    const Eigen::Vector2d surface_min = lo_ - Eigen::Vector2d::Constant(0.5 * job.luminaire_size_m);
+    const int counts[2] = {s.array_columns, s.array_rows};
+    for (int axis = 0; axis < 2; ++axis) {
+      Axis& a = axes_[axis];
+      a.count = counts[axis];
+      a.lo = lo_[axis];
+      a.hi = hi_[axis];
+      if (s.array_offset_m) a.offset = surface_min[axis] + (*s.array_offset_m)[axis];
+      if (s.array_spacing_m) a.spacing = (*s.array_spacing_m)[axis];
+      const double tolerance = 1e-9 * (1.0 + std::abs(a.hi));
+      if (a.offset && (*a.offset < a.lo - tolerance || *a.offset > a.hi + tolerance))
+        throw ConfigError(located(s.layout_loc, "luminaires.array.offset_m: the first luminaire would not lie wholly on '" +
+                                                    s.mounting_surface + "'"));
+      const double reach = a.spacing ? *a.spacing * (a.count - 1) : 0.0;
+      if (a.offset && a.spacing && *a.offset + reach > a.hi + tolerance)
+        throw ConfigError(located(s.layout_loc, "luminaires.array: the array does not fit on '" + s.mounting_surface + "'"));
+      if (a.spacing && !a.offset && a.lo + reach > a.hi + tolerance)
+        throw ConfigError(located(s.layout_loc, "luminaires.array.spacing_m: the array is wider than '" +
+                                                    s.mounting_surface + "'"));
+      const double even = (a.hi - a.lo) / a.count;
+      if (!a.offset) {
+        a.offset_var = static_cast<int>(lower_.size());
+        lower_.push_back(a.lo);
+        upper_.push_back(a.spacing ? a.hi - reach : a.hi);
+        initial_.push_back(std::min(upper_.back(), a.lo + 0.5 * even));
+      }
+      if (!a.spacing && a.count > 1) {
+        a.spread_var = static_cast<int>(lower_.size());
+        lower_.push_back(0.0);
+        upper_.push_back(1.0);
+        const double first = a.offset ? *a.offset : initial_[static_cast<std::size_t>(a.offset_var)];
+        initial_.push_back(a.hi > first ? std::clamp(even * (a.count - 1) / (a.hi - first), 0.0, 1.0) : 0.0);
+      }
+    }
+  }
+
+  int dimension() const { return static_cast<int>(lower_.size()); }
+  const std::vector<double>& lower() const { return lower_; }
+  const std::vector<double>& upper() const { return upper_; }
+  const std::vector<double>& initial() const { return initial_; }
+
+  void decode(const double* x, std::vector<Eigen::Vector2d>& xy, std::vector<double>& w) const {
+    xy.resize(static_cast<std::size_t>(n_));
+    w.resize(static_cast<std::size_t>(n_));
+    if (job_.search->layout == LayoutFamily::free) {
+      for (int j = 0; j < n_; ++j) {
+        xy[static_cast<std::size_t>(j)] = Eigen::Vector2d(x[3 * j], x[3 * j + 1]);
+        w[static_cast<std::size_t>(j)] = x[3 * j + 2];
+      }
+      return;
+    }
+    double first[2], step[2];
+    for (int axis = 0; axis < 2; ++axis) {
+      const Axis& a = axes_[axis];
+      first[axis] = a.offset ? *a.offset : x[a.offset_var];
+      step[axis] = a.spacing ? *a.spacing
+                   : a.count > 1 ? x[a.spread_var] * std::max(0.0, a.hi - first[axis]) / (a.count - 1)
+                                 : 0.0;
+    }
+    int j = 0;
+    for (int r = 0; r < axes_[1].count; ++r)
+      for (int c = 0; c < axes_[0].count; ++c, ++j) {
+        xy[static_cast<std::size_t>(j)] = Eigen::Vector2d(first[0] + c * step[0], first[1] + r * step[1]);
+        w[static_cast<std::size_t>(j)] = 1.0;  // one flux for the whole array
+      }
+  }
+
+ private:
+  struct Axis {
+    int count = 1;
+    double lo = 0.0, hi = 0.0;
+    std::optional<double> offset, spacing;
+    int offset_var = -1, spread_var = -1;  // spacing = spread * (hi - offset) / (count - 1)
+  };
+  const JobConfig& job_;
+  int n_ = 0;
+  Eigen::Vector2d lo_, hi_;
+  Axis axes_[2];
+  std::vector<double> lower_, upper_, initial_;
+};
+
+class Evaluator {
+ public:
+  Evaluator(const LightingModel& model, const JobConfig& job)
+      : model_(model), job_(job), areas_(goal_areas(model, job)) {}
+
+  LayoutEvaluation operator()(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& w) const {
+    const LuminaireSearch& s = *job_.search;
+    const std::size_t n = xy.size();
+    LayoutEvaluation out;
+    out.luminaires.resize(n);
+    Eigen::VectorXd a = Eigen::VectorXd::Zero(model_.candidate_lux_per_lm.rows());
+    for (std::size_t j = 0; j < n; ++j) {
+      PlacedLuminaire& lum = out.luminaires[j];
+      lum.blend = model_.grid.locate(xy[j]);
+      lum.position_m = lum.blend.position_m;
+      for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
+        if (lum.blend.candidates[k] >= 0)
+          a.noalias() += (w[j] * lum.blend.weights[k]) * model_.candidate_lux_per_lm.col(lum.blend.candidates[k]);
+    }
+    // Catmull-Rom weights can be negative: at a sharp shadow edge the blend may dip below 0.
+    a = a.cwiseMax(0.0);
+    const Eigen::VectorXd& f = model_.fixed_lux;
+    const double w_max = n ? *std::max_element(w.begin(), w.end()) : 0.0;
+    const double w_min = n ? *std::min_element(w.begin(), w.end()) : 0.0;
+    const double scale_hi = w_max > 0.0 ? s.flux_max_lm / w_max : 0.0;
+    const double scale_lo = w_min > 0.0 ? std::min(scale_hi, s.flux_min_lm / w_min) : 0.0;
+    double scale = 0.0;
+    if (job_.objective == Objective::min_power) {
+      for (std::size_t g = 0; g < job_.goals.size(); ++g) {
+        const GoalSetting& goal = job_.goals[g];
+        const GoalArea& area = model_.areas[static_cast<std::size_t>(areas_[g])];
+        if (goal.metric == GoalMetric::average) {
+          const double deficit = goal.target - area_average(area, f), gain = area_average(area, a);
+          if (deficit > 0.0) scale = std::max(scale, gain > 0.0 ? deficit / gain : std::numeric_limits<double>::infinity());
+        } else if (goal.metric == GoalMetric::minimum) {
+          for (Eigen::Index r : area.rows) {
+            const double deficit = goal.target - f[r];
+            if (deficit > 0.0) scale = std::max(scale, a[r] > 0.0 ? deficit / a[r] : std::numeric_limits<double>::infinity());
+          }
+        }
+      }
+    } else {
+      double num = 0.0, den = 0.0;
+      for (std::size_t g = 0; g < job_.goals.size(); ++g) {
+        const GoalSetting& goal = job_.goals[g];
+        if (goal.metric != GoalMetric::average) continue;
+        const GoalArea& area = model_.areas[static_cast<std::size_t>(areas_[g])];
+        const double t2 = goal.target * goal.target, gain = area_average(area, a);
+        num += (goal.target - area_average(area, f)) * gain / t2;
+        den += gain * gain / t2;
+      }
+      scale = den > 0.0 ? std::max(0.0, num / den) : scale_hi;
+    }
+    scale = std::clamp(scale, scale_lo, scale_hi);
+
+    out.lux = f + scale * a;
+    out.goals = judge_goals(model_, job_, out.lux);
+    for (std::size_t j = 0; j < n; ++j) {
+      out.luminaires[j].flux_lm = scale * w[j];
+      out.luminaires[j].power_w = out.luminaires[j].flux_lm / s.efficacy_lm_per_w;
+      out.power_w += out.luminaires[j].power_w;
+    }
+    const double d_min = job_.constraints.min_distance_m;
+    if (d_min > 0.0)
+      for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t k = j + 1; k < n; ++k) {
+          const double d = (out.luminaires[j].position_m - out.luminaires[k].position_m).head<2>().norm();
+          if (d < d_min) out.distance_violation += (d_min - d) / d_min;
+        }
+    double penalty = out.distance_violation, deviation = 0.0;
+    out.feasible = out.distance_violation <= kConstraintTolerance;
+    for (const GoalJudgement& g : out.goals) {
+      if (job_.objective == Objective::closest_to_target && g.metric == GoalMetric::average) {
+        deviation += g.violation * g.violation;
+        continue;
+      }
+      penalty += g.violation;
+      out.feasible = out.feasible && g.violation <= kConstraintTolerance;
+    }
+    const double reference_power_w = std::max(1e-300, static_cast<double>(n) * s.flux_max_lm / s.efficacy_lm_per_w);
+    out.objective = (job_.objective == Objective::min_power ? out.power_w / reference_power_w : deviation) +
+                    kPenaltyWeight * penalty;
+    return out;
+  }
+
+ private:
+  const LightingModel& model_;
+  const JobConfig& job_;
+  std::vector<int> areas_;
+};
+
+std::string stop_reason(nlopt::result r) {
+  switch (r) {
+    case nlopt::SUCCESS: return "converged";
+    case nlopt::STOPVAL_REACHED: return "stop value reached";
+    case nlopt::FTOL_REACHED: return "objective tolerance reached";
+    case nlopt::XTOL_REACHED: return "step tolerance reached";
+    case nlopt::MAXEVAL_REACHED: return "evaluation budget used";
+    case nlopt::MAXTIME_REACHED: return "time budget used";
+    default: return "stopped (" + std::to_string(static_cast<int>(r)) + ")";
+  }
+}
+
+// Is a better than b (possibly with another luminaire count)? Feasible first; then
+// power (min_power) or the objective; infeasible ones by the objective, which their
+// penalty dominates.
+bool better(const LayoutEvaluation& a, const LayoutEvaluation& b, Objective objective) {
+  if (a.feasible != b.feasible) return a.feasible;
+  if (a.feasible && objective == Objective::min_power) return a.power_w < b.power_w;
+  return a.objective < b.objective;
+}
+
+struct Stage {
+  std::string stop;
+  bool time_limited = false;
+};
+
+}  // namespace
+
+double goal_tolerance(const JobConfig& job, GoalMetric metric) {
+  return job.objective == Objective::closest_to_target && metric == GoalMetric::average ? kTargetTolerance
+                                                                                         : kConstraintTolerance;
+}
+
+std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConfig& job, const Eigen::VectorXd& lux) {
+  const std::vector<int> areas = goal_areas(model, job);
+  std::vector<GoalJudgement> out;
+  for (std::size_t g = 0; g < job.goals.size(); ++g) {
+    const GoalSetting& goal = job.goals[g];
+    const GoalArea& area = model.areas[static_cast<std::size_t>(areas[g])];
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (Eigen::Index r : area.rows) {
+      low = std::min(low, lux[r]);
+      high = std::max(high, lux[r]);
+    }
+    const double average = area_average(area, lux);
+    GoalJudgement j{goal.name, goal.metric, goal.target, 0.0, 0.0};
+    switch (goal.metric) {
+      case GoalMetric::average: j.value = average; break;
+      case GoalMetric::minimum: j.value = low; break;
+      case GoalMetric::maximum: j.value = high; break;
+      case GoalMetric::uniformity: j.value = average > 0.0 ? low / average : 0.0; break;
+    }
+    if (goal.target > 0.0) {
+      if (job.objective == Objective::closest_to_target && goal.metric == GoalMetric::average)
+        j.violation = std::abs(j.value - goal.target) / goal.target;
+      else if (is_lower_bound(goal.metric))
+        j.violation = std::max(0.0, (goal.target - j.value) / goal.target);
+      else
+        j.violation = std::max(0.0, (j.value - goal.target) / goal.target);
+    }
+    out.push_back(j);
+  }
+  return out;
+}
+
+LayoutEvaluation evaluate_layout(const LightingModel& model, const JobConfig& job,
+                                 const std::vector<Eigen::Vector2d>& xy_m, const std::vector<double>& relative_flux) {
+  if (!job.search) throw std::invalid_argument("the job places no luminaires (no luminaires.mounting_surface)");
+  if (xy_m.size() != relative_flux.size()) throw std::invalid_argument("evaluate_layout: one flux per position");
+  return Evaluator(model, job)(xy_m, relative_flux);
+}
+
+SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress) {
+  if (!job.search) throw std::invalid_argument("the job places no luminaires (no luminaires.mounting_surface)");
+  const LuminaireSearch& s = *job.search;
+  const OptimizerSettings& opt = job.optimizer;
+  const auto start = Clock::now();
+  const auto deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(opt.max_seconds));
+  std::vector<int> counts;
+  if (s.layout == LayoutFamily::array) {
+    counts.push_back(s.array_rows * s.array_columns);
+  } else {
+    const int most = job.constraints.max_luminaires ? std::min(s.count_max, *job.constraints.max_luminaires) : s.count_max;
+    for (int n = s.count_min; n <= most; ++n) counts.push_back(n);
+  }
+  if (counts.empty()) throw std::invalid_argument("no luminaire count is allowed by luminaires.count and constraints.max_luminaires");
+
+  const Evaluator evaluate(model, job);
+  SearchResult result;
+  std::optional<LayoutEvaluation> best;
+  for (std::size_t attempt = 0; attempt < counts.size(); ++attempt) {
+    const int n = counts[attempt];
+    const LayoutCoding coding(model, job, n);
+    const auto attempt_start = Clock::now();
+    std::vector<Eigen::Vector2d> xy;
+    std::vector<double> w;
+    std::vector<double> best_x = coding.initial();
+    double best_f = std::numeric_limits<double>::infinity();
+    int evaluations = 0;
+    // Every evaluation goes through here, so the best point is kept even when NLopt
+    // stops on an exception or returns a point it did not evaluate last.
+    auto objective = [&](const double* x) {
+      coding.decode(x, xy, w);
+      const double f = evaluate(xy, w).objective;
+      ++evaluations;
+      if (f < best_f) {
+        best_f = f;
+        best_x.assign(x, x + coding.dimension());
+      }
+      if (progress && evaluations % 256 == 0)
+        progress("search " + std::to_string(n) + " luminaires", static_cast<std::size_t>(evaluations),
+                 static_cast<std::size_t>(opt.max_evaluations + opt.local_max_evaluations));
+      return f;
+    };
+    CountAttempt record;
+    record.luminaires = n;
+    if (coding.dimension() == 0) {
+      objective(nullptr);
+      record.global_stop = record.local_stop = "nothing to search (layout fixed)";
+    } else {
+      auto run_stage = [&](const std::string& algorithm, int budget, bool local) -> Stage {
+        if (algorithm == "none") return {"skipped", false};
+        const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
+        if (remaining <= 0.0) return {"no time left", true};
+        nlopt::opt stage(algorithm.c_str(), static_cast<unsigned>(coding.dimension()));
+        stage.set_lower_bounds(coding.lower());
+        stage.set_upper_bounds(coding.upper());
+        auto trampoline = [](unsigned, const double* x, double*, void* data) {
+          return (*static_cast<decltype(objective)*>(data))(x);
+        };
+        stage.set_min_objective(trampoline, &objective);
+        stage.set_maxeval(budget);
+        stage.set_maxtime(remaining);
+        if (local) {
+          stage.set_xtol_rel(1e-7);
+          stage.set_ftol_rel(1e-10);
+          std::vector<double> step(static_cast<std::size_t>(coding.dimension()));
+          for (std::size_t i = 0; i < step.size(); ++i) step[i] = 0.05 * (coding.upper()[i] - coding.lower()[i]);
+          stage.set_initial_step(step);
+        }
+        std::vector<double> x = best_x;
+        double f = 0.0;
+        try {
+          const nlopt::result r = stage.optimize(x, f);
+          return {stop_reason(r), r == nlopt::MAXTIME_REACHED};
+        } catch (const nlopt::roundoff_limited&) {
+          return {"round-off limited", false};
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument("optimizer: NLopt rejected " + algorithm + ": " + e.what());
+        }
+      };
+      // NLopt's stochastic algorithms draw from one global generator: seeding it
+      // before each stage makes the layout a function of the seed alone.
+      nlopt::srand(opt.seed * 1000003ull + static_cast<unsigned long>(n));
+      objective(coding.initial().data());
+      const Stage global = run_stage(opt.global_algorithm, opt.max_evaluations, false);
+      nlopt::srand(opt.seed * 1000003ull + static_cast<unsigned long>(n) + 7919ull);
+      const Stage local = run_stage(opt.local_algorithm, opt.local_max_evaluations, true);
+      record.global_stop = global.stop;
+      record.local_stop = local.stop;
+      result.time_limited = result.time_limited || global.time_limited || local.time_limited;
+    }
+    coding.decode(best_x.data(), xy, w);
+    LayoutEvaluation found = evaluate(xy, w);
+    record.evaluations = evaluations;
+    record.seconds = std::chrono::duration<double>(Clock::now() - attempt_start).count();
+    record.feasible = found.feasible;
+    record.power_w = found.power_w;
+    record.objective = found.objective;
+    result.attempts.push_back(record);
+    result.evaluations += evaluations;
+    if (!best || better(found, *best, job.objective)) best = std::move(found);
+  }
+  result.best = std::move(*best);
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+}  // namespace ilp

@@ -1,0 +1,86 @@
+// The search for a luminaire layout: NLopt over positions on the mounting surface and
+// relative fluxes, a global stage then a local refinement, on the lighting model.
+//
+// The overall flux scale is not searched: illuminance is linear in flux, so for given
+// positions and relative fluxes w the least scale alpha that meets every lower-bound
+// goal (average, minimum) is a closed-form maximum of ratios, and the scale closest to
+// the average targets a closed-form least-squares fit. alpha is then clamped to the
+// flux range. What cannot be met that way (uniformity with fixed sources present,
+// maximum goals, the distance between luminaires, a scale beyond the flux range)
+// enters an exact penalty: objective + 10 x the sum of relative violations, which is
+// zero exactly when every goal holds, so a feasible layout always beats an infeasible one.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/config.h"
+#include "core/progress.h"
+#include "optimizer/lighting_model.h"
+
+namespace ilp {
+
+struct PlacedLuminaire {
+  Eigen::Vector3d position_m;  // centre of the emitting face
+  double flux_lm = 0.0;
+  double power_w = 0.0;
+  GridPoint blend;             // candidates whose T columns make its light
+};
+
+// One goal line judged on an illuminance vector.
+struct GoalJudgement {
+  std::string name;
+  GoalMetric metric = GoalMetric::average;
+  double target = 0.0;
+  double value = 0.0;      // lux, or the U0 ratio
+  double violation = 0.0;  // relative shortfall (or excess for maximum), >= 0; for closest_to_target
+                           // average goals, the relative deviation |value - target| / target
+};
+
+struct LayoutEvaluation {
+  std::vector<PlacedLuminaire> luminaires;
+  std::vector<GoalJudgement> goals;   // in job.goals order
+  double distance_violation = 0.0;    // sum over pairs of (min_distance - d) / min_distance where d is less
+  double power_w = 0.0;               // of the luminaires placed by the search
+  double objective = 0.0;             // what the search minimised, penalty included
+  bool feasible = false;              // every constraint within tolerance
+  Eigen::VectorXd lux;                // total illuminance at the goal patches
+};
+
+// Judges goals on illuminance at the goal patches (lux per LightingModel::goal_patches row).
+std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConfig& job, const Eigen::VectorXd& lux);
+// Relative violation allowed before a constraint counts as missed (and, for
+// closest_to_target, the deviation of an average goal from its target).
+double goal_tolerance(const JobConfig& job, GoalMetric metric);
+
+struct CountAttempt {
+  int luminaires = 0;
+  int evaluations = 0;
+  double seconds = 0.0;
+  bool feasible = false;
+  double power_w = 0.0;
+  double objective = 0.0;
+  std::string global_stop, local_stop;  // why each NLopt stage ended
+};
+
+struct SearchResult {
+  LayoutEvaluation best;
+  std::vector<CountAttempt> attempts;  // one per luminaire count tried
+  int evaluations = 0;
+  double seconds = 0.0;
+  bool time_limited = false;           // the time budget, not the evaluation budget, ended a stage
+};
+
+// Searches job.search's layout family for job.objective under job.goals and
+// job.constraints. Deterministic for job.optimizer.seed as long as the evaluation
+// budget, not max_seconds, ends each stage.
+SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress = {});
+
+// The layout at given positions and relative fluxes (the scale as the search sets it):
+// for tests and for re-evaluating a saved layout. xy and relative_flux have one entry
+// per luminaire; relative fluxes in (0, 1].
+LayoutEvaluation evaluate_layout(const LightingModel& model, const JobConfig& job,
+                                 const std::vector<Eigen::Vector2d>& xy_m, const std::vector<double>& relative_flux);
+
+}  // namespace ilp

@@ -1,0 +1,121 @@
+#include "optimizer/lighting_model.h"
+
+#include <algorithm>
+#include <chrono>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/operator_setup.h"
+
+namespace ilp {
+
+int find_goal_area(const LightingModel& model, const std::string& name) {
+  for (std::size_t a = 0; a < model.areas.size(); ++a)
+    if (model.areas[a].name == name) return static_cast<int>(a);
+  return -1;
+}
+
+namespace {
+
+CandidateGrid make_grid(const Scene& scene, const LuminaireSearch& search, double size_m) {
+  const int surface = scene.find_surface(search.mounting_surface);
+  if (surface < 0)
+    throw ConfigError(located(search.mounting_loc, "luminaires.mounting_surface: unknown surface '" +
+                                                       search.mounting_surface + "'"));
+  try {
+    return CandidateGrid(scene, surface,
+                         {.spacing_m = search.candidate_spacing_m, .luminaire_size_m = size_m,
+                          .mount_offset_m = search.mount_offset_m});
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(located(search.mounting_loc, std::string("luminaires.mounting_surface: ") + e.what()));
+  }
+}
+
+}  // namespace
+
+LightingModel build_lighting_model(const Scene& job_scene, const RayCaster& caster, const JobConfig& job,
+                                   const ProgressCallback& progress) {
+  if (!job.search) throw std::invalid_argument("the job has no luminaires.mounting_surface to place luminaires on");
+  if (job.goals.empty()) throw std::invalid_argument("the job has no goals");
+  const auto start = std::chrono::steady_clock::now();
+  const LuminaireSearch& search = *job.search;
+  LightingModel model{job_scene, make_grid(job_scene, search, job.luminaire_size_m), {}, {}, {}, {}, 0.0, {}, {}, 0, {}, {}, 0.0};
+
+  // Fixed sources first, in the job scene's order; then one candidate per grid position.
+  const std::vector<LightSource> fixed = scene_light_sources(job_scene);
+  const Eigen::VectorXd fixed_flux = source_flux_lm(job_scene, fixed);
+  for (const LightSource& s : fixed)
+    if (job_scene.surfaces[static_cast<std::size_t>(s.surface)].is_luminaire)
+      model.fixed_flux_lm += fixed_flux[&s - fixed.data()];
+  for (std::size_t c = 0; c < model.grid.size(); ++c) {
+    const int surface = add_square_luminaire(model.scene, std::string("candidate ").append(std::to_string(c + 1)),
+                                             model.grid.positions_m()[c], job.luminaire_size_m, 0.0);
+    model.scene.surfaces[static_cast<std::size_t>(surface)].is_virtual = true;
+  }
+  const std::vector<LightSource> sources = scene_light_sources(model.scene);
+
+  // Goal areas by name (a name with several metrics is one area).
+  for (const GoalSetting& goal : job.goals) {
+    if (find_goal_area(model, goal.name) >= 0) continue;
+    GoalArea area;
+    area.name = goal.name;
+    area.surfaces = goal.surfaces;
+    model.areas.push_back(area);
+  }
+  std::vector<std::vector<int>> area_patches;
+  for (const GoalArea& area : model.areas) {
+    area_patches.push_back(job_scene.patches_of(area.surfaces));
+    model.goal_patches.insert(model.goal_patches.end(), area_patches.back().begin(), area_patches.back().end());
+  }
+  std::sort(model.goal_patches.begin(), model.goal_patches.end());
+  model.goal_patches.erase(std::unique(model.goal_patches.begin(), model.goal_patches.end()), model.goal_patches.end());
+  for (std::size_t a = 0; a < model.areas.size(); ++a) {
+    GoalArea& area = model.areas[a];
+    area.area_weights.resize(static_cast<Eigen::Index>(area_patches[a].size()));
+    for (int p : area_patches[a]) {
+      const auto row = std::lower_bound(model.goal_patches.begin(), model.goal_patches.end(), p) - model.goal_patches.begin();
+      area.area_weights[static_cast<Eigen::Index>(area.rows.size())] = job_scene.patches[static_cast<std::size_t>(p)].area_m2;
+      area.rows.push_back(row);
+      area.area_m2 += job_scene.patches[static_cast<std::size_t>(p)].area_m2;
+    }
+    if (!(area.area_m2 > 0.0)) throw std::invalid_argument("goal '" + area.name + "' has no area");
+    area.area_weights /= area.area_m2;
+  }
+
+  SampleOperatorOptions options = sample_operator_options(job);
+  const GoalRows goal_rows = compute_goal_rows(model.scene, caster, model.goal_patches, sources, options, progress);
+  // A sample size chosen for a target error is judged on every candidate at the same flux.
+  Eigen::VectorXd probe_flux = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sources.size()));
+  probe_flux.head(fixed_flux.size()) = fixed_flux;
+  probe_flux.tail(static_cast<Eigen::Index>(model.grid.size())).setConstant(search.flux_max_lm);
+  const SampleSizeChoice choice = choose_sample_size(job, model.scene, caster, goal_rows, probe_flux, options, progress);
+  if (!choice.log.empty()) model.log.push_back(choice.log);
+  options.sample_size = choice.sample_size;
+  const SampleOperator op = build_sample_operator(model.scene, caster, goal_rows, options, progress);
+
+  const Eigen::Index nf = static_cast<Eigen::Index>(fixed.size()), nc = static_cast<Eigen::Index>(model.grid.size());
+  model.fixed_lux = op.total_lux_per_lm.leftCols(nf) * fixed_flux;
+  model.fixed_direct_lux = op.direct_lux_per_lm.leftCols(nf) * fixed_flux;
+  model.candidate_lux_per_lm = op.total_lux_per_lm.rightCols(nc);
+  model.candidate_direct_lux_per_lm = op.direct_lux_per_lm.rightCols(nc);
+  model.sample_size = op.stats.direct_only ? 0 : static_cast<int>(op.stats.sample_patches);
+  model.stats = op.stats;
+
+  std::ostringstream grid;
+  grid << std::fixed << std::setprecision(3) << "candidates: " << model.grid.size() << " positions on '"
+       << search.mounting_surface << "' (" << model.grid.nodes_x() << " x " << model.grid.nodes_y() << " grid, "
+       << model.grid.spacing_m().x() << " x " << model.grid.spacing_m().y() << " m apart, centres in x ["
+       << model.grid.lower_m().x() << ", " << model.grid.upper_m().x() << "] y [" << model.grid.lower_m().y() << ", "
+       << model.grid.upper_m().y() << "] m, faces at z = " << model.grid.positions_m().front().z() << " m)";
+  model.log.push_back(grid.str());
+  if (model.grid.ignored_patches() > 0)
+    model.log.push_back("candidates: " + std::to_string(model.grid.ignored_patches()) + " patches of '" +
+                        search.mounting_surface + "' do not face down and hold no luminaire");
+  model.log.insert(model.log.end(), op.log.begin(), op.log.end());
+  model.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return model;
+}
+
+}  // namespace ilp

@@ -1,0 +1,58 @@
+// What the layout search evaluates: the illuminance at the goal patches as a linear
+// function of candidate luminaire fluxes, from one sample-based operator whose light
+// sources are the job's fixed sources (placed luminaires, emitting surfaces) and one
+// candidate luminaire per grid position on the mounting surface.
+//
+// Candidates are virtual: they are added to the scene after its BVH is built, so
+// they neither block light nor shade one another; each real luminaire is later
+// placed alone (the verification measures the difference).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/config.h"
+#include "core/progress.h"
+#include "core/ray_caster.h"
+#include "core/sample_operator.h"
+#include "core/scene.h"
+#include "optimizer/candidate_grid.h"
+
+namespace ilp {
+
+// The patches one named goal is measured over (the union of its surfaces).
+struct GoalArea {
+  std::string name;
+  std::vector<std::string> surfaces;
+  std::vector<Eigen::Index> rows;  // into LightingModel::goal_patches
+  Eigen::VectorXd area_weights;    // A_i / sum A, per row: the average is their dot product
+  double area_m2 = 0.0;
+};
+
+struct LightingModel {
+  Scene scene;  // the job's scene plus the candidates (virtual: not in the caster's BVH)
+  CandidateGrid grid;
+  std::vector<int> goal_patches;                 // ascending, each once
+  std::vector<GoalArea> areas;                   // one per goal name, in the job's order
+  Eigen::VectorXd fixed_lux;                     // from the fixed sources at their flux
+  Eigen::VectorXd fixed_direct_lux;
+  double fixed_flux_lm = 0.0;                    // placed luminaires (emitting surfaces are not counted)
+  Eigen::MatrixXd candidate_lux_per_lm;          // goal patches x candidates: T's candidate columns
+  Eigen::MatrixXd candidate_direct_lux_per_lm;
+  int sample_size = 0;                           // k (0: direct light only)
+  SampleOperatorStats stats;
+  std::vector<std::string> log;                  // the operator's log and the grid's
+  double build_seconds = 0.0;
+};
+
+// Index of the GoalArea with this name, or -1.
+int find_goal_area(const LightingModel& model, const std::string& name);
+
+// Builds the model for job.search and job.goals on the job's scene (whose caster is
+// `caster`). Throws ConfigError pointing at the config for a mounting surface that
+// cannot hold luminaires.
+LightingModel build_lighting_model(const Scene& scene, const RayCaster& caster, const JobConfig& job,
+                                   const ProgressCallback& progress = {});
+
+}  // namespace ilp

@@ -1,0 +1,366 @@
+#include "output/plan_svg.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "output/colour_map.h"
+
+namespace ilp {
+namespace {
+
+constexpr double kFont_px = 12.0;
+constexpr double kLabelCharWidth_px = 6.5;  // a generous estimate of one sans-serif glyph at 11 px
+constexpr double kLeft_px = 64.0;           // y label and tick labels
+constexpr double kGap_px = 30.0;            // plan to legend
+constexpr double kLegendColumn_px = 140.0;  // legend, including the right margin
+constexpr double kMaxPlanWidth_px = 900.0 - kLeft_px - kGap_px - kLegendColumn_px;
+constexpr double kMaxPlanHeight_px = 720.0;
+constexpr double kBottom_px = 72.0;  // tick labels, x label, scale bar
+constexpr double kTick_px = 5.0;
+constexpr double kMinLuminaire_px = 4.0;
+constexpr std::string_view kGradientId = "ilp-plan-lux";
+
+// ---- text (as in svg_plot.cpp) -------------------------------------------------
+
+template <class... Parts>
+std::string cat(const Parts&... parts) {
+  std::string s;
+  ((s += parts), ...);
+  return s;
+}
+
+// Escapes XML's special characters and drops the control characters XML 1.0 forbids.
+std::string xml_escape(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') break;
+        out += c;
+    }
+  }
+  return out;
+}
+
+double label_width_px(std::string_view text) {
+  const auto chars = std::count_if(text.begin(), text.end(), [](char c) {
+    return (static_cast<unsigned char>(c) & 0xC0) != 0x80;  // not a UTF-8 continuation byte
+  });
+  return static_cast<double>(chars) * kLabelCharWidth_px;
+}
+
+// ---- numbers (std::to_chars: independent of the C++ and C locales) -------------
+
+// v with `decimals` fixed decimals, trailing zeros dropped, never "-0".
+std::string fixed(double v, int decimals) {
+  std::array<char, 64> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v, std::chars_format::fixed,
+                                    std::clamp(decimals, 0, 12));
+  std::string s(buffer.data(), result.ptr);
+  if (s.find('.') != std::string::npos) {
+    s.erase(s.find_last_not_of('0') + 1);
+    if (s.back() == '.') s.pop_back();
+  }
+  return s == "-0" ? "0" : s;
+}
+
+// A coordinate in px.
+std::string px(double v) { return fixed(v, 2); }
+
+// "x,y" in px.
+std::string xy(double x, double y) { return cat(px(x), ',', px(y)); }
+
+// 3 significant digits but whole numbers from 100 up and at most 3 decimals: "1500",
+// "437", "62.5", "0.125", "0.001" (so 1.3e-8 lx reads "0").
+std::string significant(double v) {
+  if (v == 0.0 || !std::isfinite(v)) return fixed(v, 0);
+  return fixed(v, std::min(3, 2 - static_cast<int>(std::floor(std::log10(std::abs(v))))));
+}
+
+// The fewest decimals (up to 12) that give v to within a millionth of `resolution`.
+std::string exact(double v, double resolution) {
+  for (int decimals = 0;; ++decimals) {
+    const double rounded = std::round(v * std::pow(10.0, decimals)) / std::pow(10.0, decimals);
+    if (decimals == 12 || std::abs(rounded - v) <= 1e-6 * resolution) return fixed(v, decimals);
+  }
+}
+
+// The smallest of 1, 2, 5 x 10^n that is >= v > 0.
+double nice_step(double v) {
+  const double decade = std::pow(10.0, std::floor(std::log10(v)));
+  for (double m : {1.0, 2.0, 5.0})
+    if (m * decade >= v * (1.0 - 1e-9)) return m * decade;
+  return 10.0 * decade;
+}
+
+// ---- geometry ------------------------------------------------------------------
+
+// The plan's mapping from metres (x right, y up) to SVG px (x right, y down).
+struct Frame {
+  Eigen::AlignedBox2d extent_m;
+  double scale_px_per_m = 1.0;
+  double left_px = 0.0, top_px = 0.0;
+
+  double x_px(double x_m) const { return left_px + (x_m - extent_m.min().x()) * scale_px_per_m; }
+  double y_px(double y_m) const { return top_px + (extent_m.max().y() - y_m) * scale_px_per_m; }
+  double width_px() const { return extent_m.sizes().x() * scale_px_per_m; }
+  double height_px() const { return extent_m.sizes().y() * scale_px_per_m; }
+};
+
+void extend(Eigen::AlignedBox2d& box, const Patch& p) {
+  for (const Eigen::Vector3d& v : p.vertices_m) box.extend(v.head<2>());
+}
+
+// A box with neither side (nearly) zero: a single point or a line still gets a plan.
+Eigen::AlignedBox2d padded(Eigen::AlignedBox2d box) {
+  if (box.isEmpty()) return Eigen::AlignedBox2d(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones());
+  const double least = std::max(1e-3, 0.02 * box.sizes().maxCoeff());
+  for (int axis = 0; axis < 2; ++axis) {
+    const double missing = least - box.sizes()[axis];
+    if (missing <= 0.0) continue;
+    box.min()[axis] -= 0.5 * missing;
+    box.max()[axis] += 0.5 * missing;
+  }
+  return box;
+}
+
+void check(const Scene& scene, const PlanView& view) {
+  if (static_cast<std::size_t>(view.goal_lux.size()) != view.goal_patches.size())
+    throw std::invalid_argument(cat("render_plan_svg: ", std::to_string(view.goal_patches.size()), " goal patches but ",
+                                    std::to_string(view.goal_lux.size()), " lux values"));
+  const auto check_indices = [&](const std::vector<int>& patches, const char* what) {
+    for (int p : patches)
+      if (p < 0 || static_cast<std::size_t>(p) >= scene.patches.size())
+        throw std::invalid_argument(cat("render_plan_svg: ", what, " patch ", std::to_string(p),
+                                        " is not in the scene (", std::to_string(scene.patches.size()),
+                                        " patches)"));
+  };
+  check_indices(view.goal_patches, "goal");
+  check_indices(view.outline_patches, "outline");
+  for (const PlanLuminaire& l : view.luminaires)
+    if (!l.position_m.allFinite() || !std::isfinite(l.size_m) || l.size_m < 0.0 || !std::isfinite(l.flux_lm))
+      throw std::invalid_argument(
+          cat("render_plan_svg: luminaire '", l.id, "' has a non-finite position, size or flux, or a negative size"));
+}
+
+std::string text_element(double x, double y, std::string_view anchor, const std::string& text,
+                         std::string_view extra = "") {
+  return cat("<text x=\"", px(x), "\" y=\"", px(y), "\" text-anchor=\"", anchor, '"', extra, '>', xml_escape(text),
+             "</text>\n");
+}
+
+// Ticks along the frame's bottom and left edges at a 1-2-5 step in metres that keeps
+// labels apart, and the axis labels.
+std::string axes(const Frame& f) {
+  std::string marks, labels;
+  const double right_px = f.left_px + f.width_px(), bottom_px = f.top_px + f.height_px();
+  for (int axis = 0; axis < 2; ++axis) {
+    const double lo = f.extent_m.min()[axis], hi = f.extent_m.max()[axis];
+    const double step = nice_step((axis == 0 ? 56.0 : 44.0) / f.scale_px_per_m);
+    for (double k = std::ceil(lo / step - 1e-9); k <= std::floor(hi / step + 1e-9); ++k) {
+      const double v = k * step;
+      const std::string label = exact(v, step);
+      if (axis == 0) {
+        const double x = f.x_px(v);
+        marks += cat('M', xy(x, bottom_px), 'v', px(kTick_px));
+        labels += text_element(x, bottom_px + kTick_px + 13.0, "middle", label);
+      } else {
+        const double y = f.y_px(v);
+        marks += cat('M', xy(f.left_px, y), 'h', px(-kTick_px));
+        labels += text_element(f.left_px - kTick_px - 3.0, y + 4.0, "end", label);
+      }
+    }
+  }
+  std::string svg;
+  if (!marks.empty()) svg += cat("<path d=\"", marks, "\" stroke=\"#333333\" fill=\"none\"/>\n");
+  svg += labels;
+  svg += text_element(0.5 * (f.left_px + right_px), bottom_px + 38.0, "middle", "x (m)");
+  const double cy = 0.5 * (f.top_px + bottom_px);
+  svg += text_element(16.0, cy, "middle", "y (m)", cat(" transform=\"rotate(-90 16 ", px(cy), ")\""));
+  return svg;
+}
+
+// A 1-2-5 length of 64 to 160 px, below the x label.
+std::string scale_bar(const Frame& f) {
+  const double length_m = nice_step(64.0 / f.scale_px_per_m);
+  const double y = f.top_px + f.height_px() + 50.0, length_px = length_m * f.scale_px_per_m;
+  return cat("<rect x=\"", px(f.left_px), "\" y=\"", px(y), "\" width=\"", px(length_px),
+             "\" height=\"5\" fill=\"#222222\"/>\n",
+             text_element(f.left_px + length_px + 6.0, y + 6.0, "start", cat(exact(length_m, length_m), " m")));
+}
+
+// The colour bar with ticks at quarters of the scale, then the goal's min and max.
+std::string legend(const ColourScale& scale, const Eigen::VectorXd& lux, double x, double top, double bar_px) {
+  constexpr double kBar_px = 18.0;
+  std::string svg = text_element(x, top + 10.0, "start", "illuminance (lx)");
+  const double bar_top = top + 22.0, bar_bottom = bar_top + bar_px;
+  svg += cat("<rect x=\"", px(x), "\" y=\"", px(bar_top), "\" width=\"", px(kBar_px), "\" height=\"", px(bar_px),
+             "\" fill=\"url(#", kGradientId, ")\" stroke=\"#333333\"/>\n");
+  std::string marks, labels;
+  const double range = scale.max_lux - scale.min_lux;
+  for (int k = 0; k <= 4; ++k) {
+    const double y = bar_bottom - 0.25 * k * bar_px;
+    marks += cat('M', xy(x + kBar_px, y), 'h', px(kTick_px));
+    labels += text_element(x + kBar_px + kTick_px + 3.0, y + 4.0, "start",
+                           exact(scale.min_lux + 0.25 * k * range, range > 0.0 ? range : 1.0));
+  }
+  svg += cat("<path d=\"", marks, "\" stroke=\"#333333\"/>\n", labels);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (Eigen::Index i = 0; i < lux.size(); ++i) {
+    if (!std::isfinite(lux[i])) continue;
+    lo = std::min(lo, lux[i]);
+    hi = std::max(hi, lux[i]);
+  }
+  if (lo <= hi) {
+    svg += text_element(x, bar_bottom + 22.0, "start", cat("max ", significant(hi), " lx"));
+    svg += text_element(x, bar_bottom + 38.0, "start", cat("min ", significant(lo), " lx"));
+  }
+  return svg;
+}
+
+// Square, cross and labels of one luminaire; labels go left of the square when they
+// would leave the plan on the right.
+std::string luminaire(const Frame& f, const PlanLuminaire& l) {
+  const double cx = f.x_px(l.position_m.x()), cy = f.y_px(l.position_m.y());
+  const double half = 0.5 * std::max(l.size_m * f.scale_px_per_m, kMinLuminaire_px);
+  const double x0 = cx - half, x1 = cx + half, y0 = cy - half, y1 = cy + half;
+  const std::string d = cat('M', xy(x0, y0), 'H', px(x1), 'V', px(y1), 'H', px(x0), "Z M", xy(x0, y0), 'L', xy(x1, y1),
+                            'M', xy(x0, y1), 'L', xy(x1, y0));
+  const std::string flux = cat(significant(l.flux_lm), " lm");
+  const double label_px = std::max(label_width_px(l.id), label_width_px(flux));
+  const bool left = x1 + 4.0 + label_px > f.left_px + f.width_px() && x0 - 4.0 - label_px >= f.left_px;
+  const double label_x = left ? x0 - 4.0 : x1 + 4.0;
+  const std::string_view anchor = left ? "end" : "start";
+  const Eigen::Vector3d& p = l.position_m;
+  constexpr std::string_view kHalo = " fill=\"#111111\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\"";
+  return cat("<g>\n<title>",
+             xml_escape(cat(l.id, ": ", flux, ", ", significant(l.size_m), " m square at (", significant(p.x()), ", ",
+                            significant(p.y()), ", ", significant(p.z()), ") m")),
+             "</title>\n",
+             // A dark line on a white halo, and dark text on a white halo: legible on
+             // every colour of the map.
+             "<path d=\"", d, "\" fill=\"none\" stroke=\"white\" stroke-width=\"3.5\"/>\n", "<path d=\"", d,
+             "\" fill=\"none\" stroke=\"#111111\" stroke-width=\"1.25\"/>\n",
+             text_element(label_x, cy - 2.0, anchor, l.id, kHalo), text_element(label_x, cy + 11.0, anchor, flux, kHalo),
+             "</g>\n");
+}
+
+}  // namespace
+
+std::string render_plan_svg(const Scene& scene, const PlanView& view) {
+  check(scene, view);
+  const std::vector<int>& outline = view.outline_patches.empty() ? scene.all_patches() : view.outline_patches;
+
+  // What the plan spans: the outline's frame, the goal patches and the luminaires.
+  Eigen::AlignedBox2d frame_m;
+  for (int p : outline) extend(frame_m, scene.patches[p]);
+  Eigen::AlignedBox2d extent_m = frame_m;
+  for (int p : view.goal_patches) extend(extent_m, scene.patches[p]);
+  for (const PlanLuminaire& l : view.luminaires) {
+    const Eigen::Vector2d c = l.position_m.head<2>(), h = Eigen::Vector2d::Constant(0.5 * l.size_m);
+    extent_m.extend(c - h).extend(c + h);
+  }
+
+  Frame f;
+  f.extent_m = padded(extent_m);
+  f.scale_px_per_m =
+      std::min(kMaxPlanWidth_px / f.extent_m.sizes().x(), kMaxPlanHeight_px / f.extent_m.sizes().y());
+  f.left_px = kLeft_px;
+  f.top_px = view.title.empty() ? 24.0 : 52.0;
+  const double legend_x = f.left_px + f.width_px() + kGap_px;
+  const double bar_px = std::clamp(f.height_px() - 66.0, 160.0, 300.0);
+  const double width_px = legend_x + kLegendColumn_px;
+  const double height_px = f.top_px + std::max(f.height_px(), 22.0 + bar_px + 44.0) + kBottom_px;
+
+  std::string svg = cat("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"", px(width_px), "\" height=\"",
+                        px(height_px), "\" viewBox=\"0 0 ", px(width_px), ' ', px(height_px),
+                        "\" font-family=\"sans-serif\" font-size=\"", px(kFont_px), "\">\n");
+  // The legend's gradient: stops at every 60th, which include the colour map's knots
+  // (every 15th), so the bar interpolates exactly as colour_map does.
+  svg += cat("<defs>\n<linearGradient id=\"", kGradientId, "\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">\n");
+  for (int k = 0; k <= 60; ++k)
+    svg += cat("<stop offset=\"", fixed(k / 60.0, 4), "\" stop-color=\"", svg_colour(colour_map(k / 60.0)), "\"/>\n");
+  svg += "</linearGradient>\n</defs>\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  if (!view.title.empty())
+    svg += text_element(16.0, 30.0, "start", view.title, " font-size=\"15\" font-weight=\"bold\"");
+
+  // Room: the outline triangles as one path, each turned the same way round, so that
+  // nonzero filling gives their union without anti-aliasing seams between them.
+  std::string room;
+  for (int p : outline) {
+    std::array<Eigen::Vector2d, 3> v;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d& q = scene.patches[p].vertices_m[k];
+      v[k] = {f.x_px(q.x()), f.y_px(q.y())};
+    }
+    const double doubled_area = (v[1] - v[0]).x() * (v[2] - v[0]).y() - (v[1] - v[0]).y() * (v[2] - v[0]).x();
+    if (std::abs(doubled_area) < 1e-6) continue;  // seen edge-on, e.g. a wall
+    if (doubled_area < 0.0) std::swap(v[1], v[2]);
+    room += cat('M', xy(v[0].x(), v[0].y()), 'L', xy(v[1].x(), v[1].y()), 'L', xy(v[2].x(), v[2].y()), 'Z');
+  }
+  if (!room.empty()) svg += cat("<path d=\"", room, "\" fill=\"#e6e6e6\"/>\n");
+
+  // Goal patches, lowest mean height first; the stroke in the fill colour covers the
+  // hairline seams anti-aliasing leaves between neighbours.
+  const ColourScale scale = colour_scale_for(view.goal_lux);
+  std::vector<std::size_t> order(view.goal_patches.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto height = [&](std::size_t i) {
+    const auto& v = scene.patches[view.goal_patches[i]].vertices_m;
+    return v[0].z() + v[1].z() + v[2].z();
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return height(a) < height(b); });
+  svg += "<g stroke-width=\"0.5\" stroke-linejoin=\"round\">\n";
+  for (std::size_t i : order) {
+    const Patch& patch = scene.patches[view.goal_patches[i]];
+    const std::string colour = svg_colour(colour_map(scale.fraction(view.goal_lux[static_cast<Eigen::Index>(i)])));
+    std::string points;
+    for (const Eigen::Vector3d& q : patch.vertices_m) points += cat(points.empty() ? "" : " ", xy(f.x_px(q.x()), f.y_px(q.y())));
+    svg += cat("<polygon points=\"", points, "\" fill=\"", colour, "\" stroke=\"", colour, "\"/>\n");
+  }
+  svg += "</g>\n";
+
+  if (!frame_m.isEmpty())
+    svg += cat("<rect x=\"", px(f.x_px(frame_m.min().x())), "\" y=\"", px(f.y_px(frame_m.max().y())), "\" width=\"",
+               px(frame_m.sizes().x() * f.scale_px_per_m), "\" height=\"", px(frame_m.sizes().y() * f.scale_px_per_m),
+               "\" fill=\"none\" stroke=\"#333333\" stroke-width=\"1.5\"/>\n");
+  svg += axes(f);
+  svg += scale_bar(f);
+
+  if (!view.luminaires.empty()) {
+    svg += "<g font-size=\"11\" stroke-linejoin=\"round\">\n";
+    for (const PlanLuminaire& l : view.luminaires) svg += luminaire(f, l);
+    svg += "</g>\n";
+  }
+  svg += legend(scale, view.goal_lux, legend_x, f.top_px, bar_px);
+  svg += "</svg>\n";
+  return svg;
+}
+
+}  // namespace ilp

@@ -1,0 +1,194 @@
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "output/atomic_file.h"
+#include "output/result_record.h"
+
+namespace ilp {
+namespace {
+
+using nlohmann::json;
+
+json to_json(const ResultRecord& r) {
+  json j;
+  j["program_version"] = r.program_version;
+  j["config"] = r.config;
+  j["objective"] = r.objective;
+  j["luminaires"] = json::array();
+  for (const LuminaireRecord& l : r.luminaires)
+    j["luminaires"].push_back(
+        {{"id", l.id}, {"x_m", l.x_m}, {"y_m", l.y_m}, {"z_m", l.z_m}, {"flux_lm", l.flux_lm}, {"power_w", l.power_w}});
+  j["goals"] = json::array();
+  for (const GoalRecord& g : r.goals) {
+    json goal = {{"name", g.name},     {"surfaces", g.surfaces}, {"metric", g.metric},
+                 {"unit", g.unit},     {"target", g.target},     {"predicted", g.predicted},
+                 {"verified", nullptr}, {"met", g.met},          {"fails_only_on_verification", g.fails_only_on_verification},
+                 {"tolerance", g.tolerance}};
+    if (g.verified) goal["verified"] = *g.verified;
+    j["goals"].push_back(goal);
+  }
+  j["power_w"] = r.power_w;
+  j["mounting_area_m2"] = r.mounting_area_m2;
+  j["power_density_w_per_m2"] = r.power_density_w_per_m2;
+  j["fixed_flux_lm"] = r.fixed_flux_lm;
+  j["feasible"] = r.feasible;
+  j["all_met"] = r.all_met;
+  j["flux_correction"] = r.flux_correction;
+  j["verification"] = {{"method", r.verification}, {"rays_per_patch", r.verification_rays_per_patch}};
+  j["sample_size"] = r.sample_size;
+  j["population"] = r.population;
+  j["patches"] = r.patches;
+  j["candidates"] = r.candidates;
+  j["seed"] = r.seed;
+  j["optimizer_seed"] = r.optimizer_seed;
+  j["evaluations"] = r.evaluations;
+  j["time_limited"] = r.time_limited;
+  j["timings_s"] = json::object();
+  j["timing_order"] = json::array();
+  for (const auto& [phase, seconds] : r.timings_s) {
+    j["timings_s"][phase] = seconds;
+    j["timing_order"].push_back(phase);
+  }
+  j["attempts"] = json::array();
+  for (const AttemptRecord& a : r.attempts)
+    j["attempts"].push_back({{"luminaires", a.luminaires}, {"evaluations", a.evaluations}, {"seconds", a.seconds},
+                             {"feasible", a.feasible}, {"power_w", a.power_w}, {"global_stop", a.global_stop},
+                             {"local_stop", a.local_stop}});
+  return j;
+}
+
+ResultRecord from_json(const json& j) {
+  ResultRecord r;
+  r.program_version = j.at("program_version").get<std::string>();
+  r.config = j.at("config").get<std::string>();
+  r.objective = j.at("objective").get<std::string>();
+  for (const json& l : j.at("luminaires"))
+    r.luminaires.push_back({l.at("id").get<std::string>(), l.at("x_m").get<double>(), l.at("y_m").get<double>(),
+                            l.at("z_m").get<double>(), l.at("flux_lm").get<double>(), l.at("power_w").get<double>()});
+  for (const json& g : j.at("goals")) {
+    GoalRecord goal;
+    goal.name = g.at("name").get<std::string>();
+    goal.surfaces = g.at("surfaces").get<std::vector<std::string>>();
+    goal.metric = g.at("metric").get<std::string>();
+    goal.unit = g.at("unit").get<std::string>();
+    goal.target = g.at("target").get<double>();
+    goal.predicted = g.at("predicted").get<double>();
+    if (!g.at("verified").is_null()) goal.verified = g.at("verified").get<double>();
+    goal.met = g.at("met").get<bool>();
+    goal.fails_only_on_verification = g.at("fails_only_on_verification").get<bool>();
+    goal.tolerance = g.at("tolerance").get<double>();
+    r.goals.push_back(goal);
+  }
+  r.power_w = j.at("power_w").get<double>();
+  r.mounting_area_m2 = j.at("mounting_area_m2").get<double>();
+  r.power_density_w_per_m2 = j.at("power_density_w_per_m2").get<double>();
+  r.fixed_flux_lm = j.at("fixed_flux_lm").get<double>();
+  r.feasible = j.at("feasible").get<bool>();
+  r.all_met = j.at("all_met").get<bool>();
+  r.flux_correction = j.at("flux_correction").get<double>();
+  r.verification = j.at("verification").at("method").get<std::string>();
+  r.verification_rays_per_patch = j.at("verification").at("rays_per_patch").get<int>();
+  r.sample_size = j.at("sample_size").get<int>();
+  r.population = j.at("population").get<int>();
+  r.patches = j.at("patches").get<int>();
+  r.candidates = j.at("candidates").get<int>();
+  r.seed = j.at("seed").get<unsigned long long>();
+  r.optimizer_seed = j.at("optimizer_seed").get<unsigned long long>();
+  r.evaluations = j.at("evaluations").get<int>();
+  r.time_limited = j.at("time_limited").get<bool>();
+  for (const json& phase : j.at("timing_order")) {
+    const std::string name = phase.get<std::string>();
+    r.timings_s.emplace_back(name, j.at("timings_s").at(name).get<double>());
+  }
+  for (const json& a : j.at("attempts"))
+    r.attempts.push_back({a.at("luminaires").get<int>(), a.at("evaluations").get<int>(), a.at("seconds").get<double>(),
+                          a.at("feasible").get<bool>(), a.at("power_w").get<double>(),
+                          a.at("global_stop").get<std::string>(), a.at("local_stop").get<std::string>()});
+  return r;
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(digits) << v;
+  return os.str();
+}
+
+// Lux with one decimal, ratios (uniformity) with three.
+std::string goal_value(const GoalRecord& g, double v) { return fixed(v, g.unit.empty() ? 3 : 1); }
+
+}  // namespace
+
+void write_result_json(const std::string& path, const ResultRecord& result) {
+  const json j = to_json(result);
+  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+}
+
+ResultRecord read_result_json(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open the result file");
+  try {
+    return from_json(json::parse(in));
+  } catch (const json::parse_error& e) {
+    throw std::runtime_error(path + ": not valid JSON (byte " + std::to_string(e.byte) + "): " + e.what());
+  } catch (const json::exception& e) {
+    throw std::runtime_error(path + ": not an ilp result (" + std::string(e.what()) + ")");
+  }
+}
+
+void print_result(std::ostream& os, const ResultRecord& r) {
+  if (!r.all_met) {
+    os << (r.feasible ? "NOT MET on verification: the layout meets every goal as predicted, but not every goal as verified\n"
+                      : "INFEASIBLE: no layout found meets every goal; the closest found is shown\n");
+  }
+  os << "Optimal layout (" << r.objective << ", " << r.luminaires.size() << " luminaires)\n";
+  os << std::right << std::setw(6) << "id" << std::setw(9) << "x m" << std::setw(9) << "y m" << std::setw(9) << "z m"
+     << std::setw(11) << "flux lm" << std::setw(10) << "power W" << "\n";
+  double flux = 0.0;
+  for (const LuminaireRecord& l : r.luminaires) {
+    os << std::setw(6) << l.id << std::setw(9) << fixed(l.x_m, 3) << std::setw(9) << fixed(l.y_m, 3) << std::setw(9)
+       << fixed(l.z_m, 3) << std::setw(11) << fixed(l.flux_lm, 1) << std::setw(10) << fixed(l.power_w, 2) << "\n";
+    flux += l.flux_lm;
+  }
+  os << "Total power " << fixed(r.power_w, 1) << " W for " << fixed(flux, 0) << " lm; power density "
+     << fixed(r.power_density_w_per_m2, 2) << " W/m² over " << fixed(r.mounting_area_m2, 2) << " m² of mounting surface\n";
+  if (r.fixed_flux_lm > 0.0)
+    os << "(plus " << fixed(r.fixed_flux_lm, 0) << " lm of luminaires placed in the config, not counted above)\n";
+
+  os << "\n" << std::left << std::setw(30) << "goal" << std::right << std::setw(10) << "target" << std::setw(11)
+     << "predicted" << std::setw(10) << "verified" << "  status\n";
+  for (const GoalRecord& g : r.goals) {
+    const std::string label = g.name + " " + g.metric + (g.unit.empty() ? "" : " (" + g.unit + ")");
+    std::string status = g.met ? "met" : "MISSED";
+    const double value = g.verified ? *g.verified : g.predicted;
+    if (!g.met && g.target > 0.0) status += " by " + fixed(100.0 * std::abs(value - g.target) / g.target, 1) + " %";
+    if (g.fails_only_on_verification) status += " (fails on verification only)";
+    os << std::left << std::setw(30) << label << std::right << std::setw(10) << goal_value(g, g.target) << std::setw(11)
+       << goal_value(g, g.predicted) << std::setw(10) << (g.verified ? goal_value(g, *g.verified) : std::string("-"))
+       << "  " << status << "\n";
+  }
+  os << "\nverification: ";
+  if (r.verification == "none") os << "none (predicted values only)";
+  else os << r.verification << ", " << r.verification_rays_per_patch << " rays per patch";
+  if (r.flux_correction != 1.0)
+    os << "; every flux scaled by " << fixed(r.flux_correction, 4) << " after verification";
+  os << "\noperator: k = " << r.sample_size << " of " << r.population << " reflecting patches (" << r.patches
+     << " patches), " << r.candidates << " candidate positions, seed " << r.seed << "\n";
+  os << "search: " << r.evaluations << " evaluations, optimizer seed " << r.optimizer_seed;
+  if (r.time_limited) os << " (the time budget ended a stage: the layout may depend on machine speed)";
+  os << "\n";
+  for (const AttemptRecord& a : r.attempts)
+    os << "  " << a.luminaires << " luminaires: " << (a.feasible ? fixed(a.power_w, 1) + " W" : std::string("infeasible"))
+       << ", " << a.evaluations << " evaluations in " << fixed(a.seconds, 2) << " s (global: " << a.global_stop
+       << "; local: " << a.local_stop << ")\n";
+  os << "timings:";
+  for (std::size_t k = 0; k < r.timings_s.size(); ++k)
+    os << (k ? ", " : " ") << r.timings_s[k].first << " " << fixed(r.timings_s[k].second, 2) << " s";
+  os << "\n";
+}
+
+}  // namespace ilp

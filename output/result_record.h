@@ -1,0 +1,77 @@
+// The result of an inverse-lighting job as it is saved (result.json) and printed:
+// plain data, so `ilp print` can show a saved result without the scene.
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ilp {
+
+struct LuminaireRecord {
+  std::string id;
+  double x_m = 0.0, y_m = 0.0, z_m = 0.0;  // centre of the emitting face
+  double flux_lm = 0.0;
+  double power_w = 0.0;
+};
+
+struct GoalRecord {
+  std::string name;
+  std::vector<std::string> surfaces;
+  std::string metric;       // average, minimum, maximum, uniformity
+  std::string unit;         // "lx", or "" for uniformity
+  double target = 0.0;
+  double predicted = 0.0;
+  std::optional<double> verified;
+  bool met = false;         // judged on the verified value when there is one
+  bool fails_only_on_verification = false;
+  double tolerance = 0.0;   // relative
+};
+
+struct AttemptRecord {
+  int luminaires = 0;
+  int evaluations = 0;
+  double seconds = 0.0;
+  bool feasible = false;
+  double power_w = 0.0;
+  std::string global_stop, local_stop;
+};
+
+struct ResultRecord {
+  std::string program_version;
+  std::string config;
+  std::string objective;                    // min_power or closest_to_target
+  std::vector<LuminaireRecord> luminaires;
+  std::vector<GoalRecord> goals;
+  double power_w = 0.0;
+  double mounting_area_m2 = 0.0;
+  double power_density_w_per_m2 = 0.0;
+  double fixed_flux_lm = 0.0;
+  bool feasible = false;                    // predicted
+  bool all_met = false;
+  double flux_correction = 1.0;
+  std::string verification;                 // exact, sample or none
+  int verification_rays_per_patch = 0;
+  int sample_size = 0;
+  int population = 0;                       // reflecting patches
+  int patches = 0;
+  int candidates = 0;
+  unsigned long long seed = 0;              // rays
+  unsigned long long optimizer_seed = 0;
+  int evaluations = 0;
+  bool time_limited = false;
+  std::vector<std::pair<std::string, double>> timings_s;  // phase, seconds, in order
+  std::vector<AttemptRecord> attempts;
+};
+
+// Throws std::runtime_error naming the file on unreadable or malformed input.
+void write_result_json(const std::string& path, const ResultRecord& result);
+ResultRecord read_result_json(const std::string& path);
+
+// The report `ilp run` and `ilp print` show: layout table, goals (target, predicted,
+// verified), power, timings.
+void print_result(std::ostream& os, const ResultRecord& result);
+
+}  // namespace ilp

@@ -1,0 +1,200 @@
+// The layout search end to end on small rooms whose optimum is known by
+// construction, checked against independent values: the position by symmetry, the
+// flux against the inverse-square law, the prediction against the verification.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "core/config.h"
+#include "optimizer/job_runner.h"
+#include "tests/optimizer/optimizer_test_scenes.h"
+
+namespace ilp {
+namespace {
+
+using test::Mat;
+using test::room_job;
+using test::room_obj;
+using test::TempDir;
+
+// One 0.3 m luminaire over one 0.4 m mat at (1.3, 1.7), off the ceiling grid's nodes,
+// in a black room: only direct light, so the optimum lies right above the mat's centre.
+const char* kOneLuminaire =
+    "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+    "  mount_offset_m: 0.02\n  candidate_spacing_m: 0.5\n  count: 1\n";
+const char* kOptimizer = "optimizer:\n  max_evaluations: 1500\n  local_max_evaluations: 1500\n  seed: 4\n";
+
+JobConfig mat_job(const TempDir& dir, double target_lux, const std::string& reflectance = "0",
+                  const std::string& luminaires = kOneLuminaire) {
+  dir.write("room.obj", room_obj({{"mat", {1.3, 1.7}}}));
+  std::ostringstream goals;
+  goals << "  - surface: mat\n    average_lux: " << target_lux << "\n";
+  return load_job_config(dir.write("job.yaml", room_job(reflectance, luminaires, goals.str(), kOptimizer)));
+}
+
+TEST(LayoutSearch, OneLuminaireLandsOverTheTargetCentre) {
+  TempDir dir;
+  const JobConfig job = mat_job(dir, 200.0);
+  const PreparedJob prepared = prepare_job(job);
+  ASSERT_EQ(prepared.model.sample_size, 0) << "a black room needs no sample";
+  const JobOutcome outcome = solve_prepared(prepared, job);
+  ASSERT_EQ(outcome.luminaires.size(), 1u);
+  const Eigen::Vector3d p = outcome.luminaires[0].position_m;
+  EXPECT_NEAR(p.x(), 1.3, 0.03);
+  EXPECT_NEAR(p.y(), 1.7, 0.03);
+  EXPECT_NEAR(p.z(), 2.48, 1e-9);
+  // Inverse-square law for a Lambertian source straight above: E = (flux / pi) / h^2.
+  // The mat (0.4 m) and the panel (0.3 m) are small against h = 2.47 m: within 3 %.
+  const double h = 2.48 - 0.01;
+  const double flux_point_source = 200.0 * std::numbers::pi * h * h;
+  EXPECT_NEAR(outcome.luminaires[0].flux_lm / flux_point_source, 1.0, 0.03);
+  EXPECT_NEAR(outcome.luminaires[0].power_w, outcome.luminaires[0].flux_lm / 100.0, 1e-9);
+  // The blend of candidate columns against the real luminaire placed there.
+  EXPECT_TRUE(outcome.feasible);
+  EXPECT_TRUE(outcome.all_met);
+  EXPECT_NEAR(outcome.flux_correction, 1.0, 0.02);
+  ASSERT_TRUE(outcome.goals[0].verified);
+  EXPECT_NEAR(outcome.goals[0].verified->value, 200.0, 1e-6) << "the flux correction makes the verified value exact";
+}
+
+TEST(LayoutSearch, DoublingTheTargetDoublesTheFlux) {
+  TempDir dir;
+  const JobConfig job = mat_job(dir, 200.0);
+  const PreparedJob prepared = prepare_job(job);
+  JobConfig doubled = job;
+  set_goal_parameter(doubled, "goals.mat.average_lux", 400.0);
+  const JobOutcome once = solve_prepared(prepared, job), twice = solve_prepared(prepared, doubled);
+  ASSERT_EQ(once.luminaires.size(), 1u);
+  ASSERT_EQ(twice.luminaires.size(), 1u);
+  EXPECT_NEAR(twice.luminaires[0].flux_lm / once.luminaires[0].flux_lm, 2.0, 1e-6);
+  EXPECT_NEAR((twice.luminaires[0].position_m - once.luminaires[0].position_m).norm(), 0.0, 1e-6);
+  // The search meets the target as predicted; the verification then scales the flux
+  // so the verified value meets it, and the prediction moves with it.
+  ASSERT_TRUE(twice.goals[0].verified);
+  EXPECT_NEAR(twice.goals[0].verified->value, 400.0, 1e-6);
+  EXPECT_NEAR(twice.goals[0].predicted.value, 400.0 * twice.flux_correction, 1e-6);
+  EXPECT_NEAR(twice.flux_correction, once.flux_correction, 1e-9);
+}
+
+TEST(LayoutSearch, UnreachableGoalIsReportedWithTheClosestLayout) {
+  TempDir dir;
+  const std::string weak = std::string(kOneLuminaire).replace(std::string(kOneLuminaire).find("[10, 20000]"), 11,
+                                                              "[10, 500]");
+  const JobConfig job = mat_job(dir, 200.0, "0", weak);
+  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  EXPECT_FALSE(outcome.feasible);
+  EXPECT_FALSE(outcome.all_met);
+  ASSERT_EQ(outcome.luminaires.size(), 1u);
+  EXPECT_NEAR(outcome.luminaires[0].flux_lm, 500.0, 1e-9) << "the closest layout uses all the flux there is";
+  EXPECT_NEAR(outcome.luminaires[0].position_m.x(), 1.3, 0.05) << "and puts it where it helps most";
+  const GoalOutcome& goal = outcome.goals[0];
+  EXPECT_FALSE(goal.met);
+  // 500 lm straight above gives about 500 / (pi 2.47^2) = 26 lx of the 200 asked for.
+  EXPECT_NEAR(goal.predicted.value, 500.0 / (std::numbers::pi * 2.47 * 2.47), 1.5);
+  EXPECT_NEAR(goal.predicted.violation, 1.0 - goal.predicted.value / 200.0, 1e-9);
+}
+
+TEST(LayoutSearch, ContradictoryGoalsAreInfeasible) {
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"mat", {1.3, 1.7}}}));
+  const JobConfig job = load_job_config(dir.write(
+      "job.yaml", room_job("0", kOneLuminaire,
+                           "  - surface: mat\n    average_lux: 300\n  - name: mat_cap\n    surface: mat\n    max_lux: 100\n",
+                           kOptimizer)));
+  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  EXPECT_FALSE(outcome.feasible);
+  EXPECT_FALSE(outcome.all_met);
+  int missed = 0;
+  for (const GoalOutcome& g : outcome.goals) missed += g.met ? 0 : 1;
+  EXPECT_GE(missed, 1);
+}
+
+TEST(LayoutSearch, SameSeedSameLayoutWhateverTheThreads) {
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"left", {1.0, 1.2}}, {"right", {3.1, 2.6}}}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [100, 8000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  count: [1, 2]\n";
+  const std::string goals = "  - surface: left\n    average_lux: 300\n  - surface: right\n    average_lux: 200\n";
+  auto run = [&](int threads, int seed) {
+    JobConfig job = load_job_config(dir.write("job.yaml", room_job("0.5", luminaires, goals, kOptimizer)));
+    job.form_factors.threads = job.direct_light.threads = threads;
+    job.optimizer.seed = static_cast<std::uint64_t>(seed);
+    job.verification.method = VerificationMethod::none;
+    return solve_prepared(prepare_job(job), job);
+  };
+  const JobOutcome a = run(1, 4), b = run(2, 4), c = run(2, 5);
+  ASSERT_EQ(a.luminaires.size(), b.luminaires.size());
+  for (std::size_t j = 0; j < a.luminaires.size(); ++j) {
+    EXPECT_EQ(a.luminaires[j].position_m, b.luminaires[j].position_m);
+    EXPECT_EQ(a.luminaires[j].flux_lm, b.luminaires[j].flux_lm);
+  }
+  EXPECT_EQ(a.search.evaluations, b.search.evaluations);
+  // Another seed takes another path (the layout may agree, the path does not).
+  bool same_path = a.search.evaluations == c.search.evaluations && a.luminaires.size() == c.luminaires.size();
+  for (std::size_t j = 0; same_path && j < a.luminaires.size(); ++j)
+    same_path = a.luminaires[j].position_m == c.luminaires[j].position_m;
+  EXPECT_FALSE(same_path);
+  EXPECT_TRUE(a.feasible);
+}
+
+TEST(LayoutSearch, MinimumDistanceKeepsLuminairesApart) {
+  TempDir dir;
+  // Two mats 1 m apart each want a luminaire overhead; 2.5 m forces them apart.
+  dir.write("room.obj", room_obj({{"left", {1.5, 2.0}}, {"right", {2.5, 2.0}}}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [100, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  count: 2\n";
+  const std::string goals = "  - surface: left\n    average_lux: 300\n  - surface: right\n    average_lux: 300\n";
+  const JobConfig job = load_job_config(dir.write(
+      "job.yaml", room_job("0", luminaires, goals, std::string(kOptimizer) + "constraints:\n  min_distance_m: 2.5\n")));
+  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  ASSERT_EQ(outcome.luminaires.size(), 2u);
+  const double d = (outcome.luminaires[0].position_m - outcome.luminaires[1].position_m).head<2>().norm();
+  EXPECT_GE(d, 2.5 * (1.0 - 1e-4));
+  EXPECT_TRUE(outcome.feasible);
+}
+
+TEST(LayoutSearch, FixedArrayIsPlacedAsConfigured) {
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"mat", {2.0, 2.0}}}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [100, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  layout: array\n  array: {rows: 2, columns: 3, spacing_m: [1.2, 2.0], offset_m: [0.8, 1.0]}\n";
+  const JobConfig job = load_job_config(
+      dir.write("job.yaml", room_job("0", luminaires, "  - surface: mat\n    average_lux: 250\n", kOptimizer)));
+  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  ASSERT_EQ(outcome.luminaires.size(), 6u);
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d p = outcome.luminaires[static_cast<std::size_t>(r * 3 + c)].position_m;
+      EXPECT_NEAR(p.x(), 0.8 + 1.2 * c, 1e-9);
+      EXPECT_NEAR(p.y(), 1.0 + 2.0 * r, 1e-9);
+    }
+  for (const PlacedLuminaire& l : outcome.luminaires) EXPECT_EQ(l.flux_lm, outcome.luminaires[0].flux_lm);
+  EXPECT_NEAR(outcome.goals[0].predicted.value, 250.0 * outcome.flux_correction, 1e-6);
+  EXPECT_NEAR(outcome.flux_correction, 1.0, 0.02) << "interpolated T against the real luminaires";
+  EXPECT_EQ(outcome.search.evaluations, 1) << "nothing to search: one evaluation gives the flux";
+}
+
+TEST(LayoutSearch, ArraySpacingIsSearched) {
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"mat", {2.0, 2.0}, 1.0}}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [100, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  layout: array\n  array: {rows: 2, columns: 2}\n";
+  const JobConfig job = load_job_config(
+      dir.write("job.yaml", room_job("0", luminaires, "  - surface: mat\n    average_lux: 250\n", kOptimizer)));
+  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  ASSERT_EQ(outcome.luminaires.size(), 4u);
+  // The least power over a central mat puts the array's centre over it.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const PlacedLuminaire& l : outcome.luminaires) centre += l.position_m / 4.0;
+  EXPECT_NEAR(centre.x(), 2.0, 0.05);
+  EXPECT_NEAR(centre.y(), 2.0, 0.05);
+  EXPECT_TRUE(outcome.all_met);
+}
+
+}  // namespace
+}  // namespace ilp
