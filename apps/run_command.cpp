@@ -93,6 +93,8 @@ ResultRecord make_record(const PreparedJob& prepared, const JobConfig& job, cons
   r.seed = job.form_factors.seed;
   r.optimizer_seed = job.optimizer.seed;
   r.evaluations = outcome.search.evaluations;
+  r.searches = outcome.searches;
+  r.calibration = outcome.calibration;
   r.time_limited = outcome.search.time_limited;
   r.timings_s = timings;
   for (const CountAttempt& a : outcome.search.attempts)

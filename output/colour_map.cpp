@@ -30,11 +30,11 @@ constexpr std::array<std::array<double, 3>, kKnots> kViridis = {{
     {0.993248, 0.906157, 0.143936},  // 255
 }};
 
-// The smallest of 1, 2, 2.5, 5 x 10^n that is >= v > 0 (to a relative 1e-9, so that
+// The smallest of 1, 2, 2.5, 4, 5, 6, 8 x 10^n that is >= v > 0 (to a relative 1e-9, so that
 // a maximum of 500 plus rounding noise stays 500).
 double nice_ceiling(double v) {
   const int exponent = static_cast<int>(std::floor(std::log10(v)));
-  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0}) {
+  for (double m : {1.0, 2.0, 2.5, 4.0, 5.0, 6.0, 8.0, 10.0}) {
     // Dividing by 10^-n for negative n gives 0.25 rather than 2.5 * 0.1 = 0.25000000000000006.
     const double nice = exponent >= 0 ? m * std::pow(10.0, exponent) : m / std::pow(10.0, -exponent);
     if (nice >= v * (1.0 - 1e-9)) return std::isfinite(nice) ? nice : v;

@@ -24,7 +24,7 @@ struct ColourScale {
   double fraction(double lux) const;
 };
 
-// From 0 lux to the smallest "nice" number (1, 2, 2.5 or 5 x 10^n) >= the largest
+// From 0 lux to the smallest "nice" number (1, 2, 2.5, 4, 5, 6 or 8 x 10^n) >= the largest
 // finite entry, so that legend ticks at quarters read well. NaN and infinite entries
 // are ignored; no finite entry above 0 gives [0, 1].
 ColourScale colour_scale_for(const Eigen::VectorXd& lux);

@@ -12,7 +12,8 @@
 namespace ilp {
 namespace {
 
-using nlohmann::json;
+// Keys in the order written, so the file reads top-down like the printed report.
+using json = nlohmann::ordered_json;
 
 json to_json(const ResultRecord& r) {
   json j;
@@ -47,13 +48,11 @@ json to_json(const ResultRecord& r) {
   j["seed"] = r.seed;
   j["optimizer_seed"] = r.optimizer_seed;
   j["evaluations"] = r.evaluations;
+  j["searches"] = r.searches;
+  j["calibration"] = r.calibration;
   j["time_limited"] = r.time_limited;
   j["timings_s"] = json::object();
-  j["timing_order"] = json::array();
-  for (const auto& [phase, seconds] : r.timings_s) {
-    j["timings_s"][phase] = seconds;
-    j["timing_order"].push_back(phase);
-  }
+  for (const auto& [phase, seconds] : r.timings_s) j["timings_s"][phase] = seconds;
   j["attempts"] = json::array();
   for (const AttemptRecord& a : r.attempts)
     j["attempts"].push_back({{"luminaires", a.luminaires}, {"evaluations", a.evaluations}, {"seconds", a.seconds},
@@ -100,11 +99,10 @@ ResultRecord from_json(const json& j) {
   r.seed = j.at("seed").get<unsigned long long>();
   r.optimizer_seed = j.at("optimizer_seed").get<unsigned long long>();
   r.evaluations = j.at("evaluations").get<int>();
+  r.searches = j.at("searches").get<int>();
+  r.calibration = j.at("calibration").get<std::vector<std::string>>();
   r.time_limited = j.at("time_limited").get<bool>();
-  for (const json& phase : j.at("timing_order")) {
-    const std::string name = phase.get<std::string>();
-    r.timings_s.emplace_back(name, j.at("timings_s").at(name).get<double>());
-  }
+  for (const auto& [phase, seconds] : j.at("timings_s").items()) r.timings_s.emplace_back(phase, seconds.get<double>());
   for (const json& a : j.at("attempts"))
     r.attempts.push_back({a.at("luminaires").get<int>(), a.at("evaluations").get<int>(), a.at("seconds").get<double>(),
                           a.at("feasible").get<bool>(), a.at("power_w").get<double>(),
@@ -178,9 +176,11 @@ void print_result(std::ostream& os, const ResultRecord& r) {
     os << "; every flux scaled by " << fixed(r.flux_correction, 4) << " after verification";
   os << "\noperator: k = " << r.sample_size << " of " << r.population << " reflecting patches (" << r.patches
      << " patches), " << r.candidates << " candidate positions, seed " << r.seed << "\n";
-  os << "search: " << r.evaluations << " evaluations, optimizer seed " << r.optimizer_seed;
+  os << "search: " << r.evaluations << " evaluations in " << r.searches << (r.searches == 1 ? " round" : " rounds")
+     << ", optimizer seed " << r.optimizer_seed;
   if (r.time_limited) os << " (the time budget ended a stage: the layout may depend on machine speed)";
   os << "\n";
+  for (const std::string& line : r.calibration) os << "  " << line << "\n";
   for (const AttemptRecord& a : r.attempts)
     os << "  " << a.luminaires << " luminaires: " << (a.feasible ? fixed(a.power_w, 1) + " W" : std::string("infeasible"))
        << ", " << a.evaluations << " evaluations in " << fixed(a.seconds, 2) << " s (global: " << a.global_stop

@@ -61,6 +61,8 @@ struct ResultRecord {
   unsigned long long seed = 0;              // rays
   unsigned long long optimizer_seed = 0;
   int evaluations = 0;
+  int searches = 1;                         // search rounds (verification-driven re-searches + 1)
+  std::vector<std::string> calibration;     // what each extra round changed
   bool time_limited = false;
   std::vector<std::pair<std::string, double>> timings_s;  // phase, seconds, in order
   std::vector<AttemptRecord> attempts;

@@ -72,13 +72,16 @@ TEST(ColourScale, EndsAtANiceNumberAtOrAboveTheMaximum) {
   EXPECT_EQ(top(1.2), 2.0);
   EXPECT_EQ(top(2.1), 2.5);
   EXPECT_EQ(top(2.5), 2.5);
-  EXPECT_EQ(top(3.0), 5.0);
-  EXPECT_EQ(top(6.0), 10.0);
+  EXPECT_EQ(top(3.0), 4.0);
+  EXPECT_EQ(top(4.5), 5.0);
+  EXPECT_EQ(top(621.0), 800.0);
+  EXPECT_EQ(top(6.0), 6.0);
+  EXPECT_EQ(top(8.5), 10.0);
   EXPECT_EQ(top(250.0), 250.0);
   EXPECT_EQ(top(1000.0), 1000.0);
   EXPECT_EQ(top(1001.0), 2000.0);
   EXPECT_EQ(top(500.0 * (1.0 + 1e-12)), 500.0);  // rounding noise does not double the scale
-  EXPECT_EQ(top(0.03), 0.05);
+  EXPECT_EQ(top(0.03), 0.04);
   EXPECT_EQ(top(0.0021), 0.0025);
   EXPECT_EQ(top(12345.0), 20000.0);
   EXPECT_EQ(colour_scale_for(values({437.0})).min_lux, 0.0);

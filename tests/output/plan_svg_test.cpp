@@ -254,7 +254,7 @@ TEST(PlanSvg, NaNLuxIsGreyAndLeftOutOfTheScale) {
   const std::vector<std::string> drawn = polygons(svg);
   ASSERT_EQ(drawn.size(), 4u);
   EXPECT_EQ(attribute(drawn[2], "fill"), "#808080");
-  EXPECT_EQ(attribute(drawn[3], "fill"), svg_colour(colour_map(300.0 / 500.0)));
+  EXPECT_EQ(attribute(drawn[3], "fill"), svg_colour(colour_map(300.0 / 400.0)));  // scale 0 to 400 lx
   EXPECT_TRUE(has_text(svg, "max 300 lx"));
   EXPECT_TRUE(has_text(svg, "min 100 lx"));
 }

@@ -1,0 +1,221 @@
+// Runs the real `ilp run`, `ilp sweep` and `ilp print` on a small room (a 4 x 4 x
+// 2.5 m box with a mat on the floor) and checks their contract: the printed layout
+// and goals, the files of the output folder, exit codes (0 met, 2 missed, 1 error),
+// a sweep that builds the operator once, and the same layout for the same seed.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/optimizer/optimizer_test_scenes.h"
+#include "tests/test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using ilp::test::read_file;
+using ilp::test::TempDir;
+
+::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
+  return ilp::test::Contains(text, part, "output");
+}
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+RunResult run_ilp(const TempDir& dir, const std::vector<std::string>& args) {
+  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+  std::ostringstream command;
+  command << "'" << ILP_BINARY << "'";
+  for (const std::string& a : args) command << " '" << a << "'";
+  command << " >'" << out << "' 2>'" << err << "' </dev/null";
+  const int status = std::system(command.str().c_str());
+  RunResult r;
+  r.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+std::size_t count_of(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+// The mat job: one luminaire of up to `flux_max` lm over a 0.4 m mat at (1.3, 1.7) in
+// a room of reflectance 0.4, the mat to get `target` lx on average.
+std::string mat_job(const TempDir& dir, double target = 200.0, double flux_max = 20000.0) {
+  dir.write("room.obj", ilp::test::room_obj({{"mat", {1.3, 1.7}}}));
+  std::ostringstream luminaires, goals;
+  luminaires << "  size_m: 0.3\n  flux_lm: [10, " << flux_max
+             << "]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n  candidate_spacing_m: 0.5\n  count: 1\n";
+  goals << "  - surface: mat\n    average_lux: " << target << "\n";
+  return dir.write("job.yaml", ilp::test::room_job("0.4", luminaires.str(), goals.str(),
+                                                   "optimizer:\n  max_evaluations: 800\n  local_max_evaluations: 800\n"));
+}
+
+TEST(IlpRun, PrintsTheLayoutAndWritesEveryOutput) {
+  TempDir dir;
+  const std::string job = mat_job(dir);
+  const std::string out = dir.file("out");
+  const RunResult r = run_ilp(dir, {"run", job, "--out", out, "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  for (const char* part : {"Optimal layout (min_power, 1 luminaires)", "id", "x m", "y m", "z m", "flux lm", "power W",
+                           "L1", "Total power", "W/m²", "mat average (lx)", "200.0", "met",
+                           "verification: exact, 256 rays per patch", "evaluations", "timings:", "operator"})
+    EXPECT_TRUE(Contains(r.out, part));
+  for (const char* file : {"result.json", "illuminance.csv", "plan.svg", "scene.ply"}) {
+    EXPECT_TRUE(fs::exists(fs::path(out) / file)) << file;
+    EXPECT_FALSE(fs::exists(fs::path(out) / (std::string(file) + ".tmp"))) << file;
+  }
+  const std::string json = read_file((fs::path(out) / "result.json").string());
+  for (const char* key : {"\"luminaires\"", "\"goals\"", "\"target\"", "\"predicted\"", "\"verified\"", "\"met\"",
+                          "\"flux_lm\"", "\"power_w\"", "\"program_version\"", "\"sample_size\"", "\"seed\"", "\"timings_s\""})
+    EXPECT_TRUE(Contains(json, key)) << key;
+  // illuminance.csv: one row per mat patch (0.4 m square at 0.25 m edges: 2 triangles
+  // cut into 2 x 2 = 8 patches), with area adding up to the mat's 0.16 m².
+  const std::vector<std::string> csv = lines_of(read_file((fs::path(out) / "illuminance.csv").string()));
+  ASSERT_GE(csv.size(), 2u);
+  EXPECT_EQ(csv[0].rfind("patch,surface,centroid_x_m,centroid_y_m,centroid_z_m,normal_x,normal_y,normal_z,area_m2,", 0), 0u);
+  double area = 0.0, weighted = 0.0;
+  for (std::size_t i = 1; i < csv.size(); ++i) {
+    std::vector<std::string> f;
+    std::istringstream in(csv[i]);
+    for (std::string field; std::getline(in, field, ',');) f.push_back(field);
+    ASSERT_EQ(f.size(), 13u) << csv[i];
+    EXPECT_EQ(f[1], "mat");
+    area += std::stod(f[8]);
+    weighted += std::stod(f[8]) * std::stod(f[12]);
+  }
+  EXPECT_NEAR(area, 0.16, 1e-9);
+  EXPECT_NEAR(weighted / area, 200.0, 1e-3) << "the verified average in the CSV is the one reported";
+  EXPECT_EQ(read_file((fs::path(out) / "plan.svg").string()).rfind("<svg", 0), 0u);
+  EXPECT_EQ(read_file((fs::path(out) / "scene.ply").string()).rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
+}
+
+TEST(IlpRun, PrintShowsTheSavedLayoutAgain) {
+  TempDir dir;
+  const std::string out = dir.file("out");
+  const RunResult run = run_ilp(dir, {"run", mat_job(dir), "--out", out, "-q"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const RunResult print = run_ilp(dir, {"print", (fs::path(out) / "result.json").string()});
+  ASSERT_EQ(print.exit_code, 0) << print.err;
+  // The run's report is the print's, followed by the files written.
+  EXPECT_EQ(run.out.substr(0, print.out.size()), print.out);
+  EXPECT_TRUE(Contains(run.out.substr(print.out.size()), "wrote "));
+  EXPECT_TRUE(Contains(print.out, "L1"));
+}
+
+TEST(IlpRun, UnreachableGoalExitsTwoAndSaysByHowMuch) {
+  TempDir dir;
+  const RunResult r = run_ilp(dir, {"run", mat_job(dir, 200.0, 300.0), "--out", dir.file("out"), "-q"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(Contains(r.out, "INFEASIBLE: no layout found meets every goal"));
+  EXPECT_TRUE(Contains(r.out, "MISSED by"));
+  EXPECT_TRUE(Contains(r.out, "300.0")) << "the closest layout uses the whole flux range";
+  EXPECT_TRUE(fs::exists(fs::path(dir.file("out")) / "result.json")) << "the closest layout is still saved";
+}
+
+TEST(IlpRun, SameSeedSameLayout) {
+  TempDir dir;
+  const std::string job = mat_job(dir);
+  ASSERT_EQ(run_ilp(dir, {"run", job, "--out", dir.file("a"), "-q", "--threads", "1"}).exit_code, 0);
+  ASSERT_EQ(run_ilp(dir, {"run", job, "--out", dir.file("b"), "-q", "--threads", "2"}).exit_code, 0);
+  auto layout = [&](const std::string& folder) {
+    const std::string json = read_file((fs::path(dir.file(folder)) / "result.json").string());
+    const auto start = json.find("\"luminaires\": [");
+    return json.substr(start, json.find(']', start) - start);
+  };
+  EXPECT_EQ(layout("a"), layout("b"));
+}
+
+TEST(IlpRun, JobWithoutMountingSurfaceIsAClearError) {
+  TempDir dir;
+  const RunResult r = run_ilp(dir, {"run", ILP_SOURCE_DIR "/configs/office_fixed.yaml", "--out", dir.file("out")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out, "");
+  EXPECT_TRUE(Contains(r.err, "error: " ILP_SOURCE_DIR "/configs/office_fixed.yaml: luminaires.mounting_surface is missing"));
+  EXPECT_FALSE(fs::exists(dir.file("out")));
+}
+
+TEST(IlpSweep, BuildsTheOperatorOnceAndWritesARowPerValue) {
+  TempDir dir;
+  const std::string out = dir.file("sweep");
+  const RunResult r = run_ilp(dir, {"sweep", mat_job(dir), "--set", "goals.mat.average_lux=100,200,300", "--out", out, "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(count_of(r.err, "operator built once"), 1u) << r.err;
+  EXPECT_EQ(count_of(r.err, "sweep point "), 3u) << r.err;
+  EXPECT_TRUE(Contains(r.out, "operator built once for 3 points"));
+  const std::vector<std::string> csv = lines_of(read_file((fs::path(out) / "sweep.csv").string()));
+  ASSERT_EQ(csv.size(), 4u);
+  EXPECT_EQ(csv[0].rfind("goals.mat.average_lux,luminaires,power_w,", 0), 0u) << csv[0];
+  std::vector<double> power;
+  for (std::size_t i = 1; i < csv.size(); ++i) {
+    std::istringstream in(csv[i]);
+    std::string value, count, watts;
+    std::getline(in, value, ',');
+    std::getline(in, count, ',');
+    std::getline(in, watts, ',');
+    EXPECT_EQ(std::stod(value), 100.0 * static_cast<double>(i));
+    power.push_back(std::stod(watts));
+  }
+  // Illuminance is linear in flux: power proportional to the target.
+  EXPECT_NEAR(power[1] / power[0], 2.0, 0.02);
+  EXPECT_NEAR(power[2] / power[0], 3.0, 0.03);
+  EXPECT_EQ(read_file((fs::path(out) / "sweep.svg").string()).rfind("<svg", 0), 0u);
+}
+
+TEST(IlpSweep, BadSetKeyFailsBeforeAnyWork) {
+  TempDir dir;
+  const RunResult r = run_ilp(dir, {"sweep", mat_job(dir), "--set", "goals.rug.average_lux=1,2", "--out", dir.file("s")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out, "");
+  EXPECT_TRUE(Contains(r.err, "error: --set goals.rug.average_lux: no goal parameter"));
+  EXPECT_TRUE(Contains(r.err, "goals.mat.average_lux"));
+  EXPECT_EQ(count_of(r.err, "\n"), 1u) << r.err;
+  EXPECT_FALSE(fs::exists(dir.file("s")));
+  const RunResult bad_value = run_ilp(dir, {"sweep", mat_job(dir), "--set", "goals.mat.average_lux=100,x", "--out", dir.file("s")});
+  EXPECT_EQ(bad_value.exit_code, 1);
+  EXPECT_TRUE(Contains(bad_value.err, "'x' is not a number"));
+}
+
+TEST(IlpPrint, MalformedResultIsAClearError) {
+  TempDir dir;
+  const std::string path = dir.write("result.json", "{\"luminaires\": [");
+  const RunResult r = run_ilp(dir, {"print", path});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(Contains(r.err, "error: " + path + ": not valid JSON"));
+  const RunResult other = run_ilp(dir, {"print", dir.write("other.json", "{\"a\": 1}")});
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_TRUE(Contains(other.err, "not an ilp result"));
+}
+
+TEST(IlpRun, EveryNewCommandHasHelp) {
+  TempDir dir;
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", "--help"}, {"sweep", "--help"}, {"print", "--help"}}) {
+    const RunResult r = run_ilp(dir, args);
+    EXPECT_EQ(r.exit_code, 0) << args[0];
+    EXPECT_TRUE(Contains(r.out, args[0] == "print" ? "result.json" : "--out")) << args[0];
+  }
+}
+
+}  // namespace
