@@ -278,11 +278,10 @@ int run_sweep(const SweepArgs& args) {
       if (g.verified) csv << g.verified->value;
     }
     csv << "\n";
-    std::cout << std::left << std::setw(28) << sweep.values[i] << std::right << std::setw(12) << outcome.luminaires.size()
+    std::cout << std::defaultfloat << std::setprecision(6) << std::left << std::setw(28) << sweep.values[i] << std::right << std::setw(12) << outcome.luminaires.size()
               << std::setw(11) << std::fixed << std::setprecision(1) << outcome.power_w << std::setw(10)
               << std::setprecision(2) << outcome.power_density_w_per_m2 << "  "
-              << (outcome.all_met ? "all met" : outcome.feasible ? "missed on verification" : "infeasible") << "\n"
-              << std::defaultfloat;
+              << (outcome.all_met ? "all met" : outcome.feasible ? "missed on verification" : "infeasible") << "\n";
     if (outcome.all_met) {
       xs.push_back(sweep.values[i]);
       powers.push_back(outcome.power_w);
