@@ -22,8 +22,10 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 // The verification's rays are independent of the operator's.
 constexpr std::uint64_t kVerificationSeedSalt = 0x5EED5EEDull;
 
-Verification verify(const PreparedJob& prepared, const JobConfig& job, const std::vector<PlacedLuminaire>& layout,
-                    const ProgressCallback& progress) {
+}  // namespace
+
+Verification verify_layout(const PreparedJob& prepared, const JobConfig& job, const std::vector<PlacedLuminaire>& layout,
+                           const ProgressCallback& progress) {
   Verification out;
   const VerificationSettings& settings = job.verification;
   if (settings.method == VerificationMethod::none) return out;
@@ -68,16 +70,19 @@ Verification verify(const PreparedJob& prepared, const JobConfig& job, const std
   return out;
 }
 
-// Illuminance at the model's goal patches from a verification over `patches`.
-Eigen::VectorXd at_goal_patches(const LightingModel& model, const Verification& v) {
+Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification& v) {
   Eigen::VectorXd out(static_cast<Eigen::Index>(model.goal_patches.size()));
   std::size_t k = 0;
   for (std::size_t r = 0; r < model.goal_patches.size(); ++r) {
-    while (v.patches[k] < model.goal_patches[r]) ++k;  // both ascending; the goal patches are among them
+    while (k < v.patches.size() && v.patches[k] < model.goal_patches[r]) ++k;  // both ascending
+    if (k == v.patches.size() || v.patches[k] != model.goal_patches[r])
+      throw std::logic_error("verification: goal patch " + std::to_string(model.goal_patches[r]) + " was not solved");
     out[static_cast<Eigen::Index>(r)] = v.lux[static_cast<Eigen::Index>(k)];
   }
   return out;
 }
+
+namespace {
 
 // The flux scale that makes the verified values just meet the lower-bound goals
 // (min_power) or fit the average targets best (closest_to_target): illuminance is
@@ -154,11 +159,11 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, 
   const std::vector<GoalJudgement> as_searched = judge_goals(model, job, out.predicted_lux);
   std::vector<GoalJudgement> predicted = as_searched;
 
-  out.verification = verify(prepared, job, out.luminaires, progress);
+  out.verification = verify_layout(prepared, job, out.luminaires, progress);
   out.verify_seconds = out.verification.seconds;
   std::optional<std::vector<GoalJudgement>> verified;
   if (out.verification.method != "none") {
-    verified = judge_goals(model, job, at_goal_patches(model, out.verification));
+    verified = judge_goals(model, job, verified_goal_lux(model, out.verification));
     // Without fixed sources every illuminance is proportional to the common flux scale.
     const bool no_fixed = model.fixed_lux.cwiseAbs().maxCoeff() == 0.0;
     if (no_fixed && !out.luminaires.empty()) {
@@ -173,7 +178,7 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, 
         out.verification.lux *= out.flux_correction;
         out.verification.direct_lux *= out.flux_correction;
         predicted = judge_goals(model, job, out.predicted_lux);
-        verified = judge_goals(model, job, at_goal_patches(model, out.verification));
+        verified = judge_goals(model, job, verified_goal_lux(model, out.verification));
       }
     }
   }

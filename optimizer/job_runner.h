@@ -50,6 +50,15 @@ struct Verification {
   Eigen::VectorXd lux, direct_lux;
 };
 
+// Places `layout` as real luminaires in the job's scene and solves it as
+// job.verification says (exact, or a sample of verification.sample_fraction), with
+// rays independent of the operator's. Method "none" returns an empty Verification.
+Verification verify_layout(const PreparedJob& prepared, const JobConfig& job,
+                           const std::vector<PlacedLuminaire>& layout, const ProgressCallback& progress = {});
+
+// The verified illuminance at the model's goal patches, in LightingModel::goal_patches order.
+Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification& verification);
+
 struct JobOutcome {
   std::vector<PlacedLuminaire> luminaires;  // named L1, L2, ... in this order
   std::vector<GoalOutcome> goals;

@@ -1,0 +1,90 @@
+// result.json written and read back, and the errors for files that are not results.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "output/result_record.h"
+#include "tests/test_support.h"
+
+namespace ilp {
+namespace {
+
+ResultRecord sample_record() {
+  ResultRecord r;
+  r.program_version = "ilp 0.1.0";
+  r.config = "configs/office.yaml";
+  r.objective = "min_power";
+  r.luminaires = {{"L1", 1.5, 1.0, 2.95, 3400.26, 27.202}, {"L2", 4.5, 3.0, 2.95, 1234.5, 9.876}};
+  GoalRecord desks{"desks", {"desk_1", "desk_2"}, "average", "lx", 500.0, 508.6, 500.0, true, false, 1e-4};
+  GoalRecord floor{"floor", {"floor"}, "minimum", "lx", 100.0, 100.0, 88.66, false, true, 1e-4};
+  GoalRecord unverified{"desks", {"desk_1", "desk_2"}, "uniformity", "", 0.6, 0.7, std::nullopt, true, false, 1e-4};
+  r.goals = {desks, floor, unverified};
+  r.power_w = 37.078;
+  r.mounting_area_m2 = 24.0;
+  r.power_density_w_per_m2 = 37.078 / 24.0;
+  r.feasible = true;
+  r.all_met = false;
+  r.flux_correction = 1.0027;
+  r.verification = "exact";
+  r.verification_rays_per_patch = 1024;
+  r.sample_size = 517;
+  r.population = 10330;
+  r.patches = 10330;
+  r.candidates = 96;
+  r.seed = 1;
+  r.optimizer_seed = 9007199254740993ull;  // above 2^53: must survive as an integer
+  r.evaluations = 70654;
+  r.searches = 2;
+  r.calibration = {"round 1: floor minimum predicted 100, verified 88.66; the next search aims at 113 for 100"};
+  r.timings_s = {{"scene", 0.01}, {"operator", 1.41}, {"total", 8.27}};
+  r.attempts = {{4, 6643, 0.32, true, 123.4, "evaluation budget used", "step tolerance reached"}};
+  return r;
+}
+
+TEST(ResultJson, RoundTripsEveryField) {
+  test::TempDir dir;
+  const ResultRecord r = sample_record();
+  write_result_json(dir.file("result.json"), r);
+  const ResultRecord back = read_result_json(dir.file("result.json"));
+  std::ostringstream a, b;
+  print_result(a, r);
+  print_result(b, back);
+  EXPECT_EQ(a.str(), b.str());
+  ASSERT_EQ(back.luminaires.size(), 2u);
+  EXPECT_EQ(back.luminaires[1].flux_lm, 1234.5);
+  EXPECT_EQ(back.goals[1].verified, 88.66);
+  EXPECT_FALSE(back.goals[2].verified.has_value());
+  EXPECT_TRUE(back.goals[1].fails_only_on_verification);
+  EXPECT_EQ(back.optimizer_seed, 9007199254740993ull);
+  ASSERT_EQ(back.timings_s.size(), 3u);
+  EXPECT_EQ(back.timings_s[1].first, "operator") << "phases keep their order";
+  EXPECT_EQ(back.calibration, r.calibration);
+  EXPECT_EQ(back.attempts[0].local_stop, "step tolerance reached");
+}
+
+TEST(ResultJson, PrintShowsLayoutGoalsAndMisses) {
+  std::ostringstream os;
+  print_result(os, sample_record());
+  const std::string text = os.str();
+  for (const char* part : {"NOT MET on verification", "L1", "3400.3", "27.20", "Total power 37.1 W", "1.54 W/m²",
+                           "desks average (lx)", "508.6", "MISSED by 11.3 % (fails on verification only)",
+                           "every flux scaled by 1.0027", "2 rounds", "round 1: floor minimum"})
+    EXPECT_TRUE(test::Contains(text, part, "report")) << part;
+}
+
+TEST(ResultJson, NotAResultIsAClearError) {
+  test::TempDir dir;
+  const std::string missing = dir.file("none.json");
+  EXPECT_TRUE(test::Contains(test::error_of<std::runtime_error>([&] { read_result_json(missing); }),
+                             missing + ": cannot open the result file"));
+  const std::string broken = dir.write("broken.json", "{\"luminaires\": [");
+  EXPECT_TRUE(test::Contains(test::error_of<std::runtime_error>([&] { read_result_json(broken); }),
+                             broken + ": not valid JSON"));
+  const std::string other = dir.write("other.json", "{\"luminaires\": []}");
+  EXPECT_TRUE(test::Contains(test::error_of<std::runtime_error>([&] { read_result_json(other); }),
+                             other + ": not an ilp result"));
+}
+
+}  // namespace
+}  // namespace ilp
