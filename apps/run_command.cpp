@@ -84,6 +84,7 @@ ResultRecord make_record(const PreparedJob& prepared, const JobConfig& job, cons
   r.feasible = outcome.feasible;
   r.all_met = outcome.all_met;
   r.flux_correction = outcome.flux_correction;
+  r.flux_correction_limited = outcome.flux_correction_limited;
   r.verification = outcome.verification.method;
   r.verification_rays_per_patch = outcome.verification.rays_per_patch;
   r.sample_size = prepared.model.sample_size;
@@ -160,6 +161,7 @@ std::vector<std::string> write_outputs(const std::string& dir, const PreparedJob
     for (std::size_t r = 0; r < prepared.model.goal_patches.size(); ++r)
       goal_lux[static_cast<Eigen::Index>(r)] = per_patch[prepared.model.goal_patches[r]];
   }
+  const ColourScale scale = colour_scale_for(goal_lux);  // the plan's and the PLY's, so both read the same
   if (job.output.svg) {
     PlanView view;
     std::ostringstream title;
@@ -182,7 +184,7 @@ std::vector<std::string> write_outputs(const std::string& dir, const PreparedJob
     if (!verified)
       for (std::size_t r = 0; r < prepared.model.goal_patches.size(); ++r)
         lux[prepared.model.goal_patches[r]] = outcome.predicted_lux[static_cast<Eigen::Index>(r)];
-    write_illuminance_ply((folder / "scene.ply").string(), scene, lux, colour_scale_for(lux));
+    write_illuminance_ply((folder / "scene.ply").string(), scene, lux, scale);
     written.push_back((folder / "scene.ply").string());
   }
   return written;
@@ -255,7 +257,7 @@ int run_sweep(const SweepArgs& args) {
   csv << std::setprecision(9) << csv_field(sweep.key)
       << ",luminaires,power_w,power_density_w_per_m2,feasible,all_met,flux_correction,evaluations,search_s,verification_s";
   for (const GoalSetting& g : job.goals) {
-    const std::string label = g.name + "." + std::string(to_string(g.metric));
+    const std::string label = "goals." + g.name + "." + std::string(goal_key(g.metric));
     csv << "," << csv_field(label + ".target") << "," << csv_field(label + ".predicted") << ","
         << csv_field(label + ".verified");
   }

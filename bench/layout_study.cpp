@@ -8,7 +8,8 @@
 //  2. search: global algorithm x local algorithm x evaluation budget, seeds 1-3, without
 //     verification: the power found (median), feasibility, evaluations and time.
 //
-//   ./build/bench/layout_study [CONFIG] [LAYOUTS]      (defaults: office, 12 layouts)
+//   ./build/bench/layout_study [CONFIG] [LAYOUTS] [prediction]
+//   (defaults: configs/office.yaml, 12 layouts; "prediction": skip the search study)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -126,7 +127,7 @@ int main(int argc, char** argv) {
                 job.path.c_str(), prepared.loaded.scene.patches.size(), prepared.model.goal_patches.size(),
                 prepared.model.grid.size(), prepared.model.sample_size, prepared.model.build_seconds);
     prediction_study(prepared, layouts);
-    search_study(prepared);
+    if (!(argc > 3 && std::string(argv[3]) == "prediction")) search_study(prepared);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

@@ -319,11 +319,12 @@ constexpr std::pair<GoalMetric, const char*> kGoalKeys[] = {{GoalMetric::average
                                                             {GoalMetric::maximum, "max_lux"},
                                                             {GoalMetric::uniformity, "uniformity"}};
 
-const char* goal_key(GoalMetric metric) {
+const char* key_text(GoalMetric metric) {
   for (const auto& [m, key] : kGoalKeys)
     if (m == metric) return key;
   return "?";
 }
+
 
 std::string format_number(double v) {
   std::ostringstream os;
@@ -354,7 +355,7 @@ std::string goal_bound_rule(const std::vector<GoalSetting>& others, const std::s
     if (lower && g.metric == GoalMetric::maximum && v > g.target)
       return "must be <= max_lux (" + format_number(g.target) + ") of goal '" + name + "'";
     if (metric == GoalMetric::maximum && other_lower && v < g.target)
-      return std::string("must be >= ") + goal_key(g.metric) + " (" + format_number(g.target) + ") of goal '" + name +
+      return std::string("must be >= ") + key_text(g.metric) + " (" + format_number(g.target) + ") of goal '" + name +
              "'";
   }
   return "";
@@ -412,7 +413,7 @@ void read_goals(const Value& section, JobConfig& job) {
 std::string goal_parameters(const JobConfig& job) {
   std::string out;
   for (const GoalSetting& g : job.goals)
-    out += (out.empty() ? "goals." : ", goals.") + g.name + "." + goal_key(g.metric);
+    out += (out.empty() ? "goals." : ", goals.") + g.name + "." + key_text(g.metric);
   return out;
 }
 
@@ -425,7 +426,7 @@ void apply_goal_parameter(JobConfig& job, const std::string& key, double value, 
   if (key.rfind("goals.", 0) == 0 && dot != std::string::npos && dot > 6) {
     const std::string name = key.substr(6, dot - 6), metric = key.substr(dot + 1);
     for (GoalSetting& g : job.goals)
-      if (g.name == name && metric == goal_key(g.metric)) found = &g;
+      if (g.name == name && metric == key_text(g.metric)) found = &g;
   }
   if (!found) {
     bad_key("no goal parameter " + key + "; " +
@@ -623,6 +624,8 @@ void read_solver(const Map& solver, JobConfig& job) {
 }
 
 }  // namespace
+
+std::string_view goal_key(GoalMetric metric) { return key_text(metric); }
 
 std::string_view to_string(GoalMetric metric) {
   switch (metric) {

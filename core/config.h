@@ -102,6 +102,8 @@ enum class GoalMetric {
   uniformity,  // U0 = Emin / Eavg >= target (a ratio in (0, 1])
 };
 std::string_view to_string(GoalMetric metric);
+// The metric's key in a goals entry and in sweep keys: average_lux, min_lux, max_lux, uniformity.
+std::string_view goal_key(GoalMetric metric);
 
 // One line of goals: a metric over the union of some surfaces. A goals entry with
 // several metrics (average_lux and uniformity) becomes several GoalSettings with the

@@ -88,7 +88,8 @@ namespace {
 // (min_power) or fit the average targets best (closest_to_target): illuminance is
 // linear in flux, so scaling every flux scales the verified values exactly.
 double verified_flux_scale(const JobConfig& job, const std::vector<GoalJudgement>& verified,
-                           const std::vector<PlacedLuminaire>& layout) {
+                           const std::vector<PlacedLuminaire>& layout, bool& limited) {
+  limited = false;
   double scale = 0.0, num = 0.0, den = 0.0;
   for (const GoalJudgement& g : verified) {
     if (g.metric == GoalMetric::average && job.objective == Objective::closest_to_target) {
@@ -106,8 +107,10 @@ double verified_flux_scale(const JobConfig& job, const std::vector<GoalJudgement
     flux_high = std::max(flux_high, l.flux_lm);
     flux_low = std::min(flux_low, l.flux_lm);
   }
+  const double wanted = scale;
   if (flux_high > 0.0) scale = std::min(scale, job.search->flux_max_lm / flux_high);
   if (flux_low > 0.0) scale = std::max(scale, job.search->flux_min_lm / flux_low);
+  limited = std::abs(scale - wanted) > 1e-12 * wanted;
   return scale;
 }
 
@@ -167,7 +170,7 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, 
     // Without fixed sources every illuminance is proportional to the common flux scale.
     const bool no_fixed = model.fixed_lux.cwiseAbs().maxCoeff() == 0.0;
     if (no_fixed && !out.luminaires.empty()) {
-      out.flux_correction = verified_flux_scale(job, *verified, out.luminaires);
+      out.flux_correction = verified_flux_scale(job, *verified, out.luminaires, out.flux_correction_limited);
       if (std::abs(out.flux_correction - 1.0) > 1e-12) {
         for (PlacedLuminaire& l : out.luminaires) {
           l.flux_lm *= out.flux_correction;
@@ -243,7 +246,8 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
     bool recalibrated = false;
     for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
       const GoalOutcome& o = outcome.goals[g];
-      if (o.met || !o.verified || !(o.verified->value > 0.0) || !(o.predicted.value > 0.0)) continue;
+      if (round + 1 == rounds) break;  // no search follows
+      if (!o.fails_only_on_verification || !(o.verified->value > 0.0) || !(o.predicted.value > 0.0)) continue;
       if (job.objective == Objective::closest_to_target && o.predicted.metric == GoalMetric::average) continue;
       GoalSetting& goal = search_job.goals[g];
       constexpr double kMargin = 0.002;  // aim just past the target, not at it

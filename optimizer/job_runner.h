@@ -69,6 +69,7 @@ struct JobOutcome {
   bool feasible = false;                    // predicted: every constraint met
   bool all_met = false;                     // judged as `met` is
   double flux_correction = 1.0;             // every flux was scaled by this after verification
+  bool flux_correction_limited = false;     // the flux range kept it from the scale the goals wanted
   SearchResult search;
   Verification verification;
   Eigen::VectorXd predicted_lux, predicted_direct_lux;  // at model.goal_patches
@@ -80,12 +81,13 @@ struct JobOutcome {
 // "L1", "L2", ...: the name of the j-th (0-based) luminaire of a layout.
 std::string luminaire_name(std::size_t j);
 
-// Searches and verifies with `job`'s goals. When a goal fails only on verification,
-// searches again (up to job.verification.rounds in all) with that goal's search
-// target scaled by predicted / verified, and returns the best round: every goal met
-// and least power first. search.evaluations, search.seconds and verify_seconds add
-// up all rounds; search.attempts are the returned round's. `job`'s goals may differ
-// from prepared.job's in targets, as in a sweep; the goal surfaces must be the same.
+// Searches and verifies with `job`'s goals. When a goal fails only on verification
+// (met as predicted, missed as verified), searches again, up to
+// job.verification.rounds searches in all, with that goal's search target scaled by
+// predicted / verified; returns the best round (every goal met and least power
+// first). search.evaluations, search.seconds and verify_seconds add up all rounds;
+// search.attempts are the returned round's. `job`'s goals may differ from
+// prepared.job's in targets, as in a sweep; the goal surfaces must be the same.
 JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress = {});
 
 }  // namespace ilp

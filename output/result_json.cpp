@@ -40,6 +40,7 @@ json to_json(const ResultRecord& r) {
   j["feasible"] = r.feasible;
   j["all_met"] = r.all_met;
   j["flux_correction"] = r.flux_correction;
+  j["flux_correction_limited"] = r.flux_correction_limited;
   j["verification"] = {{"method", r.verification}, {"rays_per_patch", r.verification_rays_per_patch}};
   j["sample_size"] = r.sample_size;
   j["population"] = r.population;
@@ -90,6 +91,7 @@ ResultRecord from_json(const json& j) {
   r.feasible = j.at("feasible").get<bool>();
   r.all_met = j.at("all_met").get<bool>();
   r.flux_correction = j.at("flux_correction").get<double>();
+  r.flux_correction_limited = j.at("flux_correction_limited").get<bool>();
   r.verification = j.at("verification").at("method").get<std::string>();
   r.verification_rays_per_patch = j.at("verification").at("rays_per_patch").get<int>();
   r.sample_size = j.at("sample_size").get<int>();
@@ -139,11 +141,19 @@ ResultRecord read_result_json(const std::string& path) {
 }
 
 void print_result(std::ostream& os, const ResultRecord& r) {
+  // Missed as predicted already (the goals cannot be met as stated), or only as verified.
+  bool missed_as_predicted = false;
+  for (const GoalRecord& g : r.goals) missed_as_predicted = missed_as_predicted || (!g.met && !g.fails_only_on_verification);
   if (!r.all_met) {
-    os << (r.feasible ? "NOT MET on verification: the layout meets every goal as predicted, but not every goal as verified\n"
-                      : "INFEASIBLE: no layout found meets every goal; the closest found is shown\n");
+    if (!missed_as_predicted)
+      os << "NOT MET on verification: the layout meets every goal as predicted, but not every goal as verified\n";
+    else if (r.objective == "min_power")
+      os << "INFEASIBLE: no layout found meets every goal; the closest found is shown\n";
+    else
+      os << "NOT MET: no layout found comes within the tolerance of every target; the closest found is shown\n";
   }
-  os << "Optimal layout (" << r.objective << ", " << r.luminaires.size() << " luminaires)\n";
+  os << (r.all_met ? "Optimal layout (" : "Closest layout found (") << r.objective << ", " << r.luminaires.size()
+     << " luminaires)\n";
   os << std::right << std::setw(6) << "id" << std::setw(9) << "x m" << std::setw(9) << "y m" << std::setw(9) << "z m"
      << std::setw(11) << "flux lm" << std::setw(10) << "power W" << "\n";
   double flux = 0.0;
@@ -174,6 +184,8 @@ void print_result(std::ostream& os, const ResultRecord& r) {
   else os << r.verification << ", " << r.verification_rays_per_patch << " rays per patch";
   if (r.flux_correction != 1.0)
     os << "; every flux scaled by " << fixed(r.flux_correction, 4) << " after verification";
+  if (r.flux_correction_limited)
+    os << " (the flux range allowed no more: the goals wanted another scale)";
   os << "\noperator: k = " << r.sample_size << " of " << r.population << " reflecting patches (" << r.patches
      << " patches), " << r.candidates << " candidate positions, seed " << r.seed << "\n";
   os << "search: " << r.evaluations << " evaluations in " << r.searches << (r.searches == 1 ? " round" : " rounds")
@@ -182,7 +194,8 @@ void print_result(std::ostream& os, const ResultRecord& r) {
   os << "\n";
   for (const std::string& line : r.calibration) os << "  " << line << "\n";
   for (const AttemptRecord& a : r.attempts)
-    os << "  " << a.luminaires << " luminaires: " << (a.feasible ? fixed(a.power_w, 1) + " W" : std::string("infeasible"))
+    os << "  " << a.luminaires << " luminaires: "
+       << (a.feasible ? fixed(a.power_w, 1) + " W as searched" : std::string("infeasible as searched"))
        << ", " << a.evaluations << " evaluations in " << fixed(a.seconds, 2) << " s (global: " << a.global_stop
        << "; local: " << a.local_stop << ")\n";
   os << "timings:";

@@ -52,6 +52,7 @@ struct ResultRecord {
   bool feasible = false;                    // predicted
   bool all_met = false;
   double flux_correction = 1.0;
+  bool flux_correction_limited = false;     // the flux range allowed less than the goals wanted
   std::string verification;                 // exact, sample or none
   int verification_rays_per_patch = 0;
   int sample_size = 0;
