@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "output/colour_map.h"
+#include "output/svg_text.h"
 
 namespace ilp {
 namespace {
@@ -29,50 +30,13 @@ constexpr double kTick_px = 5.0;
 constexpr double kMinLuminaire_px = 4.0;
 constexpr std::string_view kGradientId = "ilp-plan-lux";
 
-// ---- text (as in svg_plot.cpp) -------------------------------------------------
+// ---- text ---------------------------------------------------------------------
 
-template <class... Parts>
-std::string cat(const Parts&... parts) {
-  std::string s;
-  ((s += parts), ...);
-  return s;
-}
+using svg::cat;
+using svg::char_count;
+using svg::xml_escape;
 
-// Escapes XML's special characters and drops the control characters XML 1.0 forbids.
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') break;
-        out += c;
-    }
-  }
-  return out;
-}
-
-double label_width_px(std::string_view text) {
-  const auto chars = std::count_if(text.begin(), text.end(), [](char c) {
-    return (static_cast<unsigned char>(c) & 0xC0) != 0x80;  // not a UTF-8 continuation byte
-  });
-  return static_cast<double>(chars) * kLabelCharWidth_px;
-}
+double label_width_px(std::string_view text) { return static_cast<double>(char_count(text)) * kLabelCharWidth_px; }
 
 // ---- numbers (std::to_chars: independent of the C++ and C locales) -------------
 

@@ -1,5 +1,6 @@
 #include "output/svg_plot.h"
 
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -10,6 +11,8 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+
+#include "output/svg_text.h"
 
 namespace ilp {
 namespace {
@@ -32,53 +35,11 @@ constexpr std::array<std::string_view, 8> kColours = {"#0072B2", "#D55E00", "#00
 enum class Marker { circle, square, triangle_up, diamond, triangle_down, cross, plus };
 constexpr int kMarkerCount = 7;
 
-// ---- text ----------------------------------------------------------------------
+// ---- text ---------------------------------------------------------------------
 
-// Concatenation by appending (strings, string_views, literals, chars): clearer than
-// long operator+ chains here, and free of GCC 12's false -Wrestrict warning on
-// `"literal" + std::string&&`.
-template <class... Parts>
-std::string cat(const Parts&... parts) {
-  std::string s;
-  ((s += parts), ...);
-  return s;
-}
-
-// Escapes XML's special characters and drops the control characters XML 1.0 forbids.
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') break;
-        out += c;
-    }
-  }
-  return out;
-}
-
-// Characters (UTF-8 code points) in `text`.
-std::size_t char_count(std::string_view text) {
-  return static_cast<std::size_t>(std::count_if(text.begin(), text.end(), [](char c) {
-    return (static_cast<unsigned char>(c) & 0xC0) != 0x80;  // not a continuation byte
-  }));
-}
+using svg::cat;
+using svg::char_count;
+using svg::xml_escape;
 
 double text_width_px(std::string_view text) { return static_cast<double>(char_count(text)) * kCharWidth_px; }
 

@@ -14,52 +14,22 @@
 #include <string>
 #include <vector>
 
+#include "tests/apps/cli_runner.h"
 #include "tests/test_support.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
+using ilp::test::lines_of;
 using ilp::test::read_file;
+using ilp::test::run_ilp;
+using ilp::test::RunResult;
 using ilp::test::TempDir;
 
 // For EXPECT_TRUE: what the program wrote contains `part`.
 ::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
   return ilp::test::Contains(text, part, "output");
-}
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct RunResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs `ilp <args>` with stdout and stderr captured to files in `dir`.
-RunResult run_ilp(const TempDir& dir, const std::vector<std::string>& args) {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  std::ostringstream command;  // (string + on GCC 12 trips a false -Wrestrict)
-  command << quoted(ILP_BINARY);
-  for (const std::string& a : args) command << ' ' << quoted(a);
-  command << " >" << quoted(out) << " 2>" << quoted(err) << " </dev/null";
-  const int status = std::system(command.str().c_str());
-  RunResult r;
-  r.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(out);
-  r.err = read_file(err);
-  return r;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) out.push_back(line);
-  return out;
 }
 
 std::vector<std::string> split_csv(const std::string& line) {

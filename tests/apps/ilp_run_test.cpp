@@ -4,16 +4,15 @@
 // a sweep that builds the operator once, and the same layout for the same seed.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "tests/apps/cli_runner.h"
 #include "tests/optimizer/optimizer_test_scenes.h"
 #include "tests/test_support.h"
 
@@ -21,37 +20,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using ilp::test::lines_of;
 using ilp::test::read_file;
+using ilp::test::run_ilp;
+using ilp::test::RunResult;
 using ilp::test::TempDir;
 
 ::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
   return ilp::test::Contains(text, part, "output");
-}
-
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-RunResult run_ilp(const TempDir& dir, const std::vector<std::string>& args) {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  std::ostringstream command;
-  command << "'" << ILP_BINARY << "'";
-  for (const std::string& a : args) command << " '" << a << "'";
-  command << " >'" << out << "' 2>'" << err << "' </dev/null";
-  const int status = std::system(command.str().c_str());
-  RunResult r;
-  r.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(out);
-  r.err = read_file(err);
-  return r;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) out.push_back(line);
-  return out;
 }
 
 std::size_t count_of(const std::string& text, const std::string& part) {

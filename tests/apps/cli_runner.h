@@ -1,0 +1,50 @@
+// Runs the real `ilp` program (ILP_BINARY) for the CLI tests: arguments quoted for
+// the shell, stdout and stderr captured to files in the test's folder.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/test_support.h"
+
+namespace ilp::test {
+
+inline std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs `ilp <args>` with stdout and stderr captured to files in `dir`.
+inline RunResult run_ilp(const TempDir& dir, const std::vector<std::string>& args) {
+  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+  std::ostringstream command;  // (string + on GCC 12 trips a false -Wrestrict)
+  command << quoted(ILP_BINARY);
+  for (const std::string& a : args) command << ' ' << quoted(a);
+  command << " >" << quoted(out) << " 2>" << quoted(err) << " </dev/null";
+  const int status = std::system(command.str().c_str());
+  RunResult r;
+  r.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+inline std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+}  // namespace ilp::test
