@@ -40,6 +40,9 @@ double area_average(const GoalArea& area, const Eigen::VectorXd& lux) {
   return sum;
 }
 
+std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConfig& job, const std::vector<int>& areas,
+                                       const Eigen::VectorXd& lux);
+
 // One search variable layout: how a point x of the search space becomes positions
 // and relative fluxes.
 class LayoutCoding {
@@ -204,7 +207,7 @@ class Evaluator {
     scale = std::clamp(scale, scale_lo, scale_hi);
 
     out.lux = f + scale * a;
-    out.goals = judge_goals(model_, job_, out.lux);
+    out.goals = judge_goals(model_, job_, areas_, out.lux);
     for (std::size_t j = 0; j < n; ++j) {
       out.luminaires[j].flux_lm = scale * w[j];
       out.luminaires[j].power_w = out.luminaires[j].flux_lm / s.efficacy_lm_per_w;
@@ -273,7 +276,13 @@ double goal_tolerance(const JobConfig& job, GoalMetric metric) {
 }
 
 std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConfig& job, const Eigen::VectorXd& lux) {
-  const std::vector<int> areas = goal_areas(model, job);
+  return judge_goals(model, job, goal_areas(model, job), lux);
+}
+
+namespace {
+
+std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConfig& job, const std::vector<int>& areas,
+                                       const Eigen::VectorXd& lux) {
   std::vector<GoalJudgement> out;
   for (std::size_t g = 0; g < job.goals.size(); ++g) {
     const GoalSetting& goal = job.goals[g];
@@ -303,6 +312,8 @@ std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConf
   }
   return out;
 }
+
+}  // namespace
 
 LayoutEvaluation evaluate_layout(const LightingModel& model, const JobConfig& job,
                                  const std::vector<Eigen::Vector2d>& xy_m, const std::vector<double>& relative_flux) {

@@ -41,14 +41,16 @@ LightingModel build_lighting_model(const Scene& job_scene, const RayCaster& cast
   if (job.goals.empty()) throw std::invalid_argument("the job has no goals");
   const auto start = std::chrono::steady_clock::now();
   const LuminaireSearch& search = *job.search;
-  LightingModel model{job_scene, make_grid(job_scene, search, job.luminaire_size_m), {}, {}, {}, {}, 0.0, {}, {}, 0, {}, {}, 0.0};
+  LightingModel model;
+  model.scene = job_scene;
+  model.grid = make_grid(job_scene, search, job.luminaire_size_m);
 
   // Fixed sources first, in the job scene's order; then one candidate per grid position.
   const std::vector<LightSource> fixed = scene_light_sources(job_scene);
   const Eigen::VectorXd fixed_flux = source_flux_lm(job_scene, fixed);
-  for (const LightSource& s : fixed)
-    if (job_scene.surfaces[static_cast<std::size_t>(s.surface)].is_luminaire)
-      model.fixed_flux_lm += fixed_flux[&s - fixed.data()];
+  for (std::size_t l = 0; l < fixed.size(); ++l)
+    if (job_scene.surfaces[static_cast<std::size_t>(fixed[l].surface)].is_luminaire)
+      model.fixed_flux_lm += fixed_flux[static_cast<Eigen::Index>(l)];
   for (std::size_t c = 0; c < model.grid.size(); ++c) {
     const int surface = add_square_luminaire(model.scene, std::string("candidate ").append(std::to_string(c + 1)),
                                              model.grid.positions_m()[c], job.luminaire_size_m, 0.0);
