@@ -35,11 +35,9 @@ CandidateGrid make_grid(const Scene& scene, const LuminaireSearch& search, doubl
 
 }  // namespace
 
-LightingModel build_lighting_model(const Scene& job_scene, const RayCaster& caster, const JobConfig& job,
-                                   const ProgressCallback& progress) {
+LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& job) {
   if (!job.search) throw std::invalid_argument("the job has no luminaires.mounting_surface to place luminaires on");
   if (job.goals.empty()) throw std::invalid_argument("the job has no goals");
-  const auto start = std::chrono::steady_clock::now();
   const LuminaireSearch& search = *job.search;
   LightingModel model;
   model.scene = job_scene;
@@ -56,7 +54,6 @@ LightingModel build_lighting_model(const Scene& job_scene, const RayCaster& cast
                                              model.grid.positions_m()[c], job.luminaire_size_m, 0.0);
     model.scene.surfaces[static_cast<std::size_t>(surface)].is_virtual = true;
   }
-  const std::vector<LightSource> sources = scene_light_sources(model.scene);
 
   // Goal areas by name (a name with several metrics is one area).
   for (const GoalSetting& goal : job.goals) {
@@ -85,13 +82,31 @@ LightingModel build_lighting_model(const Scene& job_scene, const RayCaster& cast
     if (!(area.area_m2 > 0.0)) throw std::invalid_argument("goal '" + area.name + "' has no area");
     area.area_weights /= area.area_m2;
   }
+  std::ostringstream grid;
+  grid << std::fixed << std::setprecision(3) << "candidates: " << model.grid.size() << " positions on '"
+       << search.mounting_surface << "' (" << model.grid.nodes_x() << " x " << model.grid.nodes_y() << " grid, "
+       << model.grid.spacing_m().x() << " x " << model.grid.spacing_m().y() << " m apart, centres in x ["
+       << model.grid.lower_m().x() << ", " << model.grid.upper_m().x() << "] y [" << model.grid.lower_m().y() << ", "
+       << model.grid.upper_m().y() << "] m, faces at z = " << model.grid.positions_m().front().z() << " m)";
+  model.log.push_back(grid.str());
+  if (model.grid.ignored_patches() > 0)
+    model.log.push_back("candidates: " + std::to_string(model.grid.ignored_patches()) + " patches of '" +
+                        search.mounting_surface + "' do not face down and hold no luminaire");
+  return model;
+}
 
+void compute_lighting_operator(LightingModel& model, const Scene& job_scene, const RayCaster& caster,
+                               const JobConfig& job, const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<LightSource> fixed = scene_light_sources(job_scene);
+  const Eigen::VectorXd fixed_flux = source_flux_lm(job_scene, fixed);
+  const std::vector<LightSource> sources = scene_light_sources(model.scene);
   SampleOperatorOptions options = sample_operator_options(job);
   const GoalRows goal_rows = compute_goal_rows(model.scene, caster, model.goal_patches, sources, options, progress);
   // A sample size chosen for a target error is judged on every candidate at the same flux.
   Eigen::VectorXd probe_flux = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sources.size()));
   probe_flux.head(fixed_flux.size()) = fixed_flux;
-  probe_flux.tail(static_cast<Eigen::Index>(model.grid.size())).setConstant(search.flux_max_lm);
+  probe_flux.tail(static_cast<Eigen::Index>(model.grid.size())).setConstant(job.search->flux_max_lm);
   const SampleSizeChoice choice = choose_sample_size(job, model.scene, caster, goal_rows, probe_flux, options, progress);
   if (!choice.log.empty()) model.log.push_back(choice.log);
   options.sample_size = choice.sample_size;
@@ -105,18 +120,14 @@ LightingModel build_lighting_model(const Scene& job_scene, const RayCaster& cast
   model.sample_size = op.stats.direct_only ? 0 : static_cast<int>(op.stats.sample_patches);
   model.stats = op.stats;
 
-  std::ostringstream grid;
-  grid << std::fixed << std::setprecision(3) << "candidates: " << model.grid.size() << " positions on '"
-       << search.mounting_surface << "' (" << model.grid.nodes_x() << " x " << model.grid.nodes_y() << " grid, "
-       << model.grid.spacing_m().x() << " x " << model.grid.spacing_m().y() << " m apart, centres in x ["
-       << model.grid.lower_m().x() << ", " << model.grid.upper_m().x() << "] y [" << model.grid.lower_m().y() << ", "
-       << model.grid.upper_m().y() << "] m, faces at z = " << model.grid.positions_m().front().z() << " m)";
-  model.log.push_back(grid.str());
-  if (model.grid.ignored_patches() > 0)
-    model.log.push_back("candidates: " + std::to_string(model.grid.ignored_patches()) + " patches of '" +
-                        search.mounting_surface + "' do not face down and hold no luminaire");
   model.log.insert(model.log.end(), op.log.begin(), op.log.end());
   model.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+LightingModel build_lighting_model(const Scene& job_scene, const RayCaster& caster, const JobConfig& job,
+                                   const ProgressCallback& progress) {
+  LightingModel model = lighting_model_geometry(job_scene, job);
+  compute_lighting_operator(model, job_scene, caster, job, progress);
   return model;
 }
 

@@ -49,9 +49,18 @@ struct LightingModel {
 // Index of the GoalArea with this name, or -1.
 int find_goal_area(const LightingModel& model, const std::string& name);
 
-// Builds the model for job.search and job.goals on the job's scene (whose caster is
-// `caster`). Throws ConfigError pointing at the config for a mounting surface that
-// cannot hold luminaires.
+// The cheap part of the model: the candidate grid, the scene with the candidates,
+// the goal patches and areas, fixed_flux_lm. Throws ConfigError pointing at the
+// config for a mounting surface that cannot hold luminaires.
+LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& job);
+
+// The expensive part, on a model from lighting_model_geometry: builds the operator
+// and fills fixed_lux, the candidate columns, sample_size, stats, build_seconds and
+// the log. `caster` is the job scene's (the candidates are not in it).
+void compute_lighting_operator(LightingModel& model, const Scene& job_scene, const RayCaster& caster,
+                               const JobConfig& job, const ProgressCallback& progress = {});
+
+// Both, in order: the model for job.search and job.goals on the job's scene.
 LightingModel build_lighting_model(const Scene& scene, const RayCaster& caster, const JobConfig& job,
                                    const ProgressCallback& progress = {});
 
