@@ -36,6 +36,8 @@ int run_accuracy(const AccuracyArgs& args);
 struct RunArgs {
   std::string config;
   std::string out_dir;        // overrides output.directory
+  std::string cache_dir;      // operator cache folder; empty: the default (see default_cache_dir)
+  bool no_cache = false;
   int threads = -1;
   bool quiet = false;
 };
@@ -46,10 +48,15 @@ struct SweepArgs {
   std::string config;
   std::string set;            // KEY=V1,V2,...: overrides the job's sweep block
   std::string out_dir;
+  std::string cache_dir;
+  bool no_cache = false;
   int threads = -1;
   bool quiet = false;
 };
 int run_sweep(const SweepArgs& args);
+
+// $XDG_CACHE_HOME/ilp, else $HOME/.cache/ilp, else .ilp-cache in the working directory.
+std::string default_cache_dir();
 
 struct PrintArgs {
   std::string result;         // result.json

@@ -59,6 +59,10 @@ int main(int argc, char** argv) {
              "illuminance.csv, plan.svg and scene.ply. Exit code 2 when a goal is missed");
   run->add_option("config", run_args.config, "job file (YAML)")->required();
   run->add_option("--out", run_args.out_dir, "output folder (default: output.directory of the job, else results/<job>)");
+  run->add_option("--cache", run_args.cache_dir,
+                  "operator cache folder (default: $XDG_CACHE_HOME/ilp or ~/.cache/ilp): a second run of the same "
+                  "scene and solver settings skips the build");
+  run->add_flag("--no-cache", run_args.no_cache, "build the operator without reading or writing the cache");
   run->add_option("--threads", run_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
       ->check(CLI::NonNegativeNumber);
   run->add_flag("-q,--quiet", run_args.quiet, "no progress lines");
@@ -72,6 +76,8 @@ int main(int argc, char** argv) {
                     "KEY=V1,V2,...: the parameter and its values, e.g. goals.desks.average_lux=300,500,750 (default: "
                     "the job's sweep block)");
   sweep->add_option("--out", sweep_args.out_dir, "output folder (default: output.directory of the job, else results/<job>)");
+  sweep->add_option("--cache", sweep_args.cache_dir, "operator cache folder (default: $XDG_CACHE_HOME/ilp or ~/.cache/ilp)");
+  sweep->add_flag("--no-cache", sweep_args.no_cache, "build the operator without reading or writing the cache");
   sweep->add_option("--threads", sweep_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
       ->check(CLI::NonNegativeNumber);
   sweep->add_flag("-q,--quiet", sweep_args.quiet, "no progress lines");

@@ -1,6 +1,7 @@
 // ilp run, ilp sweep, ilp print: the inverse-lighting job from a YAML file to the
 // layout table and the files of the output folder.
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -37,12 +38,20 @@ std::string output_directory(const JobConfig& job, const std::string& override_d
   return (std::filesystem::path("results") / std::filesystem::path(job.path).stem()).string();
 }
 
-PreparedJob prepare_and_log(const JobConfig& job, const ProgressCallback& progress) {
-  PreparedJob prepared = prepare_job(job, progress);
+std::string cache_folder(const std::string& requested, bool disabled) {
+  if (disabled) return {};
+  return requested.empty() ? default_cache_dir() : requested;
+}
+
+PreparedJob prepare_and_log(const JobConfig& job, const ProgressCallback& progress, const std::string& cache_dir) {
+  PreparedJob prepared = prepare_job(job, progress, cache_dir);
   for (const std::string& line : prepared.loaded.log) std::cerr << line << "\n";
   for (const std::string& line : prepared.model.log) std::cerr << line << "\n";
+  if (!prepared.cache_status.empty()) std::cerr << prepared.cache_status << "\n";
   const SampleOperatorStats& st = prepared.model.stats;
-  std::cerr << std::fixed << std::setprecision(3) << "operator built once in " << prepared.model.build_seconds
+  std::cerr << std::fixed << std::setprecision(3)
+            << (prepared.loaded_from_cache ? "operator (from the cache) built once in " : "operator built once in ")
+            << prepared.model.build_seconds
             << " s (goal rows " << st.goal_seconds << " s, sample rows " << st.sample_row_seconds
             << " s, direct light " << st.direct_seconds << " s, solve " << st.solve_seconds << " s, T "
             << st.response_seconds << " s): " << prepared.model.goal_patches.size() << " goal patches x "
@@ -215,17 +224,25 @@ SweepSetting parse_set(const std::string& text) {
 
 }  // namespace
 
+std::string default_cache_dir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return (std::filesystem::path(xdg) / "ilp").string();
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return (std::filesystem::path(home) / ".cache" / "ilp").string();
+  return ".ilp-cache";
+}
+
 int run_job(const RunArgs& args) {
   const auto start = Clock::now();
   const JobConfig job = load_for_run(args.config, args.threads);
   const ProgressCallback progress = make_progress(args.quiet);
   const std::string dir = output_directory(job, args.out_dir);
-  const PreparedJob prepared = prepare_and_log(job, progress);
+  const PreparedJob prepared = prepare_and_log(job, progress, cache_folder(args.cache_dir, args.no_cache));
   const JobOutcome outcome = solve_prepared(prepared, job, progress);
   const std::vector<std::pair<std::string, double>> timings{
       {"scene", prepared.scene_seconds},
       {"BVH", prepared.bvh_seconds},
-      {"operator", prepared.model.build_seconds},
+      {prepared.loaded_from_cache ? "operator from cache" : "operator",
+       prepared.loaded_from_cache ? prepared.cache_seconds : prepared.model.build_seconds},
       {"search", outcome.search.seconds},
       {"verification", outcome.verify_seconds},
       {"total", seconds_since(start)}};
@@ -251,7 +268,7 @@ int run_sweep(const SweepArgs& args) {
   }
   const ProgressCallback progress = make_progress(args.quiet);
   const std::string dir = output_directory(job, args.out_dir);
-  const PreparedJob prepared = prepare_and_log(job, progress);
+  const PreparedJob prepared = prepare_and_log(job, progress, cache_folder(args.cache_dir, args.no_cache));
 
   std::ostringstream csv;
   csv << std::setprecision(9) << csv_field(sweep.key)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 #include "core/exact_solver.h"
 #include "core/operator_setup.h"
 #include "core/sample_operator.h"
+#include "optimizer/model_cache.h"
 
 namespace ilp {
 namespace {
@@ -121,7 +123,7 @@ std::string luminaire_name(std::size_t j) {
   return name.append(std::to_string(j + 1));
 }
 
-PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress) {
+PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, const std::string& cache_dir) {
   if (!job.search)
     throw ConfigError(job.path + ": luminaires.mounting_surface is missing: an inverse job says where luminaires may "
                                  "go (see docs/user-guide.md)");
@@ -134,7 +136,40 @@ PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress) 
   start = Clock::now();
   out.caster = std::make_unique<RayCaster>(out.loaded.scene, job.form_factors.threads);
   out.bvh_seconds = seconds_since(start);
-  out.model = build_lighting_model(out.loaded.scene, *out.caster, job, progress);
+  if (cache_dir.empty()) {
+    out.model = build_lighting_model(out.loaded.scene, *out.caster, job, progress);
+    return out;
+  }
+
+  out.model = lighting_model_geometry(out.loaded.scene, job);
+  start = Clock::now();
+  const std::string key = lighting_model_key(job);
+  const std::string file = (std::filesystem::path(cache_dir) / (key + ".ilpmodel")).string();
+  const std::optional<std::string> not_used = load_lighting_model(file, key, out.model);
+  out.cache_seconds = seconds_since(start);
+  if (!not_used) {
+    out.loaded_from_cache = true;
+    std::ostringstream status;
+    status << std::fixed << std::setprecision(3) << "operator loaded from cache " << file << " (built in "
+           << out.model.build_seconds << " s originally)";
+    out.cache_status = status.str();
+    return out;
+  }
+  compute_lighting_operator(out.model, out.loaded.scene, *out.caster, job, progress);
+  // The file was missing, or is replaced: a failure to write it leaves the job as it is.
+  const std::string previous = *not_used == "no cache file" ? "" : "the cached file was not used: " + *not_used;
+  start = Clock::now();
+  try {
+    std::error_code ec;
+    std::filesystem::create_directories(cache_dir, ec);
+    if (ec) throw IlpError(cache_dir + ": cannot create the cache folder (" + ec.message() + ")");
+    save_lighting_model(file, out.model, key);
+    out.cache_status = "operator built and cached in " + file + (previous.empty() ? "" : " (" + previous + ")");
+  } catch (const std::exception& e) {
+    out.cache_status = std::string("operator built; cache not used: ") + e.what() +
+                       (previous.empty() ? "" : "; " + previous);
+  }
+  out.cache_seconds += seconds_since(start);
   return out;
 }
 

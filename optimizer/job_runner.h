@@ -24,14 +24,23 @@ struct PreparedJob {
   JobConfig job;
   JobScene loaded;
   std::unique_ptr<RayCaster> caster;
-  LightingModel model;
+  LightingModel model;         // loaded from the cache: build_seconds is the original build's
   double scene_seconds = 0.0;  // mesh loading and meshing
   double bvh_seconds = 0.0;
+  bool loaded_from_cache = false;  // the operator came from the cache folder
+  std::string cache_status;        // for the run log; empty without a cache folder
+  double cache_seconds = 0.0;      // computing the key and reading, or writing, the cache file
 };
 
 // Throws ConfigError when the job does not describe an inverse problem (no
 // luminaires.mounting_surface or no goals), naming the file.
-PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress = {});
+//
+// With a cache folder (optimizer/model_cache.h), the operator is read from
+// cache_dir/KEY.ilpmodel when that file is valid for the job; otherwise it is built
+// and written there (the folder is created; a stale or corrupt file is replaced). A
+// cache that cannot be read or written never fails the job: cache_status says why.
+// An empty cache_dir: no cache.
+PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress = {}, const std::string& cache_dir = "");
 
 struct GoalOutcome {
   GoalJudgement predicted;                 // through the operator

@@ -1,5 +1,6 @@
 // Runs the real `ilp` program (ILP_BINARY) for the CLI tests: arguments quoted for
-// the shell, stdout and stderr captured to files in the test's folder.
+// the shell, stdout and stderr captured to files in the test's folder, the operator
+// cache ($XDG_CACHE_HOME/ilp) kept there too.
 #pragma once
 
 #include <sys/wait.h>
@@ -29,7 +30,8 @@ struct RunResult {
 inline RunResult run_ilp(const TempDir& dir, const std::vector<std::string>& args) {
   const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
   std::ostringstream command;  // (string + on GCC 12 trips a false -Wrestrict)
-  command << quoted(ILP_BINARY);
+  // The operator cache goes to the test's folder, never to the user's.
+  command << "XDG_CACHE_HOME=" << quoted(dir.file("xdg-cache")) << ' ' << quoted(ILP_BINARY);
   for (const std::string& a : args) command << ' ' << quoted(a);
   command << " >" << quoted(out) << " 2>" << quoted(err) << " </dev/null";
   const int status = std::system(command.str().c_str());

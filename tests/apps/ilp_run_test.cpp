@@ -48,6 +48,13 @@ std::string mat_job(const TempDir& dir, double target = 200.0, double flux_max =
                                                    "optimizer:\n  max_evaluations: 800\n  local_max_evaluations: 800\n"));
 }
 
+// The "luminaires" array of FOLDER/result.json, as written.
+std::string saved_layout(const TempDir& dir, const std::string& folder) {
+  const std::string json = read_file((fs::path(dir.file(folder)) / "result.json").string());
+  const auto start = json.find("\"luminaires\": [");
+  return json.substr(start, json.find(']', start) - start);
+}
+
 TEST(IlpRun, PrintsTheLayoutAndWritesEveryOutput) {
   TempDir dir;
   const std::string job = mat_job(dir);
@@ -113,14 +120,26 @@ TEST(IlpRun, UnreachableGoalExitsTwoAndSaysByHowMuch) {
 TEST(IlpRun, SameSeedSameLayout) {
   TempDir dir;
   const std::string job = mat_job(dir);
-  ASSERT_EQ(run_ilp(dir, {"run", job, "--out", dir.file("a"), "-q", "--threads", "1"}).exit_code, 0);
-  ASSERT_EQ(run_ilp(dir, {"run", job, "--out", dir.file("b"), "-q", "--threads", "2"}).exit_code, 0);
-  auto layout = [&](const std::string& folder) {
-    const std::string json = read_file((fs::path(dir.file(folder)) / "result.json").string());
-    const auto start = json.find("\"luminaires\": [");
-    return json.substr(start, json.find(']', start) - start);
-  };
-  EXPECT_EQ(layout("a"), layout("b"));
+  // Both build the operator (no cache), with 1 and with 2 threads.
+  ASSERT_EQ(run_ilp(dir, {"run", job, "--out", dir.file("a"), "-q", "--threads", "1", "--no-cache"}).exit_code, 0);
+  ASSERT_EQ(run_ilp(dir, {"run", job, "--out", dir.file("b"), "-q", "--threads", "2", "--no-cache"}).exit_code, 0);
+  EXPECT_EQ(saved_layout(dir, "a"), saved_layout(dir, "b"));
+}
+
+TEST(IlpRun, SecondRunLoadsTheOperatorFromTheCache) {
+  TempDir dir;
+  const std::string job = mat_job(dir), cache = dir.file("cache");
+  const RunResult first = run_ilp(dir, {"run", job, "--out", dir.file("a"), "-q", "--cache", cache});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_TRUE(Contains(first.err, "operator built and cached in " + cache + "/"));
+  const RunResult second = run_ilp(dir, {"run", job, "--out", dir.file("b"), "-q", "--cache", cache});
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_TRUE(Contains(second.err, "operator loaded from cache " + cache + "/"));
+  EXPECT_TRUE(Contains(second.out, "operator from cache"));
+  EXPECT_EQ(saved_layout(dir, "a"), saved_layout(dir, "b"));
+  // Without the cache the operator is built again.
+  const RunResult third = run_ilp(dir, {"run", job, "--out", dir.file("c"), "-q", "--cache", cache, "--no-cache"});
+  EXPECT_FALSE(Contains(third.err, "from cache"));
 }
 
 TEST(IlpRun, JobWithoutMountingSurfaceIsAClearError) {
