@@ -189,6 +189,22 @@ void read_scene(const Map& scene, JobConfig& job) {
     }
   }
   if (auto v = scene.get("default_reflectance")) job.default_reflectance = v->reflectance();
+  if (auto v = scene.get("exclude_surfaces"))
+    for (const Value& item : v->list()) {
+      job.exclude_surfaces.push_back(item.text());
+      job.exclude_surface_locs.push_back(item.loc());
+    }
+  if (auto v = scene.get("two_sided")) {
+    if (v->node().IsScalar()) {
+      if (v->text() != "all") v->fail("must be all or a list of surface names");
+      job.two_sided_all = true;
+    } else {
+      for (const Value& item : v->list()) {
+        job.two_sided_surfaces.push_back(item.text());
+        job.two_sided_locs.push_back(item.loc());
+      }
+    }
+  }
   if (auto v = scene.get("emitting_surfaces")) {
     for (const Value& item : v->list()) {
       const Map emitter(item, {"surface", "exitance_lm_per_m2"});
@@ -673,7 +689,8 @@ JobConfig load_job_config(const std::string& path) {
     const Map top(Value(root, "", job.path), {"scene", "luminaires", "goals", "constraints", "objective", "solver",
                                               "optimizer", "verification", "output", "sweep", "report"});
     read_scene(Map(top.require("scene"), {"mesh", "up_axis", "scale_to_m", "max_patch_edge_m", "surfaces_from",
-                                          "reflectance", "default_reflectance", "emitting_surfaces"}),
+                                          "reflectance", "default_reflectance", "emitting_surfaces",
+                                          "exclude_surfaces", "two_sided"}),
                job);
     if (auto v = top.get("luminaires"))
       read_luminaires(Map(*v, {"size_m", "placed", "model", "flux_lm", "efficacy_lm_per_w", "mounting_surface",

@@ -175,6 +175,14 @@ struct JobConfig {
   std::vector<ReflectanceSetting> reflectance;
   std::optional<Eigen::Vector3d> default_reflectance;
   std::vector<EmitterSetting> emitting_surfaces;
+  // Surfaces left out of the scene (a ground plane around a room, outdoor objects).
+  std::vector<std::string> exclude_surfaces;
+  std::vector<FileLoc> exclude_surface_locs;
+  // Surfaces that reflect on both sides (patches doubled back to back); all of them
+  // with `two_sided: all`. Others are one-sided: light striking a back face is absorbed.
+  std::vector<std::string> two_sided_surfaces;
+  std::vector<FileLoc> two_sided_locs;
+  bool two_sided_all = false;
   // luminaires
   double luminaire_size_m = 0.6;
   std::vector<LuminaireSetting> luminaires;

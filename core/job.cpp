@@ -42,6 +42,42 @@ JobScene load_job_scene(const JobConfig& job) {
     return it->second;
   };
 
+  // Excluded surfaces lose their triangles (the surface stays, empty); two-sided ones
+  // get a reversed copy of each triangle, back to back with it.
+  std::vector<bool> excluded(mesh.surface_names.size(), false), two_sided(mesh.surface_names.size(), job.two_sided_all);
+  for (std::size_t k = 0; k < job.exclude_surfaces.size(); ++k)
+    excluded[require_surface(job.exclude_surfaces[k], job.exclude_surface_locs[k], "scene.exclude_surfaces")] = true;
+  for (std::size_t k = 0; k < job.two_sided_surfaces.size(); ++k)
+    two_sided[require_surface(job.two_sided_surfaces[k], job.two_sided_locs[k], "scene.two_sided")] = true;
+  std::size_t excluded_triangles = 0, doubled_triangles = 0;
+  {
+    const std::size_t n = mesh.triangles.size();
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+      const int s = mesh.triangle_surface[t];
+      if (excluded[s]) {
+        ++excluded_triangles;
+        continue;
+      }
+      mesh.triangles[kept] = mesh.triangles[t];
+      mesh.triangle_surface[kept] = s;
+      mesh.triangle_material[kept] = mesh.triangle_material[t];
+      ++kept;
+    }
+    mesh.triangles.resize(kept);
+    mesh.triangle_surface.resize(kept);
+    mesh.triangle_material.resize(kept);
+    for (std::size_t t = 0; t < kept; ++t) {
+      const int s = mesh.triangle_surface[t];
+      if (!two_sided[s]) continue;
+      const Eigen::Vector3i tri = mesh.triangles[t];
+      mesh.triangles.push_back(Eigen::Vector3i(tri[0], tri[2], tri[1]));
+      mesh.triangle_surface.push_back(s);
+      mesh.triangle_material.push_back(mesh.triangle_material[t]);
+      ++doubled_triangles;
+    }
+  }
+
   // Reflectance per surface from the config, then per triangle.
   std::vector<std::optional<Eigen::Vector3d>> surface_rho(mesh.surface_names.size());
   for (const ReflectanceSetting& r : job.reflectance)
@@ -98,6 +134,12 @@ JobScene load_job_scene(const JobConfig& job) {
        << " polygons fan-triangulated), " << mesh.surface_names.size() << " surfaces";
     out.log.push_back(os.str());
   }
+  if (excluded_triangles > 0 || !job.exclude_surfaces.empty())
+    out.log.push_back("scene.exclude_surfaces: " + std::to_string(excluded_triangles) + " triangles of " +
+                      std::to_string(job.exclude_surfaces.size()) + " surfaces left out");
+  if (doubled_triangles > 0)
+    out.log.push_back("scene.two_sided: " + std::to_string(doubled_triangles) +
+                      " triangles doubled back to back (both sides reflect; counted in the triangles above)");
 
   for (std::size_t k = 0; k < job.emitting_surfaces.size(); ++k) {
     const EmitterSetting& e = job.emitting_surfaces[k];

@@ -171,6 +171,17 @@ std::string key_text(const JobConfig& job) {
     put(t, e.surface);
     t << ' ' << e.exitance_lm_per_m2 << "\n";
   }
+  for (const std::string& name : job.exclude_surfaces) {
+    t << "excluded ";
+    put(t, name);
+    t << "\n";
+  }
+  t << "two-sided " << (job.two_sided_all ? "all" : "listed") << "\n";
+  for (const std::string& name : job.two_sided_surfaces) {
+    t << "two-sided ";
+    put(t, name);
+    t << "\n";
+  }
 
   // Luminaires: the placed ones and the candidates' grid.
   t << "luminaire size " << job.luminaire_size_m << "\n";

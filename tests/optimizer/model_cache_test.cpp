@@ -201,6 +201,9 @@ TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
   differs("a goal's surface", [](JobConfig& j) { j.goals[0].surfaces = {"other"}; });
   differs("a placed luminaire", [](JobConfig& j) { j.luminaires.push_back({"old", {0.5, 0.5, 2.4}, 2000.0, {}}); });
   differs("patch size", [](JobConfig& j) { j.scene.max_patch_edge_m = 0.3; });
+  differs("an excluded surface", [](JobConfig& j) { j.exclude_surfaces.push_back("walls"); });
+  differs("a two-sided surface", [](JobConfig& j) { j.two_sided_surfaces.push_back("walls"); });
+  differs("every surface two-sided", [](JobConfig& j) { j.two_sided_all = true; });
 
   // The mesh's bytes: a comment changes no geometry but is another file.
   {
@@ -364,7 +367,7 @@ TEST(ModelCache, FormatAndKeyCoverEveryField) {
   EXPECT_EQ(sizeof(SceneOptions), 32u) << "SceneOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(MeshReadOptions), 4u) << "MeshReadOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(LuminaireSearch), 400u) << "LuminaireSearch changed: does the new field shape the candidates?";
-  EXPECT_EQ(sizeof(JobConfig), 1344u) << "JobConfig changed: does the new setting change the operator?";
+  EXPECT_EQ(sizeof(JobConfig), 1440u) << "JobConfig changed: does the new setting change the operator?";
 #else
   GTEST_SKIP() << "struct sizes are checked on x86-64 with libstdc++ only";
 #endif
