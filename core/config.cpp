@@ -381,8 +381,15 @@ void read_goals(const Value& section, JobConfig& job) {
   const std::vector<Value> entries = section.list();
   if (entries.empty()) section.fail("must list at least one goal");
   for (const Value& item : entries) {
-    const Map entry(item, {"name", "surface", "average_lux", "min_lux", "max_lux", "uniformity"});
+    const Map entry(item, {"name", "surface", "facing", "average_lux", "min_lux", "max_lux", "uniformity"});
     GoalSetting base;
+    if (auto v = entry.get("facing")) {
+      const std::string facing = v->text();
+      if (facing == "any") base.facing = GoalFacing::any;
+      else if (facing == "up") base.facing = GoalFacing::up;
+      else if (facing == "down") base.facing = GoalFacing::down;
+      else v->fail("must be any, up or down");
+    }
     const Value surface = entry.require("surface");
     if (surface.node().IsSequence()) {
       for (const Value& s : surface.list()) base.surfaces.push_back(s.text());

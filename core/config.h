@@ -108,10 +108,15 @@ std::string_view goal_key(GoalMetric metric);
 // One line of goals: a metric over the union of some surfaces. A goals entry with
 // several metrics (average_lux and uniformity) becomes several GoalSettings with the
 // same name.
+// Which patches of a goal's surfaces count: all, or only those facing up (a desk's top
+// without its edges and underside) or down, within about 25 degrees of vertical.
+enum class GoalFacing { any, up, down };
+
 struct GoalSetting {
   std::string name;                   // `name:`, else the surfaces joined with '+'
   std::vector<std::string> surfaces;  // surface: NAME or [NAME, ...]
   FileLoc surfaces_loc;
+  GoalFacing facing = GoalFacing::any;  // facing: any, up or down
   GoalMetric metric = GoalMetric::average;
   double target = 0.0;                // lux, or the U0 ratio
   FileLoc loc;                        // of the metric's key

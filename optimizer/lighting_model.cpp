@@ -66,6 +66,16 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& j
   std::vector<std::vector<int>> area_patches;
   for (const GoalArea& area : model.areas) {
     area_patches.push_back(job_scene.patches_of(area.surfaces));
+    const GoalFacing facing = std::find_if(job.goals.begin(), job.goals.end(), [&](const GoalSetting& g) {
+                                return g.name == area.name;
+                              })->facing;
+    if (facing != GoalFacing::any) {
+      constexpr double kVerticalCos = 0.9;  // within about 25 degrees of straight up or down
+      std::erase_if(area_patches.back(), [&](int p) {
+        const double z = job_scene.patches[static_cast<std::size_t>(p)].normal.z();
+        return facing == GoalFacing::up ? z < kVerticalCos : z > -kVerticalCos;
+      });
+    }
     model.goal_patches.insert(model.goal_patches.end(), area_patches.back().begin(), area_patches.back().end());
   }
   std::sort(model.goal_patches.begin(), model.goal_patches.end());
@@ -79,7 +89,8 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& j
       area.rows.push_back(row);
       area.area_m2 += job_scene.patches[static_cast<std::size_t>(p)].area_m2;
     }
-    if (!(area.area_m2 > 0.0)) throw std::invalid_argument("goal '" + area.name + "' has no area");
+    if (!(area.area_m2 > 0.0))
+      throw std::invalid_argument("goal '" + area.name + "' has no area (no patch of its surfaces faces as asked)");
     area.area_weights /= area.area_m2;
   }
   std::ostringstream grid;

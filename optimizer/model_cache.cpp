@@ -217,7 +217,7 @@ std::string key_text(const JobConfig& job) {
       t << ' ';
       put(t, s);
     }
-    t << "\n";
+    t << " facing " << static_cast<int>(g.facing) << "\n";
   }
 
   // The solver (threads left out: the operator is the same for any thread count).

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/config.h"
+#include "core/job.h"
 #include "optimizer/job_runner.h"
 #include "tests/optimizer/optimizer_test_scenes.h"
 
@@ -246,6 +247,21 @@ TEST(LayoutSearch, PlacedLuminairesAreFixedLightTheSearchBuildsOn) {
   EXPECT_NEAR(with.luminaires[0].flux_lm / without.luminaires[0].flux_lm, (200.0 - fixed) / 200.0, 0.02);
   EXPECT_EQ(with.flux_correction, 1.0) << "with fixed light, illuminance is not proportional to the new fluxes";
   EXPECT_NEAR(with.goals[0].verified->value, 200.0, 200.0 * 0.03);
+}
+
+TEST(LayoutSearch, FacingUpKeepsOnlyTheTopsOfAGoalSurface) {
+  // The room's walls as a goal: none faces up, so `facing: up` leaves no area, and
+  // the floor with `facing: up` keeps every floor patch.
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"mat", {1.3, 1.7}}}));
+  const std::string goals_up = "  - surface: [floor, walls]\n    facing: up\n    average_lux: 100\n";
+  const JobConfig job = load_job_config(dir.write("job.yaml", room_job("0", kOneLuminaire, goals_up, kOptimizer)));
+  const JobScene loaded = load_job_scene(job);
+  const LightingModel model = lighting_model_geometry(loaded.scene, job);
+  EXPECT_EQ(model.goal_patches, loaded.scene.patches_of({"floor"}));
+  const std::string walls_up = "  - surface: walls\n    facing: up\n    average_lux: 100\n";
+  const JobConfig bad = load_job_config(dir.write("bad.yaml", room_job("0", kOneLuminaire, walls_up, kOptimizer)));
+  EXPECT_THROW(lighting_model_geometry(load_job_scene(bad).scene, bad), std::invalid_argument);
 }
 
 TEST(LayoutSearch, ReflectedLightIsPredictedAsVerified) {

@@ -201,6 +201,7 @@ TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
   differs("a goal's surface", [](JobConfig& j) { j.goals[0].surfaces = {"other"}; });
   differs("a placed luminaire", [](JobConfig& j) { j.luminaires.push_back({"old", {0.5, 0.5, 2.4}, 2000.0, {}}); });
   differs("patch size", [](JobConfig& j) { j.scene.max_patch_edge_m = 0.3; });
+  differs("a goal's facing", [](JobConfig& j) { j.goals[0].facing = GoalFacing::up; });
   differs("an excluded surface", [](JobConfig& j) { j.exclude_surfaces.push_back("walls"); });
   differs("a two-sided surface", [](JobConfig& j) { j.two_sided_surfaces.push_back("walls"); });
   differs("every surface two-sided", [](JobConfig& j) { j.two_sided_all = true; });
