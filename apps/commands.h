@@ -55,6 +55,18 @@ struct SweepArgs {
 };
 int run_sweep(const SweepArgs& args);
 
+struct BenchArgs {
+  std::string config;
+  int luminaires = 8;           // per evaluated layout
+  double patch_edge_m = 0.0;    // > 0: overrides scene.max_patch_edge_m
+  double sample_fraction = 0.0; // > 0: overrides the solver's sample size
+  bool skip_full_solve = false;
+  std::string csv;              // append one row of figures
+  int threads = -1;
+  bool quiet = false;
+};
+int run_bench(const BenchArgs& args);
+
 // $XDG_CACHE_HOME/ilp, else $HOME/.cache/ilp, else .ilp-cache in the working directory.
 std::string default_cache_dir();
 

@@ -86,6 +86,23 @@ int main(int argc, char** argv) {
   CLI::App* print = app.add_subcommand("print", "Print a saved layout (result.json of `ilp run`) again");
   print->add_option("result", print_args.result, "result.json")->required();
 
+  ilp::cli::BenchArgs bench_args;
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Measure a job on this machine: operator build by phase, peak memory, objective evaluations per "
+               "second, the search, and one full radiosity solve per configuration for comparison (not a test)");
+  bench->add_option("config", bench_args.config, "job file (YAML) of an inverse job")->required();
+  bench->add_option("--luminaires", bench_args.luminaires, "luminaires per evaluated layout")
+      ->check(CLI::Range(1, 64))->capture_default_str();
+  bench->add_option("--patch-edge", bench_args.patch_edge_m, "override scene.max_patch_edge_m (m)")
+      ->check(CLI::PositiveNumber);
+  bench->add_option("--sample-fraction", bench_args.sample_fraction, "override the sample size, of the reflecting patches")
+      ->check(CLI::Range(1e-9, 1.0));
+  bench->add_flag("--skip-full-solve", bench_args.skip_full_solve, "do not run the full radiosity solve");
+  bench->add_option("--csv", bench_args.csv, "append one row of figures to this CSV");
+  bench->add_option("--threads", bench_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  bench->add_flag("-q,--quiet", bench_args.quiet, "no progress lines");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*solve) return ilp::cli::run_solve(solve_args);
@@ -93,6 +110,7 @@ int main(int argc, char** argv) {
     if (*run) return ilp::cli::run_job(run_args);
     if (*sweep) return ilp::cli::run_sweep(sweep_args);
     if (*print) return ilp::cli::run_print(print_args);
+    if (*bench) return ilp::cli::run_bench(bench_args);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

@@ -1,11 +1,15 @@
 #include "optimizer/layout_search.h"
 
 #include <nlopt.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -154,21 +158,39 @@ class LayoutCoding {
 class Evaluator {
  public:
   Evaluator(const LightingModel& model, const JobConfig& job)
-      : model_(model), job_(job), areas_(goal_areas(model, job)) {}
+      : model_(model),
+        job_(job),
+        areas_(goal_areas(model, job)),
+        arena_(std::make_unique<tbb::task_arena>(arena_threads(job))) {}
 
   LayoutEvaluation operator()(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& w) const {
     const LuminaireSearch& s = *job_.search;
     const std::size_t n = xy.size();
     LayoutEvaluation out;
     out.luminaires.resize(n);
-    Eigen::VectorXd a = Eigen::VectorXd::Zero(model_.candidate_lux_per_lm.rows());
+    std::vector<std::pair<Eigen::Index, double>> terms;  // (candidate column, weight) in a fixed order
     for (std::size_t j = 0; j < n; ++j) {
       PlacedLuminaire& lum = out.luminaires[j];
       lum.blend = model_.grid.locate(xy[j]);
       lum.position_m = lum.blend.position_m;
       for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
-        if (lum.blend.candidates[k] >= 0)
-          a.noalias() += (w[j] * lum.blend.weights[k]) * model_.candidate_lux_per_lm.col(lum.blend.candidates[k]);
+        if (lum.blend.candidates[k] >= 0) terms.emplace_back(lum.blend.candidates[k], w[j] * lum.blend.weights[k]);
+    }
+    // a = sum of weight x column. Blocks of rows in parallel; each row adds its terms in
+    // the same order whatever the threads, so the result is bit for bit the same.
+    const Eigen::Index rows = model_.candidate_lux_per_lm.rows();
+    Eigen::VectorXd a = Eigen::VectorXd::Zero(rows);
+    auto accumulate = [&](Eigen::Index begin, Eigen::Index end) {
+      for (const auto& [column, weight] : terms)
+        a.segment(begin, end - begin).noalias() += weight * model_.candidate_lux_per_lm.col(column).segment(begin, end - begin);
+    };
+    if (rows < 2 * kRowBlock) {
+      accumulate(0, rows);
+    } else {
+      arena_->execute([&] {
+        tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, rows, kRowBlock),
+                          [&](const tbb::blocked_range<Eigen::Index>& r) { accumulate(r.begin(), r.end()); });
+      });
     }
     // Catmull-Rom weights can be negative: at a sharp shadow edge the blend may dip below 0.
     a = a.cwiseMax(0.0);
@@ -237,9 +259,18 @@ class Evaluator {
   }
 
  private:
+  // By value: binding tbb::task_arena::automatic to make_unique's reference would need
+  // its address, which the shared TBB library does not give a position-independent binary.
+  static int arena_threads(const JobConfig& job) {
+    const int automatic = tbb::task_arena::automatic;
+    return job.form_factors.threads > 0 ? job.form_factors.threads : automatic;
+  }
+  // Rows per parallel block: large enough that a block's work outweighs scheduling it.
+  static constexpr Eigen::Index kRowBlock = 512;
   const LightingModel& model_;
   const JobConfig& job_;
   std::vector<int> areas_;
+  std::unique_ptr<tbb::task_arena> arena_;
 };
 
 std::string stop_reason(nlopt::result r) {
@@ -315,11 +346,26 @@ std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConf
 
 }  // namespace
 
+struct LayoutEvaluator::Impl {
+  Evaluator evaluate;
+};
+
+LayoutEvaluator::LayoutEvaluator(const LightingModel& model, const JobConfig& job) {
+  if (!job.search) throw std::invalid_argument("the job places no luminaires (no luminaires.mounting_surface)");
+  impl_ = std::make_unique<Impl>(Impl{Evaluator(model, job)});
+}
+
+LayoutEvaluator::~LayoutEvaluator() = default;
+
+LayoutEvaluation LayoutEvaluator::operator()(const std::vector<Eigen::Vector2d>& xy_m,
+                                             const std::vector<double>& relative_flux) const {
+  if (xy_m.size() != relative_flux.size()) throw std::invalid_argument("evaluate_layout: one flux per position");
+  return impl_->evaluate(xy_m, relative_flux);
+}
+
 LayoutEvaluation evaluate_layout(const LightingModel& model, const JobConfig& job,
                                  const std::vector<Eigen::Vector2d>& xy_m, const std::vector<double>& relative_flux) {
-  if (!job.search) throw std::invalid_argument("the job places no luminaires (no luminaires.mounting_surface)");
-  if (xy_m.size() != relative_flux.size()) throw std::invalid_argument("evaluate_layout: one flux per position");
-  return Evaluator(model, job)(xy_m, relative_flux);
+  return LayoutEvaluator(model, job)(xy_m, relative_flux);
 }
 
 SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress) {

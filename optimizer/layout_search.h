@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,22 @@ struct SearchResult {
 // job.constraints. Deterministic for job.optimizer.seed as long as the evaluation
 // budget, not max_seconds, ends each stage.
 SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress = {});
+
+// Evaluates layouts as the search does, reusing its set-up (goal areas, a thread
+// arena) across calls: for measuring and for many evaluations of one model.
+class LayoutEvaluator {
+ public:
+  LayoutEvaluator(const LightingModel& model, const JobConfig& job);
+  ~LayoutEvaluator();
+  LayoutEvaluator(const LayoutEvaluator&) = delete;
+  LayoutEvaluator& operator=(const LayoutEvaluator&) = delete;
+  // One entry per luminaire in each; relative fluxes in (0, 1].
+  LayoutEvaluation operator()(const std::vector<Eigen::Vector2d>& xy_m, const std::vector<double>& relative_flux) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // The layout at given positions and relative fluxes (the scale as the search sets it):
 // for tests and for re-evaluating a saved layout. xy and relative_flux have one entry

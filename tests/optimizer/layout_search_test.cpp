@@ -264,6 +264,26 @@ TEST(LayoutSearch, FacingUpKeepsOnlyTheTopsOfAGoalSurface) {
   EXPECT_THROW(lighting_model_geometry(load_job_scene(bad).scene, bad), std::invalid_argument);
 }
 
+TEST(LayoutSearch, EvaluationIsBitForBitTheSameWhateverTheThreads) {
+  // Enough goal patches (floor and walls) that evaluations split the rows among threads.
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"mat", {1.3, 1.7}}}));
+  const std::string goals = "  - surface: [floor, walls]\n    average_lux: 100\n";
+  const std::string luminaires = std::string(kOneLuminaire).replace(std::string(kOneLuminaire).find("count: 1"), 8, "count: 3");
+  JobConfig job = load_job_config(dir.write("job.yaml", room_job("0.5", luminaires, goals, kOptimizer)));
+  const PreparedJob prepared = prepare_job(job);
+  ASSERT_GT(prepared.model.goal_patches.size(), 2048u);
+  const std::vector<Eigen::Vector2d> xy{{0.7, 0.9}, {2.2, 3.1}, {3.4, 1.3}};
+  const std::vector<double> w{1.0, 0.6, 0.8};
+  job.form_factors.threads = 1;
+  const LayoutEvaluation one = evaluate_layout(prepared.model, job, xy, w);
+  job.form_factors.threads = 2;
+  const LayoutEvaluation two = evaluate_layout(prepared.model, job, xy, w);
+  ASSERT_EQ(one.lux.size(), two.lux.size());
+  EXPECT_TRUE((one.lux.array() == two.lux.array()).all());
+  EXPECT_EQ(one.objective, two.objective);
+}
+
 TEST(LayoutSearch, ReflectedLightIsPredictedAsVerified) {
   // A room of reflectance 0.6: about half the mat's light is reflected. Candidates
   // must not shade or absorb that light in the model (they are virtual), or the
