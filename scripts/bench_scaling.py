@@ -72,6 +72,9 @@ def main():
                        ("evaluations_per_s", "evaluations per second")):
         p, _ = fit(n, [float(r[key]) for r in by_edge])
         print(f"- {label} ~ patches^{p:.2f} (k = {fractions[len(fractions) // 2]} x patches)")
+    goals = [float(r["goal_patches"]) for r in by_edge]
+    p, _ = fit(goals, [float(r["evaluations_per_s"]) for r in by_edge])
+    print(f"- evaluations per second ~ goal patches^{p:.2f} (the goal patches grow with the mesh)")
     k = [float(r["k"]) for r in by_k]
     for key, label in (("build_s", "build time"), ("solve_s", "k x k solve"), ("build_peak_gb", "peak memory")):
         p, _ = fit(k, [float(r[key]) for r in by_k])
