@@ -16,6 +16,7 @@
 #include "apps/commands.h"
 #include "core/config.h"
 #include "core/exact_solver.h"
+#include "core/operator_setup.h"
 #include "optimizer/job_runner.h"
 
 namespace ilp::cli {
@@ -113,7 +114,7 @@ int run_bench(const BenchArgs& args) {
       add_square_luminaire(scene, luminaire_name(j), layout.luminaires[j].position_m, job.luminaire_size_m,
                            layout.luminaires[j].flux_lm);
     const auto t0 = Clock::now();
-    const ExactSolution exact = solve_exact(scene, {job.form_factors, job.direct_light, job.radiosity}, progress);
+    const ExactSolution exact = solve_exact(scene, exact_solve_options(job), progress);
     full_solve_seconds = seconds_since(t0);
     full_rays_per_second = exact.summary.rays_per_second;
     full_patches = exact.summary.patches;

@@ -85,7 +85,7 @@ int solve_with_sample(const JobConfig& job, const JobScene& loaded, bool full_sc
 
 int solve_exactly(const JobConfig& job, const JobScene& loaded, const std::string& csv, bool quiet) {
   const Scene& scene = loaded.scene;
-  const ExactSolveOptions options{job.form_factors, job.direct_light, job.radiosity};
+  const ExactSolveOptions options = exact_solve_options(job);
   const ExactSolution solution = solve_exact(scene, options, make_progress(quiet));
   std::cerr << solution.summary << "\n";
   // A closed model with consistent winding absorbs little on back faces; more hints at flipped faces.

@@ -21,6 +21,7 @@
 
 #include "core/config.h"
 #include "core/exact_solver.h"
+#include "core/operator_setup.h"
 #include "core/form_factors.h"
 #include "core/job.h"
 #include "core/ray_caster.h"
@@ -144,7 +145,7 @@ void BM_PlainEmbreeSameRays(benchmark::State& state) {
 
 void BM_ExactSolve(benchmark::State& state) {
   const Fixture& f = fixture();
-  ilp::ExactSolveOptions options{f.job.form_factors, f.job.direct_light, f.job.radiosity};
+  ilp::ExactSolveOptions options = ilp::exact_solve_options(f.job);
   options.form_factors.threads = options.direct_light.threads = static_cast<int>(state.range(0));
   ilp::ExactSolveSummary last;
   for (auto _ : state) last = ilp::solve_exact(f.scene, options).summary;

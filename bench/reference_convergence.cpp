@@ -11,6 +11,7 @@
 
 #include "core/config.h"
 #include "core/exact_solver.h"
+#include "core/operator_setup.h"
 #include "core/job.h"
 
 int main(int argc, char** argv) {
@@ -30,7 +31,7 @@ int main(int argc, char** argv) {
     std::vector<Eigen::VectorXd> lux;
     std::vector<double> seconds;
     for (int rays : ray_counts) {
-      ilp::ExactSolveOptions options{job.form_factors, job.direct_light, job.radiosity};
+      ilp::ExactSolveOptions options = ilp::exact_solve_options(job);
       options.form_factors.rays_per_patch = rays;
       const ilp::ExactSolution solution = ilp::solve_exact(scene, options);
       lux.push_back(solution.radiosity.total_lux);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "core/sampling.h"
@@ -150,9 +151,26 @@ std::vector<int> luminaire_patches(const Scene& scene) {
 }
 
 void replace_emitter_columns(const Scene& scene, const RayCaster& caster, std::span<const int> emitters,
-                             const DirectLightOptions& options, FormFactorRows& rows) {
+                             const DirectLightOptions& options, FormFactorRows& rows, const CheapDirectLight* cheap_rows) {
   if (emitters.empty()) return;
-  const Eigen::MatrixXd exact = compute_emitter_form_factors(scene, caster, rows.row_patches, emitters, options);
+  Eigen::MatrixXd exact;
+  if (!cheap_rows) {
+    exact = compute_emitter_form_factors(scene, caster, rows.row_patches, emitters, options);
+  } else {
+    if (cheap_rows->rows.size() != rows.row_patches.size())
+      throw std::invalid_argument("replace_emitter_columns: one cheap flag per row");
+    std::vector<int> precise, cheap;
+    std::vector<Eigen::Index> precise_at, cheap_at;
+    for (std::size_t r = 0; r < rows.row_patches.size(); ++r) {
+      (cheap_rows->rows[r] ? cheap : precise).push_back(rows.row_patches[r]);
+      (cheap_rows->rows[r] ? cheap_at : precise_at).push_back(static_cast<Eigen::Index>(r));
+    }
+    exact.resize(static_cast<Eigen::Index>(rows.row_patches.size()), static_cast<Eigen::Index>(emitters.size()));
+    const Eigen::MatrixXd a = compute_emitter_form_factors(scene, caster, precise, emitters, options);
+    const Eigen::MatrixXd b = compute_emitter_form_factors(scene, caster, cheap, emitters, cheap_rows->options);
+    for (std::size_t k = 0; k < precise_at.size(); ++k) exact.row(precise_at[k]) = a.row(static_cast<Eigen::Index>(k));
+    for (std::size_t k = 0; k < cheap_at.size(); ++k) exact.row(cheap_at[k]) = b.row(static_cast<Eigen::Index>(k));
+  }
   std::vector<int> emitter_slot(scene.patches.size(), -1);
   for (std::size_t e = 0; e < emitters.size(); ++e) emitter_slot[emitters[e]] = static_cast<int>(e);
   // Emitter columns in ascending order, so each row is a merge of two sorted lists.

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "core/form_factors.h"
 #include "core/ray_caster.h"
@@ -47,7 +48,16 @@ std::vector<int> luminaire_patches(const Scene& scene);
 // dropped from the gathered entries, and the row's other entries are scaled so that
 // the row sum stays 1 - escaped - back-hit fraction: the share lost to emitters is
 // the closed form's, not the ray count's.
+//
+// With `cheap_rows`, the rows it marks (by row, not patch) use `cheap` options
+// instead; each receiver's points and rays depend only on its patch and the options,
+// so the other rows are exactly what they would be without the split.
+struct CheapDirectLight {
+  std::vector<bool> rows;  // one per row of FormFactorRows
+  DirectLightOptions options;
+};
 void replace_emitter_columns(const Scene& scene, const RayCaster& caster, std::span<const int> emitters,
-                             const DirectLightOptions& options, FormFactorRows& rows);
+                             const DirectLightOptions& options, FormFactorRows& rows,
+                             const CheapDirectLight* cheap_rows = nullptr);
 
 }  // namespace ilp

@@ -69,7 +69,15 @@ ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, 
 
   start = std::chrono::steady_clock::now();
   if (progress) progress("direct light", 0, 1);
-  replace_emitter_columns(scene, caster, luminaire_patches(scene), options.direct_light, rows);
+  if (options.precise_patches.empty()) {
+    replace_emitter_columns(scene, caster, luminaire_patches(scene), options.direct_light, rows);
+  } else {
+    CheapDirectLight cheap{std::vector<bool>(scene.patches.size(), true), options.other_direct_light};
+    cheap.options.seed = options.direct_light.seed;
+    cheap.options.threads = options.direct_light.threads;
+    for (int p : options.precise_patches) cheap.rows.at(static_cast<std::size_t>(p)) = false;  // rows are all patches, in order
+    replace_emitter_columns(scene, caster, luminaire_patches(scene), options.direct_light, rows, &cheap);
+  }
   if (progress) progress("direct light", 1, 1);
   s.direct_light_seconds = seconds_since(start);
 

@@ -18,6 +18,11 @@ struct ExactSolveOptions {
   FormFactorOptions form_factors;
   DirectLightOptions direct_light;
   RadiosityOptions radiosity;
+  // When not empty, only these patches get `direct_light`; the others get
+  // `other_direct_light`, a cheaper estimate that is read only through reflections
+  // (for verifying a layout, whose goals are a few of the patches).
+  std::vector<int> precise_patches;
+  DirectLightOptions other_direct_light{.receiver_points = 1, .shadow_rays = 2};
 };
 
 struct ExactSolveSummary {

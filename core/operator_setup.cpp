@@ -19,6 +19,14 @@ SampleOperatorOptions sample_operator_options(const JobConfig& job) {
   return options;
 }
 
+ExactSolveOptions exact_solve_options(const JobConfig& job) {
+  ExactSolveOptions options;
+  options.form_factors = job.form_factors;
+  options.direct_light = job.direct_light;
+  options.radiosity = job.radiosity;
+  return options;
+}
+
 SampleSizeChoice choose_sample_size(const JobConfig& job, const Scene& scene, const RayCaster& caster,
                                     const GoalRows& goals, const Eigen::VectorXd& flux_lm,
                                     const SampleOperatorOptions& options, const ProgressCallback& progress) {

@@ -1,11 +1,12 @@
-// From a job's solver section to the sample-based operator's options and sample
-// size; shared by every command that builds an operator.
+// From a job's solver section to the solvers' options (the sample-based operator's,
+// with its sample size, and the exact solver's); shared by every command.
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 
 #include "core/config.h"
+#include "core/exact_solver.h"
 #include "core/progress.h"
 #include "core/ray_caster.h"
 #include "core/sample_operator.h"
@@ -15,6 +16,9 @@ namespace ilp {
 
 // The solver section as operator options (sample_size still unset: see below).
 SampleOperatorOptions sample_operator_options(const JobConfig& job);
+
+// The solver section as the exact solver's options (precise direct light everywhere).
+ExactSolveOptions exact_solve_options(const JobConfig& job);
 
 struct SampleSizeChoice {
   int sample_size = 1;

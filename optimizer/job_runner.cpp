@@ -40,10 +40,11 @@ Verification verify_layout(const PreparedJob& prepared, const JobConfig& job, co
                      (settings.method == VerificationMethod::automatic && scene.patches.size() <= settings.max_exact_patches);
   out.rays_per_patch = settings.rays_per_patch;
   if (exact) {
-    ExactSolveOptions options{job.form_factors, job.direct_light, job.radiosity};
+    ExactSolveOptions options = exact_solve_options(job);
     options.form_factors.rays_per_patch = settings.rays_per_patch;
     options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
     options.direct_light.seed = options.form_factors.seed;
+    options.precise_patches = prepared.model.goal_patches;  // elsewhere direct light is only reflected
     const ExactSolution solution = solve_exact(scene, options, progress);
     out.method = "exact";
     out.patches = scene.all_patches();

@@ -235,3 +235,39 @@ TEST(Radiosity, ColouredReflectanceSolvesEachChannel) {
 
 }  // namespace
 }  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// Verifying a layout needs precise direct light only at its goal patches; elsewhere
+// it is read through reflections. The goal patches' direct light is unchanged bit for
+// bit, and their total moves by the noise of the cheaper estimate elsewhere.
+TEST(Radiosity, PreciseDirectLightOnlyWhereAsked) {
+  const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
+  const Scene scene = load_job_scene(job).scene;
+  ExactSolveOptions full;
+  full.form_factors.rays_per_patch = 64;
+  ExactSolveOptions split = full;
+  split.precise_patches = scene.patches_of({"desk_1", "desk_2"});
+  const ExactSolution a = solve_exact(scene, full), b = solve_exact(scene, split);
+  double sum_a = 0.0, sum_b = 0.0, area = 0.0;
+  for (int p : split.precise_patches) {
+    const auto i = static_cast<Eigen::Index>(p);
+    ASSERT_EQ(a.radiosity.direct_lux[i], b.radiosity.direct_lux[i]) << "patch " << p;
+    sum_a += scene.patches[static_cast<std::size_t>(p)].area_m2 * a.radiosity.total_lux[i];
+    sum_b += scene.patches[static_cast<std::size_t>(p)].area_m2 * b.radiosity.total_lux[i];
+    area += scene.patches[static_cast<std::size_t>(p)].area_m2;
+  }
+  EXPECT_NEAR(sum_b / sum_a, 1.0, 0.01) << "the desks' average";
+  // Elsewhere the estimate is the cheap one: not the same numbers.
+  const int wall = scene.patches_of({"walls"}).front();
+  EXPECT_NE(a.radiosity.direct_lux[wall], b.radiosity.direct_lux[wall]);
+  // Every patch precise is the default.
+  ExactSolveOptions all = full;
+  all.precise_patches = scene.all_patches();
+  const ExactSolution c = solve_exact(scene, all);
+  EXPECT_TRUE((c.radiosity.total_lux.array() == a.radiosity.total_lux.array()).all());
+}
+
+}  // namespace
+}  // namespace ilp
