@@ -9,8 +9,9 @@
 namespace ilp {
 namespace {
 
-// A patch counts as facing down when its normal is within about 2.6 degrees of -z.
-constexpr double kFacingDownCos = 0.999;
+// A patch counts as facing down when its normal is within about 8 degrees of -z: real
+// models carry ceilings a few degrees off level (Sponza's arcades).
+constexpr double kFacingDownCos = 0.99;
 
 // Height of the mounting surface above (x, y): the patch whose top-view triangle
 // holds the point, if any.
