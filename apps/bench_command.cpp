@@ -72,12 +72,10 @@ int run_bench(const BenchArgs& args) {
   const ProgressCallback progress = make_progress(args.quiet);
 
   // Build (no cache: the build is what is measured).
-  const PreparedJob prepared = prepare_job(job, progress);
+  const PreparedJob prepared = prepare_job(job, progress, "", [](const std::string& line) { std::cerr << line << "\n"; });
   const LightingModel& model = prepared.model;
   const SampleOperatorStats& st = model.stats;
   const double build_memory_gb = peak_memory_gb();
-  for (const std::string& line : prepared.loaded.log) std::cerr << line << "\n";
-  for (const std::string& line : model.log) std::cerr << line << "\n";
 
   // Evaluations: batches of random layouts, median rate.
   std::mt19937_64 rng(20261126);

@@ -44,9 +44,7 @@ std::string cache_folder(const std::string& requested, bool disabled) {
 }
 
 PreparedJob prepare_and_log(const JobConfig& job, const ProgressCallback& progress, const std::string& cache_dir) {
-  PreparedJob prepared = prepare_job(job, progress, cache_dir);
-  for (const std::string& line : prepared.loaded.log) std::cerr << line << "\n";
-  for (const std::string& line : prepared.model.log) std::cerr << line << "\n";
+  PreparedJob prepared = prepare_job(job, progress, cache_dir, [](const std::string& line) { std::cerr << line << "\n"; });
   if (!prepared.cache_status.empty()) std::cerr << prepared.cache_status << "\n";
   const SampleOperatorStats& st = prepared.model.stats;
   std::cerr << std::fixed << std::setprecision(3)

@@ -124,7 +124,12 @@ std::string luminaire_name(std::size_t j) {
   return name.append(std::to_string(j + 1));
 }
 
-PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, const std::string& cache_dir) {
+PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, const std::string& cache_dir,
+                        const LogSink& log) {
+  auto emit = [&](const std::vector<std::string>& lines, std::size_t from) {
+    if (log)
+      for (std::size_t k = from; k < lines.size(); ++k) log(lines[k]);
+  };
   if (!job.search)
     throw ConfigError(job.path + ": luminaires.mounting_surface is missing: an inverse job says where luminaires may "
                                  "go (see docs/user-guide.md)");
@@ -134,15 +139,19 @@ PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, 
   auto start = Clock::now();
   out.loaded = load_job_scene(job);
   out.scene_seconds = seconds_since(start);
+  emit(out.loaded.log, 0);
   start = Clock::now();
   out.caster = std::make_unique<RayCaster>(out.loaded.scene, job.form_factors.threads);
   out.bvh_seconds = seconds_since(start);
+  out.model = lighting_model_geometry(out.loaded.scene, job);
+  emit(out.model.log, 0);
+  const std::size_t geometry_lines = out.model.log.size();
   if (cache_dir.empty()) {
-    out.model = build_lighting_model(out.loaded.scene, *out.caster, job, progress);
+    compute_lighting_operator(out.model, out.loaded.scene, *out.caster, job, progress);
+    emit(out.model.log, geometry_lines);
     return out;
   }
 
-  out.model = lighting_model_geometry(out.loaded.scene, job);
   start = Clock::now();
   const std::string key = lighting_model_key(job);
   const std::string file = (std::filesystem::path(cache_dir) / (key + ".ilpmodel")).string();
@@ -154,9 +163,11 @@ PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, 
     status << std::fixed << std::setprecision(3) << "operator loaded from cache " << file << " (built in "
            << out.model.build_seconds << " s originally)";
     out.cache_status = status.str();
+    emit(out.model.log, geometry_lines);
     return out;
   }
   compute_lighting_operator(out.model, out.loaded.scene, *out.caster, job, progress);
+  emit(out.model.log, geometry_lines);
   // The file was missing, or is replaced: a failure to write it leaves the job as it is.
   const std::string previous = *not_used == "no cache file" ? "" : "the cached file was not used: " + *not_used;
   start = Clock::now();

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,7 +41,12 @@ struct PreparedJob {
 // and written there (the folder is created; a stale or corrupt file is replaced). A
 // cache that cannot be read or written never fails the job: cache_status says why.
 // An empty cache_dir: no cache.
-PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress = {}, const std::string& cache_dir = "");
+// `log`, when given, receives the run log's lines as soon as each phase has them (the
+// scene's before the operator is built, which can take a minute); they are also kept
+// in loaded.log and model.log.
+using LogSink = std::function<void(const std::string& line)>;
+PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress = {}, const std::string& cache_dir = "",
+                        const LogSink& log = {});
 
 struct GoalOutcome {
   GoalJudgement predicted;                 // through the operator
