@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 namespace ilp {
@@ -83,7 +84,7 @@ CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const Can
     }
   if (positions_.empty())
     throw std::invalid_argument("mounting surface '" + name + "': no position where a whole " +
-                                std::to_string(options.luminaire_size_m) + " m luminaire fits");
+                                (std::ostringstream() << options.luminaire_size_m).str() + " m luminaire fits");
 }
 
 namespace {
