@@ -1,8 +1,11 @@
 #include "core/scene.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <ostream>
+#include <set>
 
 namespace ilp {
 namespace {
@@ -78,10 +81,15 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
     for (int k = 0; k < 3; ++k) bounds.extend(positions[t[k]]);
   const double diagonal2 = bounds.isEmpty() ? 0.0 : bounds.diagonal().squaredNorm();
 
-  // Keep the non-degenerate triangles and count the patches they will make.
+  // Keep the non-degenerate triangles, each once, and count the patches they will make.
+  // A duplicate (the same three points in the same turning order, whatever the vertex
+  // records, in the same surface) would be a second patch in the same place, both lit,
+  // twice the area. A reversed copy is a back-to-back twin (two-sided) and stays, and
+  // so does a coincident triangle of another surface (a sheet of paper on a desk).
   std::vector<std::size_t> kept;
   std::vector<int> divisions;
   std::size_t patch_count = 0;
+  std::set<std::pair<int, std::array<double, 9>>> seen;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
     const Eigen::Vector3d &a = positions[tri[0]], &b = positions[tri[1]], &c = positions[tri[2]];
@@ -89,6 +97,22 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
     if (!(doubled_area > kDegenerateRelArea * diagonal2)) {
       ++scene.stats.degenerate_dropped;
       continue;
+    }
+    {
+      // The rotation that puts the lexicographically smallest point first keeps the
+      // turning order, so equal keys mean the same triangle facing the same way.
+      std::array<const Eigen::Vector3d*, 3> v{&a, &b, &c};
+      auto less = [](const Eigen::Vector3d* p, const Eigen::Vector3d* q) {
+        return std::lexicographical_compare(p->data(), p->data() + 3, q->data(), q->data() + 3);
+      };
+      const std::size_t first = static_cast<std::size_t>(std::min_element(v.begin(), v.end(), less) - v.begin());
+      std::array<double, 9> key{};
+      for (std::size_t k = 0; k < 3; ++k)
+        for (int d = 0; d < 3; ++d) key[3 * k + static_cast<std::size_t>(d)] = (*v[(first + k) % 3])[d];
+      if (!seen.insert({mesh.triangle_surface[t], key}).second) {
+        ++scene.stats.duplicate_dropped;
+        continue;
+      }
     }
     int m = 1;
     if (options.max_patch_edge_m > 0.0) {
@@ -160,7 +184,7 @@ void set_surface_exitance(Scene& scene, int surface, double exitance_lm_per_m2) 
 
 std::ostream& operator<<(std::ostream& os, const SceneStats& s) {
   return os << s.faces_read << " faces read, " << s.triangles_read << " triangles, " << s.degenerate_dropped
-            << " degenerate dropped, " << s.mesh_patches << " patches";
+            << " degenerate dropped, " << s.duplicate_dropped << " duplicates dropped, " << s.mesh_patches << " patches";
 }
 
 }  // namespace ilp

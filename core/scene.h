@@ -46,6 +46,7 @@ struct SceneStats {
   std::size_t faces_read = 0;            // polygons in the mesh file
   std::size_t triangles_read = 0;        // after fan triangulation
   std::size_t degenerate_dropped = 0;    // zero-area or collinear triangles
+  std::size_t duplicate_dropped = 0;     // the same triangle again in its surface, facing the same way
   std::size_t mesh_patches = 0;          // made from the mesh by subdivision (luminaires come on top)
 };
 

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <algorithm>
 
 #include "core/config.h"
@@ -70,6 +72,24 @@ TEST(Scene, DropsAndCountsDegenerateFaces) {
   const TriangleMesh sliver = one_surface_mesh({V(0, 0, 0), V(10, 0, 0), V(0, 10, 0), V(1e-5, 0, 0), V(0, 1e-5, 0)},
                                                {{0, 1, 2}, {0, 3, 4}});
   EXPECT_EQ(make_scene(sliver, TriangleReflectance(2, V::Constant(0.5)), {}).patches.size(), 2u);
+}
+
+TEST(Scene, DropsAndCountsDuplicateTrianglesOfASurface) {
+  // Triangle 0; 1 repeats it through other vertex records, rotated (same winding);
+  // 2 is its reversed twin (back to back, kept); 3 repeats it in another surface (kept).
+  TriangleMesh mesh = one_surface_mesh({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 0, 0), V(0, 1, 0), V(0, 0, 0)},
+                                       {{0, 1, 2}, {4, 5, 3}, {0, 2, 1}, {0, 1, 2}});
+  mesh.surface_names.push_back("paper");
+  mesh.triangle_surface[3] = 1;
+  const Scene scene = make_scene(mesh, TriangleReflectance(4, V::Constant(0.5)), {});
+  EXPECT_EQ(scene.stats.duplicate_dropped, 1u);
+  ASSERT_EQ(scene.patches.size(), 3u);
+  EXPECT_GT(scene.patches[0].normal.z(), 0.0);
+  EXPECT_LT(scene.patches[1].normal.z(), 0.0) << "the reversed twin";
+  EXPECT_EQ(scene.patches[2].surface, 1);
+  std::ostringstream os;
+  os << scene.stats;
+  EXPECT_NE(os.str().find("1 duplicates dropped"), std::string::npos) << os.str();
 }
 
 TEST(Scene, NoUsableFaceIsAnError) {
