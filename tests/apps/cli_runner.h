@@ -42,6 +42,11 @@ inline RunResult run_ilp(const TempDir& dir, const std::vector<std::string>& arg
   return r;
 }
 
+// For EXPECT_TRUE: what the program wrote contains `part`.
+inline ::testing::AssertionResult OutputContains(const std::string& text, const std::string& part) {
+  return Contains(text, part, "output");
+}
+
 inline std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> out;
   std::istringstream in(text);

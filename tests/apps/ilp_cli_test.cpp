@@ -22,15 +22,12 @@ namespace fs = std::filesystem;
 namespace {
 
 using ilp::test::lines_of;
+using ilp::test::OutputContains;
 using ilp::test::read_file;
 using ilp::test::run_ilp;
 using ilp::test::RunResult;
 using ilp::test::TempDir;
 
-// For EXPECT_TRUE: what the program wrote contains `part`.
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  return ilp::test::Contains(text, part, "output");
-}
 
 std::vector<std::string> split_csv(const std::string& line) {
   std::vector<std::string> out;
@@ -48,7 +45,7 @@ void expect_clean_failure(const RunResult& r, const std::string& located, const 
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr must be one line:\n" << r.err;
   EXPECT_EQ(r.err.back(), '\n');
   EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
-  EXPECT_TRUE(Contains(r.err, "error: " + located)) << "location must come first";
+  EXPECT_TRUE(OutputContains(r.err, "error: " + located)) << "location must come first";
   EXPECT_FALSE(fs::exists(csv)) << csv;
   EXPECT_FALSE(fs::exists(csv + ".tmp")) << csv << ".tmp";
 }
@@ -121,8 +118,8 @@ TEST(IlpCli, BadReflectanceFailsCleanly) {
                                      "    ceiling: 0.5\n"
                                      "    walls: 0.5\n");
   const RunResult r = solve_fails_cleanly(dir, yaml, yaml + ":4:");
-  EXPECT_TRUE(Contains(r.err, "scene.reflectance.floor"));
-  EXPECT_TRUE(Contains(r.err, "[0, 1)"));
+  EXPECT_TRUE(OutputContains(r.err, "scene.reflectance.floor"));
+  EXPECT_TRUE(OutputContains(r.err, "[0, 1)"));
 }
 
 TEST(IlpCli, MissingMeshFailsCleanly) {
@@ -133,8 +130,8 @@ TEST(IlpCli, MissingMeshFailsCleanly) {
                                      "  mesh: gone.obj\n"
                                      "  default_reflectance: 0.5\n");
   const RunResult r = solve_fails_cleanly(dir, yaml, yaml + ":3:");
-  EXPECT_TRUE(Contains(r.err, "scene.mesh"));
-  EXPECT_TRUE(Contains(r.err, dir.file("gone.obj")));
+  EXPECT_TRUE(OutputContains(r.err, "scene.mesh"));
+  EXPECT_TRUE(OutputContains(r.err, dir.file("gone.obj")));
 }
 
 TEST(IlpCli, BadMeshLineFailsCleanly) {
@@ -142,7 +139,7 @@ TEST(IlpCli, BadMeshLineFailsCleanly) {
   const std::string obj = dir.write("box.obj", std::string(kBoxObj) + "v 1 nan 1\n");
   const std::string yaml = dir.write("job.yaml", kBoxYaml);
   const RunResult r = solve_fails_cleanly(dir, yaml, yaml + ":2:");
-  EXPECT_TRUE(Contains(r.err, obj + ":19:"));
+  EXPECT_TRUE(OutputContains(r.err, obj + ":19:"));
 }
 
 TEST(IlpCli, FailureLeavesAnExistingCsvAlone) {
@@ -152,8 +149,8 @@ TEST(IlpCli, FailureLeavesAnExistingCsvAlone) {
   const std::string csv = dir.write("out.csv", "old results\n");
   const RunResult r = run_ilp(dir, {"solve", yaml, "--csv", csv});
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_TRUE(Contains(r.err, yaml + ":3:"));
-  EXPECT_TRUE(Contains(r.err, "scene.up_axis"));
+  EXPECT_TRUE(OutputContains(r.err, yaml + ":3:"));
+  EXPECT_TRUE(OutputContains(r.err, "scene.up_axis"));
   EXPECT_EQ(read_file(csv), "old results\n");
 }
 
@@ -164,7 +161,7 @@ TEST(IlpCli, MissingConfigFile) {
   const RunResult r = run_ilp(dir, {"solve", yaml, "--csv", csv});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.out, "");
-  EXPECT_TRUE(Contains(r.err, yaml));
+  EXPECT_TRUE(OutputContains(r.err, yaml));
   EXPECT_FALSE(fs::exists(csv));
 }
 
@@ -172,16 +169,16 @@ TEST(IlpCli, NoSubcommandIsAnError) {
   TempDir dir;
   const RunResult r = run_ilp(dir, {});
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_TRUE(Contains(r.err, "subcommand"));
+  EXPECT_TRUE(OutputContains(r.err, "subcommand"));
 }
 
 TEST(IlpCli, SolveHelp) {
   TempDir dir;
   const RunResult r = run_ilp(dir, {"solve", "--help"});
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_TRUE(Contains(r.out, "--csv"));
-  EXPECT_TRUE(Contains(r.out, "--threads"));
-  EXPECT_TRUE(Contains(r.out, "config"));
+  EXPECT_TRUE(OutputContains(r.out, "--csv"));
+  EXPECT_TRUE(OutputContains(r.out, "--threads"));
+  EXPECT_TRUE(OutputContains(r.out, "config"));
 }
 
 TEST(IlpCli, SolvesATinyBox) {
@@ -191,14 +188,14 @@ TEST(IlpCli, SolvesATinyBox) {
   const std::string csv = dir.file("out.csv");
   const RunResult r = run_ilp(dir, {"solve", yaml, "--csv", csv, "--threads", "2"});
   ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
-  EXPECT_TRUE(Contains(r.out, "Eavg lux"));
-  EXPECT_TRUE(Contains(r.out, "U0"));
+  EXPECT_TRUE(OutputContains(r.out, "Eavg lux"));
+  EXPECT_TRUE(OutputContains(r.out, "U0"));
   for (const char* surface : {"floor", "ceiling", "walls", "L1"}) {
     bool listed = false;
     for (const std::string& line : lines_of(r.out)) listed |= line.rfind(surface, 0) == 0;
     EXPECT_TRUE(listed) << surface << " has no row in\n" << r.out;
   }
-  EXPECT_TRUE(Contains(r.out, csv));
+  EXPECT_TRUE(OutputContains(r.out, csv));
   EXPECT_FALSE(fs::exists(csv + ".tmp"));
 
   ASSERT_TRUE(fs::exists(csv));
@@ -269,18 +266,18 @@ TEST(IlpCli, SolveMethodsExactAndSampleAgree) {
   const std::string yaml = dir.write("job.yaml", kBoxYaml);
   const RunResult exact = run_ilp(dir, {"solve", yaml, "--method", "exact", "--threads", "2", "-q"});
   ASSERT_EQ(exact.exit_code, 0) << "stderr:\n" << exact.err;
-  EXPECT_TRUE(Contains(exact.out, "exact radiosity"));
+  EXPECT_TRUE(OutputContains(exact.out, "exact radiosity"));
   const RunResult sample = run_ilp(dir, {"solve", yaml, "--method", "sample", "--threads", "2", "-q"});
   ASSERT_EQ(sample.exit_code, 0) << "stderr:\n" << sample.err;
-  EXPECT_TRUE(Contains(sample.out, "sample-based operator"));
+  EXPECT_TRUE(OutputContains(sample.out, "sample-based operator"));
   for (const RunResult* r : {&exact, &sample}) {
-    EXPECT_TRUE(Contains(r->out, "Eavg lux"));
+    EXPECT_TRUE(OutputContains(r->out, "Eavg lux"));
     for (const char* surface : {"floor", "ceiling", "walls", "L1"})
       EXPECT_EQ(table_row(r->out, surface).size(), 7u) << surface << " has no row in\n" << r->out;
   }
   // What the sample run did, in its log.
-  EXPECT_TRUE(Contains(sample.err, "sample:"));
-  EXPECT_TRUE(Contains(sample.err, "condition estimate"));
+  EXPECT_TRUE(OutputContains(sample.err, "sample:"));
+  EXPECT_TRUE(OutputContains(sample.err, "condition estimate"));
 
   const double floor_exact = table_eavg(exact.out, "floor"), floor_sample = table_eavg(sample.out, "floor");
   ASSERT_TRUE(std::isfinite(floor_exact) && floor_exact > 0.0) << exact.out;
@@ -294,10 +291,10 @@ TEST(IlpCli, SolveMethodFromTheJobAndOverride) {
   const std::string yaml = dir.write("job.yaml", kBoxYaml + "  method: exact\n");
   const RunResult from_job = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
   ASSERT_EQ(from_job.exit_code, 0) << "stderr:\n" << from_job.err;
-  EXPECT_TRUE(Contains(from_job.out, "exact radiosity"));
+  EXPECT_TRUE(OutputContains(from_job.out, "exact radiosity"));
   const RunResult overridden = run_ilp(dir, {"solve", yaml, "--method", "sample", "--threads", "2", "-q"});
   ASSERT_EQ(overridden.exit_code, 0) << "stderr:\n" << overridden.err;
-  EXPECT_TRUE(Contains(overridden.out, "sample-based operator"));
+  EXPECT_TRUE(OutputContains(overridden.out, "sample-based operator"));
 }
 
 TEST(IlpCli, SolveBogusMethodIsAUsageError) {
@@ -306,8 +303,8 @@ TEST(IlpCli, SolveBogusMethodIsAUsageError) {
   const std::string yaml = dir.write("job.yaml", kBoxYaml);
   const RunResult r = run_ilp(dir, {"solve", yaml, "--method", "bogus"});
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_TRUE(Contains(r.err, "--method"));
-  EXPECT_FALSE(Contains(r.out, "Eavg lux")) << "nothing may be solved";
+  EXPECT_TRUE(OutputContains(r.err, "--method"));
+  EXPECT_FALSE(OutputContains(r.out, "Eavg lux")) << "nothing may be solved";
 }
 
 TEST(IlpCli, SolveWithoutReflectionIsDirectLightOnly) {
@@ -317,7 +314,7 @@ TEST(IlpCli, SolveWithoutReflectionIsDirectLightOnly) {
                                                          "  reflectance: {floor: 0, ceiling: 0, walls: 0}\n"));
   const RunResult r = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
   ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
-  EXPECT_TRUE(Contains(r.err, "direct light only"));
+  EXPECT_TRUE(OutputContains(r.err, "direct light only"));
   EXPECT_GT(table_eavg(r.out, "floor"), 0.0) << r.out;
 }
 
@@ -331,9 +328,9 @@ TEST(IlpCli, SolveTargetErrorChoosesTheSampleSize) {
   for (const std::string& l : lines_of(r.err))
     if (l.rfind("sample size:", 0) == 0) line = l;
   ASSERT_FALSE(line.empty()) << "no \"sample size:\" line in\n" << r.err;
-  EXPECT_TRUE(Contains(line, "needs k ="));
-  EXPECT_TRUE(Contains(line, "of 432"));  // the reflecting patches: every patch but the panel's 2
-  EXPECT_TRUE(Contains(r.out, "Eavg lux"));
+  EXPECT_TRUE(OutputContains(line, "needs k ="));
+  EXPECT_TRUE(OutputContains(line, "of 432"));  // the reflecting patches: every patch but the panel's 2
+  EXPECT_TRUE(OutputContains(r.out, "Eavg lux"));
 }
 
 // The census (every reflecting patch in the sample) is the exact solve by another
@@ -348,8 +345,8 @@ TEST(IlpCli, SolveCensusReproducesTheExactSolve) {
   ASSERT_EQ(exact.exit_code, 0) << "stderr:\n" << exact.err;
   const RunResult census = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
   ASSERT_EQ(census.exit_code, 0) << "stderr:\n" << census.err;
-  EXPECT_TRUE(Contains(census.out, "k = 432 of 432 reflecting patches"));
-  EXPECT_TRUE(Contains(census.err, "no sampling error"));
+  EXPECT_TRUE(OutputContains(census.out, "k = 432 of 432 reflecting patches"));
+  EXPECT_TRUE(OutputContains(census.err, "no sampling error"));
   for (const char* surface : {"floor", "ceiling", "walls"}) {
     const std::vector<std::string> a = table_row(exact.out, surface), b = table_row(census.out, surface);
     ASSERT_EQ(a.size(), 7u) << exact.out;
@@ -373,12 +370,12 @@ TEST(IlpCli, SolveTargetErrorRecommendsAtMostThePopulation) {
       dir.write("job.yaml", box_job("  reflectance: {floor: 0.5, rest: 0}\n", "  target_error: 0.05\n"));
   const RunResult r = run_ilp(dir, {"solve", yaml, "--threads", "2", "-q"});
   ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
-  EXPECT_TRUE(Contains(r.out, "k = 1 of 1 reflecting patches"));
+  EXPECT_TRUE(OutputContains(r.out, "k = 1 of 1 reflecting patches"));
   std::string line;
   for (const std::string& l : lines_of(r.err))
     if (l.rfind("sample size:", 0) == 0) line = l;
   ASSERT_FALSE(line.empty()) << "no \"sample size:\" line in\n" << r.err;
-  EXPECT_TRUE(Contains(line, "needs k = 1 of 1 ")) << "the recommendation exceeds the population";
+  EXPECT_TRUE(OutputContains(line, "needs k = 1 of 1 ")) << "the recommendation exceeds the population";
 }
 
 // ---------------------------------------------------------------------------------
@@ -393,8 +390,8 @@ TEST(IlpCli, AccuracyStudyOnATinyBox) {
                                     "--reference-rays", "128", "--goals", "floor", "--threads", "2", "--out", out_dir,
                                     "-q"});
   ASSERT_EQ(r.exit_code, 0) << "stderr:\n" << r.err;
-  EXPECT_TRUE(Contains(r.out, "RMS tot %"));  // the table's header
-  EXPECT_TRUE(Contains(r.out, "64 rays, exact 2nd"));
+  EXPECT_TRUE(OutputContains(r.out, "RMS tot %"));  // the table's header
+  EXPECT_TRUE(OutputContains(r.out, "64 rays, exact 2nd"));
 
   const std::string csv = (fs::path(out_dir) / "accuracy.csv").string();
   const std::string svg = (fs::path(out_dir) / "accuracy.svg").string();
@@ -465,8 +462,8 @@ TEST(IlpCli, AccuracyUnknownGoalSurface) {
   const RunResult r = run_ilp(dir, {"accuracy", yaml, "--goals", "floor,desk", "--out", out_dir, "-q"});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.out, "");
-  EXPECT_TRUE(Contains(r.err, "error: "));
-  EXPECT_TRUE(Contains(r.err, "'desk'"));
+  EXPECT_TRUE(OutputContains(r.err, "error: "));
+  EXPECT_TRUE(OutputContains(r.err, "'desk'"));
   EXPECT_FALSE(fs::exists(fs::path(out_dir) / "accuracy.csv"));
 }
 
@@ -477,7 +474,7 @@ TEST(IlpCli, AccuracyBogusStrategy) {
   const std::string out_dir = dir.file("acc");
   const RunResult r = run_ilp(dir, {"accuracy", yaml, "--strategies", "bogus", "--goals", "floor", "--out", out_dir});
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_TRUE(Contains(r.err, "bogus"));
+  EXPECT_TRUE(OutputContains(r.err, "bogus"));
   EXPECT_FALSE(fs::exists(fs::path(out_dir) / "accuracy.csv"));
 }
 
@@ -486,7 +483,7 @@ TEST(IlpCli, AccuracyHelp) {
   const RunResult r = run_ilp(dir, {"accuracy", "--help"});
   EXPECT_EQ(r.exit_code, 0);
   for (const char* option : {"--fractions", "--rays", "--seeds", "--goals", "--out", "--strategies"})
-    EXPECT_TRUE(Contains(r.out, option));
+    EXPECT_TRUE(OutputContains(r.out, option));
 }
 
 }  // namespace

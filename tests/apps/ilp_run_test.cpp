@@ -21,14 +21,12 @@ namespace fs = std::filesystem;
 namespace {
 
 using ilp::test::lines_of;
+using ilp::test::OutputContains;
 using ilp::test::read_file;
 using ilp::test::run_ilp;
 using ilp::test::RunResult;
 using ilp::test::TempDir;
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  return ilp::test::Contains(text, part, "output");
-}
 
 std::size_t count_of(const std::string& text, const std::string& part) {
   std::size_t n = 0;
@@ -64,7 +62,7 @@ TEST(IlpRun, PrintsTheLayoutAndWritesEveryOutput) {
   for (const char* part : {"Optimal layout (min_power, 1 luminaires)", "id", "x m", "y m", "z m", "flux lm", "power W",
                            "L1", "Total power", "W/m²", "mat average (lx)", "200.0", "met",
                            "verification: exact, 256 rays per patch", "evaluations", "timings:", "operator"})
-    EXPECT_TRUE(Contains(r.out, part));
+    EXPECT_TRUE(OutputContains(r.out, part));
   for (const char* file : {"result.json", "illuminance.csv", "plan.svg", "scene.ply"}) {
     EXPECT_TRUE(fs::exists(fs::path(out) / file)) << file;
     EXPECT_FALSE(fs::exists(fs::path(out) / (std::string(file) + ".tmp"))) << file;
@@ -72,7 +70,7 @@ TEST(IlpRun, PrintsTheLayoutAndWritesEveryOutput) {
   const std::string json = read_file((fs::path(out) / "result.json").string());
   for (const char* key : {"\"luminaires\"", "\"goals\"", "\"target\"", "\"predicted\"", "\"verified\"", "\"met\"",
                           "\"flux_lm\"", "\"power_w\"", "\"program_version\"", "\"sample_size\"", "\"seed\"", "\"timings_s\""})
-    EXPECT_TRUE(Contains(json, key)) << key;
+    EXPECT_TRUE(OutputContains(json, key)) << key;
   // illuminance.csv: one row per mat patch (0.4 m square at 0.25 m edges: 2 triangles
   // cut into 2 x 2 = 8 patches), with area adding up to the mat's 0.16 m².
   const std::vector<std::string> csv = lines_of(read_file((fs::path(out) / "illuminance.csv").string()));
@@ -103,17 +101,17 @@ TEST(IlpRun, PrintShowsTheSavedLayoutAgain) {
   ASSERT_EQ(print.exit_code, 0) << print.err;
   // The run's report is the print's, followed by the files written.
   EXPECT_EQ(run.out.substr(0, print.out.size()), print.out);
-  EXPECT_TRUE(Contains(run.out.substr(print.out.size()), "wrote "));
-  EXPECT_TRUE(Contains(print.out, "L1"));
+  EXPECT_TRUE(OutputContains(run.out.substr(print.out.size()), "wrote "));
+  EXPECT_TRUE(OutputContains(print.out, "L1"));
 }
 
 TEST(IlpRun, UnreachableGoalExitsTwoAndSaysByHowMuch) {
   TempDir dir;
   const RunResult r = run_ilp(dir, {"run", mat_job(dir, 200.0, 300.0), "--out", dir.file("out"), "-q"});
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_TRUE(Contains(r.out, "INFEASIBLE: no layout found meets every goal"));
-  EXPECT_TRUE(Contains(r.out, "MISSED by"));
-  EXPECT_TRUE(Contains(r.out, "300.0")) << "the closest layout uses the whole flux range";
+  EXPECT_TRUE(OutputContains(r.out, "INFEASIBLE: no layout found meets every goal"));
+  EXPECT_TRUE(OutputContains(r.out, "MISSED by"));
+  EXPECT_TRUE(OutputContains(r.out, "300.0")) << "the closest layout uses the whole flux range";
   EXPECT_TRUE(fs::exists(fs::path(dir.file("out")) / "result.json")) << "the closest layout is still saved";
 }
 
@@ -131,15 +129,15 @@ TEST(IlpRun, SecondRunLoadsTheOperatorFromTheCache) {
   const std::string job = mat_job(dir), cache = dir.file("cache");
   const RunResult first = run_ilp(dir, {"run", job, "--out", dir.file("a"), "-q", "--cache", cache});
   ASSERT_EQ(first.exit_code, 0) << first.err;
-  EXPECT_TRUE(Contains(first.err, "operator built and cached in " + cache + "/"));
+  EXPECT_TRUE(OutputContains(first.err, "operator built and cached in " + cache + "/"));
   const RunResult second = run_ilp(dir, {"run", job, "--out", dir.file("b"), "-q", "--cache", cache});
   ASSERT_EQ(second.exit_code, 0) << second.err;
-  EXPECT_TRUE(Contains(second.err, "operator loaded from cache " + cache + "/"));
-  EXPECT_TRUE(Contains(second.out, "operator from cache"));
+  EXPECT_TRUE(OutputContains(second.err, "operator loaded from cache " + cache + "/"));
+  EXPECT_TRUE(OutputContains(second.out, "operator from cache"));
   EXPECT_EQ(saved_layout(dir, "a"), saved_layout(dir, "b"));
   // Without the cache the operator is built again.
   const RunResult third = run_ilp(dir, {"run", job, "--out", dir.file("c"), "-q", "--cache", cache, "--no-cache"});
-  EXPECT_FALSE(Contains(third.err, "from cache"));
+  EXPECT_FALSE(OutputContains(third.err, "from cache"));
 }
 
 TEST(IlpRun, JobWithoutMountingSurfaceIsAClearError) {
@@ -147,7 +145,7 @@ TEST(IlpRun, JobWithoutMountingSurfaceIsAClearError) {
   const RunResult r = run_ilp(dir, {"run", ILP_SOURCE_DIR "/configs/office_fixed.yaml", "--out", dir.file("out")});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.out, "");
-  EXPECT_TRUE(Contains(r.err, "error: " ILP_SOURCE_DIR "/configs/office_fixed.yaml: luminaires.mounting_surface is missing"));
+  EXPECT_TRUE(OutputContains(r.err, "error: " ILP_SOURCE_DIR "/configs/office_fixed.yaml: luminaires.mounting_surface is missing"));
   EXPECT_FALSE(fs::exists(dir.file("out")));
 }
 
@@ -158,7 +156,7 @@ TEST(IlpSweep, BuildsTheOperatorOnceAndWritesARowPerValue) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(count_of(r.err, "operator built once"), 1u) << r.err;
   EXPECT_EQ(count_of(r.err, "sweep point "), 3u) << r.err;
-  EXPECT_TRUE(Contains(r.out, "operator built once for 3 points"));
+  EXPECT_TRUE(OutputContains(r.out, "operator built once for 3 points"));
   const std::vector<std::string> csv = lines_of(read_file((fs::path(out) / "sweep.csv").string()));
   ASSERT_EQ(csv.size(), 4u);
   EXPECT_EQ(csv[0].rfind("goals.mat.average_lux,luminaires,power_w,", 0), 0u) << csv[0];
@@ -183,13 +181,13 @@ TEST(IlpSweep, BadSetKeyFailsBeforeAnyWork) {
   const RunResult r = run_ilp(dir, {"sweep", mat_job(dir), "--set", "goals.rug.average_lux=1,2", "--out", dir.file("s")});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.out, "");
-  EXPECT_TRUE(Contains(r.err, "error: --set goals.rug.average_lux: no goal parameter"));
-  EXPECT_TRUE(Contains(r.err, "goals.mat.average_lux"));
+  EXPECT_TRUE(OutputContains(r.err, "error: --set goals.rug.average_lux: no goal parameter"));
+  EXPECT_TRUE(OutputContains(r.err, "goals.mat.average_lux"));
   EXPECT_EQ(count_of(r.err, "\n"), 1u) << r.err;
   EXPECT_FALSE(fs::exists(dir.file("s")));
   const RunResult bad_value = run_ilp(dir, {"sweep", mat_job(dir), "--set", "goals.mat.average_lux=100,x", "--out", dir.file("s")});
   EXPECT_EQ(bad_value.exit_code, 1);
-  EXPECT_TRUE(Contains(bad_value.err, "'x' is not a number"));
+  EXPECT_TRUE(OutputContains(bad_value.err, "'x' is not a number"));
 }
 
 TEST(IlpPrint, MalformedResultIsAClearError) {
@@ -197,10 +195,10 @@ TEST(IlpPrint, MalformedResultIsAClearError) {
   const std::string path = dir.write("result.json", "{\"luminaires\": [");
   const RunResult r = run_ilp(dir, {"print", path});
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_TRUE(Contains(r.err, "error: " + path + ": not valid JSON"));
+  EXPECT_TRUE(OutputContains(r.err, "error: " + path + ": not valid JSON"));
   const RunResult other = run_ilp(dir, {"print", dir.write("other.json", "{\"a\": 1}")});
   EXPECT_EQ(other.exit_code, 1);
-  EXPECT_TRUE(Contains(other.err, "not an ilp result"));
+  EXPECT_TRUE(OutputContains(other.err, "not an ilp result"));
 }
 
 TEST(IlpRun, EveryNewCommandHasHelp) {
@@ -209,7 +207,7 @@ TEST(IlpRun, EveryNewCommandHasHelp) {
        {std::vector<std::string>{"run", "--help"}, {"sweep", "--help"}, {"print", "--help"}}) {
     const RunResult r = run_ilp(dir, args);
     EXPECT_EQ(r.exit_code, 0) << args[0];
-    EXPECT_TRUE(Contains(r.out, args[0] == "print" ? "result.json" : "--out")) << args[0];
+    EXPECT_TRUE(OutputContains(r.out, args[0] == "print" ? "result.json" : "--out")) << args[0];
   }
 }
 
