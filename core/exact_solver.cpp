@@ -23,7 +23,7 @@ void account_flux(const Scene& scene, const FormFactorRows& rows, const Radiosit
   Eigen::VectorXd delivered_by_luminaire = Eigen::VectorXd::Zero(n);
   for (Eigen::Index i = 0; i < n; ++i)
     for (SparseRows::InnerIterator it(rows.F, i); it; ++it)
-      if (scene.surfaces[scene.patches[it.col()].surface].is_luminaire)
+      if (scene.surfaces[scene.patches[it.col()].surface].is_luminaire())
         delivered_by_luminaire[it.col()] += scene.patches[i].area_m2 * it.value();
   Eigen::RowVectorXd absorbed = Eigen::RowVectorXd::Zero(scene.channels), lost = absorbed;
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -31,7 +31,7 @@ void account_flux(const Scene& scene, const FormFactorRows& rows, const Radiosit
     s.emitted_lm += p.area_m2 * p.exitance_lm_per_m2;
     for (int c = 0; c < scene.channels; ++c) {
       absorbed[c] += p.area_m2 * (1.0 - p.reflectance[c]) * solution.illuminance_lux(i, c);
-      if (scene.surfaces[p.surface].is_luminaire)
+      if (scene.surfaces[p.surface].is_luminaire())
         lost[c] += p.exitance_lm_per_m2 * (p.area_m2 - delivered_by_luminaire[i]);
       else
         lost[c] += p.area_m2 * solution.radiosity_lm_per_m2(i, c) * (rows.back_hit_fraction[i] + rows.escaped_fraction[i]);
@@ -70,13 +70,13 @@ ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, 
   start = std::chrono::steady_clock::now();
   if (progress) progress("direct light", 0, 1);
   if (options.precise_patches.empty()) {
-    replace_emitter_columns(scene, caster, luminaire_patches(scene), options.direct_light, rows);
+    replace_emitter_columns(scene, caster, options.direct_light, rows);
   } else {
     CheapDirectLight cheap{std::vector<bool>(scene.patches.size(), true), options.other_direct_light};
     cheap.options.seed = options.direct_light.seed;
     cheap.options.threads = options.direct_light.threads;
     for (int p : options.precise_patches) cheap.rows.at(static_cast<std::size_t>(p)) = false;  // rows are all patches, in order
-    replace_emitter_columns(scene, caster, luminaire_patches(scene), options.direct_light, rows, &cheap);
+    replace_emitter_columns(scene, caster, options.direct_light, rows, &cheap);
   }
   if (progress) progress("direct light", 1, 1);
   s.direct_light_seconds = seconds_since(start);

@@ -172,7 +172,7 @@ JobScene load_job_scene(const JobConfig& job) {
 
   double luminaire_flux_lm = 0.0, surface_flux_lm = 0.0;
   for (const Patch& p : scene.patches)
-    (scene.surfaces[p.surface].is_luminaire ? luminaire_flux_lm : surface_flux_lm) += p.area_m2 * p.exitance_lm_per_m2;
+    (scene.surfaces[p.surface].is_luminaire() ? luminaire_flux_lm : surface_flux_lm) += p.area_m2 * p.exitance_lm_per_m2;
   if (luminaire_flux_lm + surface_flux_lm == 0.0 && !job.search)  // an inverse job places its own
     out.log.push_back("warning: nothing emits light, so every illuminance will be 0 lx "
                       "(add luminaires.placed or scene.emitting_surfaces)");

@@ -21,7 +21,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 bool is_reflecting(const Scene& scene, const Patch& p) {
-  return !scene.surfaces[p.surface].is_luminaire && p.reflectance.maxCoeff() > 0.0;
+  return !scene.surfaces[p.surface].is_luminaire() && p.reflectance.maxCoeff() > 0.0;
 }
 
 // Luminaires get closed-form direct light; any other source is gathered by the rows' rays.
@@ -29,8 +29,9 @@ struct SourceTable {
   std::vector<double> area_m2;          // per source
   std::vector<int> emitting_index;      // per source: index among gathered sources, -1 for luminaires
   std::vector<int> gathered;            // source index of each gathered source
-  std::vector<int> luminaire_patches;   // emitter patches for compute_emitter_form_factors
-  std::vector<int> luminaire_patch_source;
+  std::vector<int> luminaire_patches;   // the luminaires' openings (rays that strike them are dropped)
+  std::vector<int> luminaire_surfaces;  // for compute_luminaire_light
+  std::vector<int> luminaire_source;    // source index of each luminaire surface
   std::vector<int> gathered_of_patch;   // per scene patch: gathered source index or -1
   std::vector<bool> absorbs;            // per source: a luminaire in the geometry (not a virtual candidate)
 };
@@ -46,10 +47,14 @@ SourceTable make_source_table(const Scene& scene, std::span<const LightSource> s
     if (source_of_surface[s] >= 0)
       throw std::invalid_argument("light source '" + sources[l].name + "': surface listed twice");
     source_of_surface[s] = static_cast<int>(l);
-    const bool luminaire = scene.surfaces[s].is_luminaire;
+    const bool luminaire = scene.surfaces[s].is_luminaire();
     t.emitting_index.push_back(luminaire ? -1 : static_cast<int>(t.gathered.size()));
     t.absorbs.push_back(luminaire && !scene.surfaces[s].is_virtual);
     if (!luminaire) t.gathered.push_back(static_cast<int>(l));
+    if (luminaire) {
+      t.luminaire_surfaces.push_back(s);
+      t.luminaire_source.push_back(static_cast<int>(l));
+    }
   }
   t.area_m2.assign(sources.size(), 0.0);
   t.gathered_of_patch.assign(scene.patches.size(), -1);
@@ -59,7 +64,6 @@ SourceTable make_source_table(const Scene& scene, std::span<const LightSource> s
     t.area_m2[l] += scene.patches[i].area_m2;
     if (t.emitting_index[l] < 0) {
       t.luminaire_patches.push_back(static_cast<int>(i));
-      t.luminaire_patch_source.push_back(l);
     } else {
       t.gathered_of_patch[i] = t.emitting_index[l];
     }
@@ -131,15 +135,14 @@ RowSums row_sums_by_counting(const Scene& scene, const RayCaster& caster, std::s
 // so that the row loses exactly the closed-form share to luminaires and keeps its
 // escaped and back-hit shares. Without this, a room of rho 0.999 whose only loss is
 // its luminaires gets that loss from 0 to 3 ray hits per row, and interreflection
-// multiplies the noise by 1 / (1 - rho s). D: the rows' direct light (luminaire
-// columns read). Applies the scale to the sums and to D's gathered columns.
-Eigen::VectorXd apply_closed_form_loss(RowSums& sums, Eigen::MatrixXd& D, const SourceTable& sources) {
+// multiplies the noise by 1 / (1 - rho s). `absorbed`: the rows' form factors to the
+// luminaires that absorb (DirectRows). Applies the scale to the sums and to D's
+// gathered columns.
+Eigen::VectorXd apply_closed_form_loss(RowSums& sums, Eigen::MatrixXd& D, const Eigen::MatrixXd& absorbed,
+                                       const SourceTable& sources) {
   Eigen::VectorXd scale = Eigen::VectorXd::Ones(sums.kept.size());
   for (Eigen::Index r = 0; r < scale.size(); ++r) {
-    double closed = 0.0;
-    for (std::size_t l = 0; l < sources.emitting_index.size(); ++l)
-      if (sources.emitting_index[l] < 0 && sources.absorbs[l])
-        closed += D(r, static_cast<Eigen::Index>(l)) * sources.area_m2[l];
+    const double closed = absorbed.row(r).sum();
     if (sums.kept[r] > 0.0) scale[r] = std::max(0.0, sums.kept[r] + sums.luminaire[r] - closed) / sums.kept[r];
   }
   sums.reflecting.array() *= scale.array();
@@ -148,24 +151,31 @@ Eigen::VectorXd apply_closed_form_loss(RowSums& sums, Eigen::MatrixXd& D, const 
   return scale;
 }
 
-// D(R,:): illuminance at each receiver per lumen of each source.
-Eigen::MatrixXd direct_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
-                             std::size_t source_count, const SourceTable& sources, const Eigen::MatrixXd& gathered,
-                             const DirectLightOptions& options) {
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(receivers.size()),
-                                            static_cast<Eigen::Index>(source_count));
-  if (!sources.luminaire_patches.empty() && !receivers.empty()) {
-    const Eigen::MatrixXd F = compute_emitter_form_factors(scene, caster, receivers, sources.luminaire_patches, options);
-    for (std::size_t e = 0; e < sources.luminaire_patches.size(); ++e) {
-      const int l = sources.luminaire_patch_source[e];
-      D.col(l) += F.col(static_cast<Eigen::Index>(e)) / sources.area_m2[l];
+// D(R,:): illuminance at each receiver per lumen of each source, and the receivers'
+// form factors to the luminaires that absorb (columns of the other sources are 0).
+struct DirectRows {
+  Eigen::MatrixXd D;
+  Eigen::MatrixXd absorbed;
+};
+
+DirectRows direct_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
+                        std::size_t source_count, const SourceTable& sources, const Eigen::MatrixXd& gathered,
+                        const DirectLightOptions& options) {
+  const auto R = static_cast<Eigen::Index>(receivers.size()), L = static_cast<Eigen::Index>(source_count);
+  DirectRows out{Eigen::MatrixXd::Zero(R, L), Eigen::MatrixXd::Zero(R, L)};
+  if (!sources.luminaire_surfaces.empty() && R > 0) {
+    const LuminaireLight light = compute_luminaire_light(scene, caster, receivers, sources.luminaire_surfaces, options);
+    for (std::size_t e = 0; e < sources.luminaire_surfaces.size(); ++e) {
+      const int l = sources.luminaire_source[e];
+      out.D.col(l) = light.lux_per_lm.col(static_cast<Eigen::Index>(e));
+      if (sources.absorbs[static_cast<std::size_t>(l)]) out.absorbed.col(l) = light.form_factor.col(static_cast<Eigen::Index>(e));
     }
   }
   for (std::size_t e = 0; e < sources.gathered.size(); ++e) {
     const int l = sources.gathered[e];
-    if (sources.area_m2[l] > 0.0) D.col(l) = gathered.col(static_cast<Eigen::Index>(e)) / sources.area_m2[l];
+    if (sources.area_m2[l] > 0.0) out.D.col(l) = gathered.col(static_cast<Eigen::Index>(e)) / sources.area_m2[l];
   }
-  return D;
+  return out;
 }
 
 std::string patch_name(const Scene& scene, int patch) {
@@ -235,7 +245,7 @@ std::vector<LightSource> scene_light_sources(const Scene& scene) {
   for (const Patch& p : scene.patches)
     if (p.exitance_lm_per_m2 > 0.0) emits[p.surface] = true;
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s)
-    if (scene.surfaces[s].is_luminaire || emits[s]) out.push_back({scene.surfaces[s].name, static_cast<int>(s)});
+    if (scene.surfaces[s].is_luminaire() || emits[s]) out.push_back({scene.surfaces[s].name, static_cast<int>(s)});
   return out;
 }
 
@@ -289,10 +299,12 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
     goals.rays_cast = static_cast<std::uint64_t>(goal_patches.size()) * options.form_factors.rays_per_patch;
   }
   if (progress) progress("direct light (goals)", 0, 1);
-  goals.direct_lux_per_lm = direct_light(scene, caster, goal_patches, sources.size(), table, sums.gathered,
-                                         options.direct_light);
+  DirectRows direct = direct_light(scene, caster, goal_patches, sources.size(), table, sums.gathered,
+                                   options.direct_light);
   if (progress) progress("direct light (goals)", 1, 1);
-  goals.kept_scale = apply_closed_form_loss(sums, goals.direct_lux_per_lm, table);
+  goals.direct_lux_per_lm = std::move(direct.D);
+  goals.luminaire_form_factor = std::move(direct.absorbed);
+  goals.kept_scale = apply_closed_form_loss(sums, goals.direct_lux_per_lm, goals.luminaire_form_factor, table);
   goals.reflecting_fraction = sums.reflecting;
   require_finite(goals.direct_lux_per_lm, "direct light", scene, goal_patches, sources);
   goals.seconds = seconds_since(start);
@@ -359,16 +371,22 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   Eigen::MatrixXd gathered_needed(static_cast<Eigen::Index>(need_direct.size()), sample_sums.gathered.cols());
   for (std::size_t m = 0; m < need_direct.size(); ++m)
     gathered_needed.row(static_cast<Eigen::Index>(m)) = sample_sums.gathered.row(need_direct_row[m]);
-  const Eigen::MatrixXd D_new =
+  const DirectRows D_new =
       direct_light(scene, caster, need_direct, sources.size(), table, gathered_needed, options.direct_light);
-  Eigen::MatrixXd D_P(k, L);
+  Eigen::MatrixXd D_P(k, L), absorbed_P(k, L);
   for (Eigen::Index b = 0; b < k; ++b)
-    if (goal_slot[P[b]] >= 0) D_P.row(b) = goals.direct_lux_per_lm.row(goal_slot[P[b]]);
-  for (std::size_t m = 0; m < need_direct.size(); ++m) D_P.row(need_direct_row[m]) = D_new.row(static_cast<Eigen::Index>(m));
+    if (goal_slot[P[b]] >= 0) {
+      D_P.row(b) = goals.direct_lux_per_lm.row(goal_slot[P[b]]);
+      absorbed_P.row(b) = goals.luminaire_form_factor.row(goal_slot[P[b]]);
+    }
+  for (std::size_t m = 0; m < need_direct.size(); ++m) {
+    D_P.row(need_direct_row[m]) = D_new.D.row(static_cast<Eigen::Index>(m));
+    absorbed_P.row(need_direct_row[m]) = D_new.absorbed.row(static_cast<Eigen::Index>(m));
+  }
   st.direct_rows += need_direct.size();
   // Rows copied from the goals are scaled already (same patch, same rays, same scale).
   Eigen::MatrixXd D_scaled = D_P;
-  const Eigen::VectorXd kept_scale_P = apply_closed_form_loss(sample_sums, D_scaled, table);
+  const Eigen::VectorXd kept_scale_P = apply_closed_form_loss(sample_sums, D_scaled, absorbed_P, table);
   for (std::size_t m = 0; m < need_direct.size(); ++m) D_P.row(need_direct_row[m]) = D_scaled.row(need_direct_row[m]);
   require_finite(D_P, "direct light", scene, P, sources);
 
@@ -408,7 +426,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     const Eigen::MatrixXd D_cheap = direct_light(
         scene, caster, cheap, sources.size(), table,
         Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(cheap.size()), static_cast<Eigen::Index>(table.gathered.size())),
-        cheap_options);
+        cheap_options).D;
     for (std::size_t m = 0; m < cheap.size(); ++m) D_hit.row(cheap_slot[m]) = D_cheap.row(static_cast<Eigen::Index>(m));
     for (std::size_t e = 0; e < table.gathered.size(); ++e) D_hit.col(table.gathered[e]).setZero();
     st.cheap_direct_rows = cheap.size();

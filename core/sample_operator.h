@@ -82,6 +82,7 @@ struct GoalRows {
   std::vector<int> patches;
   std::vector<LightSource> sources;
   Eigen::MatrixXd direct_lux_per_lm;       // D(G,:), #goals by #sources
+  Eigen::MatrixXd luminaire_form_factor;   // #goals by #sources: form factor to each luminaire that absorbs (else 0)
   Eigen::VectorXd reflecting_fraction;     // s_i: rays reaching the front of a reflecting patch
   Eigen::VectorXd kept_scale;              // factor on the non-luminaire entries of each row (see the .cpp)
   std::optional<FormFactorRows> rows;      // full rows, kept for IndirectMethod::exact_second_bounce

@@ -93,22 +93,32 @@ inline void orthonormal_basis(const Eigen::Vector3d& n, Eigen::Vector3d& t, Eige
   s = Eigen::Vector3d(b, sign + n.y() * n.y() * a, -n.y());
 }
 
-// Cosine-weighted direction about unit n from (u, v): Shirley-Chiu concentric disk
-// lifted to the hemisphere (Malley), which keeps the point set's stratification.
-inline Eigen::Vector3d sample_cosine_hemisphere(const Eigen::Vector3d& n, const Eigen::Vector3d& t,
-                                                const Eigen::Vector3d& s, double u, double v) {
-  const double a = 2.0 * u - 1.0, b = 2.0 * v - 1.0;
+// Shirley-Chiu concentric map of (u, v) in the unit square to polar (r, phi) on the
+// unit disk: area-preserving, so it keeps a point set's stratification.
+struct PolarPoint {
   double r = 0.0, phi = 0.0;
+};
+inline PolarPoint concentric_disk(double u, double v) {
+  const double a = 2.0 * u - 1.0, b = 2.0 * v - 1.0;
+  PolarPoint p;
   if (a != 0.0 || b != 0.0) {
     constexpr double kQuarterPi = 0.78539816339744830962;
     if (std::abs(a) > std::abs(b)) {
-      r = a;
-      phi = kQuarterPi * (b / a);
+      p.r = a;
+      p.phi = kQuarterPi * (b / a);
     } else {
-      r = b;
-      phi = 2.0 * kQuarterPi - kQuarterPi * (a / b);
+      p.r = b;
+      p.phi = 2.0 * kQuarterPi - kQuarterPi * (a / b);
     }
   }
+  return p;
+}
+
+// Cosine-weighted direction about unit n from (u, v): the concentric disk lifted to
+// the hemisphere (Malley), which keeps the point set's stratification.
+inline Eigen::Vector3d sample_cosine_hemisphere(const Eigen::Vector3d& n, const Eigen::Vector3d& t,
+                                                const Eigen::Vector3d& s, double u, double v) {
+  const auto [r, phi] = concentric_disk(u, v);
   // Float trigonometry: directions end up in float rays anyway, and it halves the cost.
   const double x = r * std::cos(static_cast<float>(phi)), y = r * std::sin(static_cast<float>(phi));
   const double z = std::sqrt(std::max(0.0, 1.0 - x * x - y * y));

@@ -159,21 +159,32 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
   return scene;
 }
 
-int add_square_luminaire(Scene& scene, const std::string& name, const Eigen::Vector3d& position_m,
-                         double size_m, double flux_lm) {
+int add_luminaire(Scene& scene, const std::string& name, const LuminaireType& type, const LuminairePlacement& at,
+                  double flux_lm) {
   const int surface = static_cast<int>(scene.surfaces.size());
-  scene.surfaces.push_back({name, flux_lm / (size_m * size_m), true});
-  const double h = 0.5 * size_m;
-  const Eigen::Vector3d v00 = position_m + Eigen::Vector3d(-h, -h, 0), v01 = position_m + Eigen::Vector3d(-h, h, 0),
-                        v11 = position_m + Eigen::Vector3d(h, h, 0), v10 = position_m + Eigen::Vector3d(h, -h, 0);
-  // Clockwise seen from above, so the front (emitting) side faces down.
-  for (Patch p : {make_patch(v00, v01, v11, surface, Eigen::Vector3d::Zero()),
-                  make_patch(v00, v11, v10, surface, Eigen::Vector3d::Zero())}) {
-    p.exitance_lm_per_m2 = scene.surfaces[surface].exitance_lm_per_m2;
+  Surface s{name, flux_lm / type.opening_area_m2()};
+  s.luminaire = static_cast<int>(scene.luminaires.size());
+  scene.surfaces.push_back(s);
+  scene.luminaires.push_back({type, at, surface, flux_lm});
+  const std::vector<Eigen::Vector3d> outline = luminaire_outline_m(type, at);
+  // The outline runs counter-clockwise seen from above; the fan is wound the other
+  // way so that the front (emitting) side faces down.
+  for (std::size_t k = 1; k + 1 < outline.size(); ++k) {
+    Patch p = make_patch(outline[0], outline[k + 1], outline[k], surface, Eigen::Vector3d::Zero());
+    p.exitance_lm_per_m2 = s.exitance_lm_per_m2;
     scene.patches.push_back(p);
     scene.bounds_m.extend(p.vertices_m[0]).extend(p.vertices_m[1]).extend(p.vertices_m[2]);
   }
   return surface;
+}
+
+int add_square_luminaire(Scene& scene, const std::string& name, const Eigen::Vector3d& position_m,
+                         double size_m, double flux_lm) {
+  return add_luminaire(scene, name, LuminaireType::square_lambertian(size_m), {position_m, 0.0}, flux_lm);
+}
+
+const SceneLuminaire& luminaire_of(const Scene& scene, int surface) {
+  return scene.luminaires.at(static_cast<std::size_t>(scene.surfaces.at(static_cast<std::size_t>(surface)).luminaire));
 }
 
 void set_surface_exitance(Scene& scene, int surface, double exitance_lm_per_m2) {

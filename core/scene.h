@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/luminaire.h"
 #include "core/mesh.h"
 
 namespace ilp {
@@ -25,10 +26,11 @@ inline const Eigen::Vector3d kLuminanceWeights(0.2126, 0.7152, 0.0722);
 struct Surface {
   std::string name;
   double exitance_lm_per_m2 = 0.0;  // emitted, Lambertian, from the front side
-  bool is_luminaire = false;        // a square luminaire added from the job, not from the mesh
+  int luminaire = -1;               // index into Scene::luminaires: a luminaire added from the job, not the mesh
   // A candidate luminaire position: it emits, but it was added after the ray caster was
   // built, so it blocks and absorbs nothing (see optimizer/lighting_model.h).
   bool is_virtual = false;
+  bool is_luminaire() const { return luminaire >= 0; }
 };
 
 struct Patch {
@@ -50,8 +52,18 @@ struct SceneStats {
   std::size_t mesh_patches = 0;          // made from the mesh by subdivision (luminaires come on top)
 };
 
+// A luminaire of the scene: its opening is the patches of surface `surface`, which
+// absorb light like any black patch; its light comes from its type's distribution.
+struct SceneLuminaire {
+  LuminaireType type;
+  LuminairePlacement placement;
+  int surface = -1;
+  double flux_lm = 0.0;
+};
+
 struct Scene {
   std::vector<Surface> surfaces;
+  std::vector<SceneLuminaire> luminaires;
   std::vector<Patch> patches;
   int channels = 1;                 // 1 when every reflectance is gray, else 3
   Eigen::AlignedBox3d bounds_m;
@@ -93,11 +105,17 @@ using TriangleReflectance = std::vector<Eigen::Vector3d>;
 Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectance,
                  const SceneOptions& options);
 
-// Adds a square Lambertian luminaire of side size_m centred at position_m, facing
-// down (-z), emitting flux_lm from its lower face: one surface, two patches,
-// reflectance 0. Returns the surface index.
+// Adds a luminaire of `type` at `at`, facing down (-z), emitting flux_lm: one surface
+// whose patches are its opening (a fan of triangles, reflectance 0, emitting side
+// down) and one SceneLuminaire. Returns the surface index.
+int add_luminaire(Scene& scene, const std::string& name, const LuminaireType& type, const LuminairePlacement& at,
+                  double flux_lm);
+// The shipped test model: a square Lambertian panel of side size_m.
 int add_square_luminaire(Scene& scene, const std::string& name, const Eigen::Vector3d& position_m,
                          double size_m, double flux_lm);
+
+// The luminaire whose opening is `surface` (which must be a luminaire surface).
+const SceneLuminaire& luminaire_of(const Scene& scene, int surface);
 
 // Sets the exitance of every patch of a surface.
 void set_surface_exitance(Scene& scene, int surface, double exitance_lm_per_m2);

@@ -47,7 +47,7 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& j
   const std::vector<LightSource> fixed = scene_light_sources(job_scene);
   const Eigen::VectorXd fixed_flux = source_flux_lm(job_scene, fixed);
   for (std::size_t l = 0; l < fixed.size(); ++l)
-    if (job_scene.surfaces[static_cast<std::size_t>(fixed[l].surface)].is_luminaire)
+    if (job_scene.surfaces[static_cast<std::size_t>(fixed[l].surface)].is_luminaire())
       model.fixed_flux_lm += fixed_flux[static_cast<Eigen::Index>(l)];
   for (std::size_t c = 0; c < model.grid.size(); ++c) {
     const int surface = add_square_luminaire(model.scene, std::string("candidate ").append(std::to_string(c + 1)),

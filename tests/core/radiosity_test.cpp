@@ -125,7 +125,7 @@ TEST(Radiosity, OfficeAbsorbsTheFluxItsLuminairesEmit) {
   FormFactorOptions ff;
   ff.rays_per_patch = 128;
   FormFactorRows rows = compute_form_factor_rows(scene, caster, scene.all_patches(), ff);
-  replace_emitter_columns(scene, caster, luminaire_patches(scene), DirectLightOptions{}, rows);
+  replace_emitter_columns(scene, caster, DirectLightOptions{}, rows);
   const RadiositySolution solution = solve_radiosity(scene, rows.F, RadiosityOptions{});
   double emitted = 0.0, absorbed = 0.0, lost = 0.0;
   for (std::size_t i = 0; i < scene.patches.size(); ++i) {
@@ -134,7 +134,7 @@ TEST(Radiosity, OfficeAbsorbsTheFluxItsLuminairesEmit) {
     emitted += p.area_m2 * p.exitance_lm_per_m2;
     absorbed += p.area_m2 * (1.0 - p.reflectance[0]) * solution.illuminance_lux(row, 0);
     // A luminaire's own light is carried by its closed-form column, not its gathered row.
-    if (!scene.surfaces[p.surface].is_luminaire)
+    if (!scene.surfaces[p.surface].is_luminaire())
       lost += p.area_m2 * solution.radiosity_lm_per_m2(row, 0) * (rows.back_hit_fraction[row] + rows.escaped_fraction[row]);
   }
   EXPECT_GT(lost, 0.0);
@@ -191,7 +191,7 @@ TEST(Radiosity, GaussSeidelAgreesWithDenseLU) {
   FormFactorOptions ff;
   ff.rays_per_patch = 256;
   FormFactorRows rows = compute_form_factor_rows(scene, caster, scene.all_patches(), ff);
-  replace_emitter_columns(scene, caster, luminaire_patches(scene), DirectLightOptions{}, rows);
+  replace_emitter_columns(scene, caster, DirectLightOptions{}, rows);
   RadiosityOptions options;
   options.relative_residual = 1e-12;
   const RadiositySolution solution = solve_radiosity(scene, rows.F, options);

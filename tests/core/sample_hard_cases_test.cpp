@@ -250,7 +250,7 @@ TEST(SampleHardCases, TinyAndFullSamplesAgreeWithTheExactSolveNearRhoOne) {
       for (std::size_t g = 0; g < goals.size(); ++g) {
         const int i = goals[g];
         const double reference = exact.radiosity.total_lux[i];
-        const double tolerance = scene.surfaces[scene.patches[i].surface].is_luminaire ? 0.02 : 1e-8;  // measured 0.4 %
+        const double tolerance = scene.surfaces[scene.patches[i].surface].is_luminaire() ? 0.02 : 1e-8;  // measured 0.4 %
         ASSERT_NEAR(census[static_cast<Eigen::Index>(g)], reference, tolerance * reference) << "patch " << i;
       }
       const Eigen::VectorXd small = lux(scene, build(scene, goals, options_with(5, method)));
@@ -296,13 +296,13 @@ Ingredients ingredients(const Scene& scene, const SampleOperatorOptions& o, doub
   in.s = in.first = Eigen::VectorXd::Zero(n);
   double lamp_area_m2 = 0.0;
   for (const Patch& p : scene.patches)
-    if (scene.surfaces[p.surface].is_luminaire) lamp_area_m2 += p.area_m2;
+    if (scene.surfaces[p.surface].is_luminaire()) lamp_area_m2 += p.area_m2;
   for (Eigen::Index i = 0; i < n; ++i) {
     double kept = 0.0, struck = 0.0;
     for (SparseRows::InnerIterator it(in.rows.F, i); it; ++it) {
       const Patch& j = scene.patches[it.col()];
-      (scene.surfaces[j.surface].is_luminaire ? struck : kept) += it.value();
-      if (scene.surfaces[j.surface].is_luminaire || j.reflectance[0] == 0.0) continue;
+      (scene.surfaces[j.surface].is_luminaire() ? struck : kept) += it.value();
+      if (scene.surfaces[j.surface].is_luminaire() || j.reflectance[0] == 0.0) continue;
       in.s[i] += it.value();
       in.first[i] += it.value() * j.reflectance[0] * in.D[it.col()];
     }

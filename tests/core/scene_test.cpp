@@ -124,7 +124,7 @@ TEST(Scene, LuminaireIsADownwardSquareEmittingItsFlux) {
   }
   EXPECT_NEAR(area, 0.36, 1e-12);
   EXPECT_NEAR(flux, 3600.0, 1e-9);
-  EXPECT_TRUE(scene.surfaces[s].is_luminaire);
+  EXPECT_TRUE(scene.surfaces[s].is_luminaire());
 }
 
 TEST(Scene, ChannelsFollowTheReflectances) {
