@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
     for (const std::string& name : job.report_surfaces) surfaces.push_back(scene.find_surface(name));
     if (surfaces.empty())
       for (std::size_t s = 0; s < scene.surfaces.size(); ++s)
-        if (!scene.surfaces[s].is_luminaire) surfaces.push_back(static_cast<int>(s));
+        if (!scene.surfaces[s].is_luminaire()) surfaces.push_back(static_cast<int>(s));
     std::vector<bool> counted(scene.patches.size(), false);
     for (std::size_t i = 0; i < scene.patches.size(); ++i)
       for (int s : surfaces) counted[i] = counted[i] || scene.patches[i].surface == s;
