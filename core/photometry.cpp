@@ -14,6 +14,7 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <type_traits>
 #include <utility>
 
 namespace ilp {
@@ -137,6 +138,16 @@ bool parse_number(std::string_view token, double& out, bool decimal_comma = fals
   if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(value)) return false;
   out = value;
   return true;
+}
+
+// A field name, built only when a message needs it (a string, or a callable returning one).
+template <class Name>
+std::string name_of(const Name& name) {
+  if constexpr (std::is_invocable_v<const Name&>) {
+    return name();
+  } else {
+    return std::string(name);
+  }
 }
 
 bool is_integer(double x) { return std::abs(x - std::round(x)) < 1e-9; }
@@ -322,26 +333,31 @@ class TokenReader {
   int line() const { return pos_ < tokens_.size() ? tokens_[pos_].line : last_line_; }
   int line_of_last() const { return pos_ > 0 ? tokens_[pos_ - 1].line : line(); }
 
-  double number(const std::string& field) {
-    if (pos_ >= tokens_.size()) fail(path_, last_line_, field, "the file ends here: truncated (a value is missing)");
+  template <class Name>
+  double number(const Name& field) {
+    if (pos_ >= tokens_.size()) fail(path_, last_line_, name_of(field), "the file ends here: truncated (a value is missing)");
     const Token& t = tokens_[pos_];
     double v = 0;
-    if (!parse_number(t.text, v)) fail(path_, t.line, field, "'" + std::string(t.text.substr(0, 40)) + "' is not a finite number");
+    if (!parse_number(t.text, v)) {
+      fail(path_, t.line, name_of(field), "'" + std::string(t.text.substr(0, 40)) + "' is not a finite number");
+    }
     ++pos_;
     return v;
   }
-  double number_in(const std::string& field, double lo, double hi) {
+  template <class Name>
+  double number_in(const Name& field, double lo, double hi) {
     const int at = line();
     const double v = number(field);
-    if (v < lo || v > hi) fail(path_, at, field, fmt(v) + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
+    if (v < lo || v > hi) fail(path_, at, name_of(field), fmt(v) + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
     return v;
   }
-  long integer_in(const std::string& field, long lo, long hi) {
+  template <class Name>
+  long integer_in(const Name& field, long lo, long hi) {
     const int at = line();
     const double v = number(field);
-    if (!is_integer(v)) fail(path_, at, field, fmt(v) + " is not a whole number");
+    if (!is_integer(v)) fail(path_, at, name_of(field), fmt(v) + " is not a whole number");
     if (v < static_cast<double>(lo) || v > static_cast<double>(hi)) {
-      fail(path_, at, field, fmt(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      fail(path_, at, name_of(field), fmt(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     }
     return std::lround(v);
   }
@@ -380,11 +396,11 @@ std::vector<double> read_angles(TokenReader& in, const std::string& field, long 
   std::vector<double> a;
   a.reserve(static_cast<std::size_t>(count));
   for (long i = 0; i < count; ++i) {
-    const std::string name = field + "[" + std::to_string(i) + "]";
+    const auto name = [&] { return field + "[" + std::to_string(i) + "]"; };
     const int at = in.line();
     a.push_back(in.number_in(name, lo, hi));
     if (i > 0 && a[i] <= a[i - 1]) {
-      fail(path, at, name, fmt(a[i]) + " does not rise after " + fmt(a[i - 1]) + " (angles must increase strictly)");
+      fail(path, at, name(), fmt(a[i]) + " does not rise after " + fmt(a[i - 1]) + " (angles must increase strictly)");
     }
   }
   return a;
@@ -507,8 +523,8 @@ Photometry parse_ies(std::string_view raw, const std::string& path) {
     TiltTable t;
     t.geometry = static_cast<int>(in.integer_in("TILT lamp-to-luminaire geometry", 1, 3));
     const long n = in.integer_in("TILT number of angles", 1, static_cast<long>(in.remaining() / 2));
-    for (long i = 0; i < n; ++i) t.angles_deg.push_back(in.number_in("TILT angles[" + std::to_string(i) + "]", -360, 360));
-    for (long i = 0; i < n; ++i) t.factors.push_back(in.number_in("TILT factors[" + std::to_string(i) + "]", 0, 100));
+    for (long i = 0; i < n; ++i) t.angles_deg.push_back(in.number_in([i] { return "TILT angles[" + std::to_string(i) + "]"; }, -360, 360));
+    for (long i = 0; i < n; ++i) t.factors.push_back(in.number_in([i] { return "TILT factors[" + std::to_string(i) + "]"; }, 0, 100));
     p.tilt = std::move(t);
     warn(p, "TILT=INCLUDE: the " + std::to_string(n) + " tilt factors are kept but not applied (the web is at the tested tilt)");
   }
@@ -573,12 +589,12 @@ Photometry parse_ies(std::string_view raw, const std::string& path) {
   const int data_line = in.line();
   for (long j = 0; j < nh; ++j) {
     for (long i = 0; i < nv; ++i) {
-      const std::string field = "candela[C=" + fmt(h[j]) + ", gamma=" + fmt(p.gamma_angles_deg[i]) + "]";
+      const auto field = [&] { return "candela[C=" + fmt(h[j]) + ", gamma=" + fmt(p.gamma_angles_deg[i]) + "]"; };
       const int at = in.line();
       const double v = in.number(field);
-      if (v < 0) fail(path, at, field, fmt(v) + " cd is negative");
+      if (v < 0) fail(path, at, field(), fmt(v) + " cd is negative");
       const double cd = v * scale;
-      if (cd > kMaxCandela) fail(path, at, field, fmt(cd) + " cd is beyond any luminaire (limit 1e9 cd)");
+      if (cd > kMaxCandela) fail(path, at, field(), fmt(cd) + " cd is beyond any luminaire (limit 1e9 cd)");
       w.cd(j, i) = cd;
     }
   }
@@ -612,32 +628,38 @@ class FieldReader {
   std::size_t remaining() const { return lines_.size() - pos_; }
   int line() const { return static_cast<int>(pos_) + 1; }
 
-  std::string_view raw(const std::string& field) {
+  template <class Name>
+  std::string_view raw(const Name& field) {
     if (pos_ >= lines_.size()) {
-      fail(path_, static_cast<int>(lines_.size()), field, "the file ends before this field: truncated");
+      fail(path_, static_cast<int>(lines_.size()), name_of(field), "the file ends before this field: truncated");
     }
     return trim(lines_[pos_++]);
   }
   std::string text(const std::string& field) { return to_utf8(raw(field)); }
-  double number(const std::string& field) {
+  template <class Name>
+  double number(const Name& field) {
     const int at = line();
     const std::string_view t = raw(field);
     double v = 0;
-    if (!parse_number(t, v, true)) fail(path_, at, field, "'" + std::string(t.substr(0, 40)) + "' is not a finite number");
+    if (!parse_number(t, v, true)) {
+      fail(path_, at, name_of(field), "'" + std::string(t.substr(0, 40)) + "' is not a finite number");
+    }
     return v;
   }
-  double number_in(const std::string& field, double lo, double hi) {
+  template <class Name>
+  double number_in(const Name& field, double lo, double hi) {
     const int at = line();
     const double v = number(field);
-    if (v < lo || v > hi) fail(path_, at, field, fmt(v) + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
+    if (v < lo || v > hi) fail(path_, at, name_of(field), fmt(v) + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
     return v;
   }
-  long integer_in(const std::string& field, long lo, long hi) {
+  template <class Name>
+  long integer_in(const Name& field, long lo, long hi) {
     const int at = line();
     const double v = number(field);
-    if (!is_integer(v)) fail(path_, at, field, fmt(v) + " is not a whole number");
+    if (!is_integer(v)) fail(path_, at, name_of(field), fmt(v) + " is not a whole number");
     if (v < static_cast<double>(lo) || v > static_cast<double>(hi)) {
-      fail(path_, at, field, fmt(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      fail(path_, at, name_of(field), fmt(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     }
     return std::lround(v);
   }
@@ -733,7 +755,7 @@ Photometry parse_eulumdat(std::string_view raw, const std::string& path) {
     ls.power_w = in.number_in("26f wattage including ballast" + prefix, 0, kMaxPowerW);
     p.lamp_sets.push_back(std::move(ls));
   }
-  for (int k = 0; k < 10; ++k) in.number("27 direct ratio[" + std::to_string(k) + "]");
+  for (int k = 0; k < 10; ++k) in.number([k] { return "27 direct ratio[" + std::to_string(k) + "]"; });
 
   // Stored C planes (1-based Mc1..Mc2 of the layout) and the symmetry they imply.
   if ((isym == 2 && mc % 2 != 0) || ((isym == 3 || isym == 4) && mc % 4 != 0)) {
@@ -762,12 +784,12 @@ Photometry parse_eulumdat(std::string_view raw, const std::string& path) {
   std::vector<int> c_lines;
   c_all.reserve(static_cast<std::size_t>(mc));
   for (long k = 0; k < mc; ++k) {
-    const std::string field = "28 C angle[" + std::to_string(k) + "]";
+    const auto field = [k] { return "28 C angle[" + std::to_string(k) + "]"; };
     const int at = in.line();
     c_lines.push_back(at);
     c_all.push_back(in.number_in(field, 0, 360 - kAngleTolDeg));
     if (k > 0 && c_all[k] <= c_all[k - 1]) {
-      fail(path, at, field, fmt(c_all[k]) + " does not rise after " + fmt(c_all[k - 1]) + " (angles must increase strictly)");
+      fail(path, at, field(), fmt(c_all[k]) + " does not rise after " + fmt(c_all[k - 1]) + " (angles must increase strictly)");
     }
   }
   const auto require_c = [&](long index, double angle) {
@@ -784,11 +806,11 @@ Photometry parse_eulumdat(std::string_view raw, const std::string& path) {
   if (isym == 4) require_c(mc / 4, 90);
 
   for (long i = 0; i < ng; ++i) {
-    const std::string field = "29 gamma angle[" + std::to_string(i) + "]";
+    const auto field = [i] { return "29 gamma angle[" + std::to_string(i) + "]"; };
     const int at = in.line();
     p.gamma_angles_deg.push_back(in.number_in(field, 0, 180));
     if (i > 0 && p.gamma_angles_deg[i] <= p.gamma_angles_deg[i - 1]) {
-      fail(path, at, field,
+      fail(path, at, field(),
            fmt(p.gamma_angles_deg[i]) + " does not rise after " + fmt(p.gamma_angles_deg[i - 1]) +
                " (angles must increase strictly)");
     }
@@ -803,12 +825,12 @@ Photometry parse_eulumdat(std::string_view raw, const std::string& path) {
     const double c = c_all[static_cast<std::size_t>(stored[j])];
     w.c_deg.push_back(c);
     for (long i = 0; i < ng; ++i) {
-      const std::string field = "30 intensity[C=" + fmt(c) + ", gamma=" + fmt(p.gamma_angles_deg[i]) + "]";
+      const auto field = [&] { return "30 intensity[C=" + fmt(c) + ", gamma=" + fmt(p.gamma_angles_deg[i]) + "]"; };
       const int at = in.line();
       const double v = in.number(field);
-      if (v < 0) fail(path, at, field, fmt(v) + " cd/klm is negative");
+      if (v < 0) fail(path, at, field(), fmt(v) + " cd/klm is negative");
       const double cd = v * scale;
-      if (cd > kMaxCandela) fail(path, at, field, fmt(cd) + " cd is beyond any luminaire (limit 1e9 cd)");
+      if (cd > kMaxCandela) fail(path, at, field(), fmt(cd) + " cd is beyond any luminaire (limit 1e9 cd)");
       w.cd(static_cast<Eigen::Index>(j), i) = cd;
     }
   }

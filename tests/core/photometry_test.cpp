@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <numbers>
 #include <sstream>
@@ -54,10 +55,18 @@ const std::vector<RealFile> kRealFiles = {
 };
 
 TEST(PhotometryRealFiles, FluxMatchesTheReadmeWithinHalfAPercent) {
+  // The table docs/photometry.md shows (printed so that the figures can be reproduced).
+  std::printf("| file | integrated flux (lm) | README trap (lm) | error %% | up %% | symmetry | opening |\n");
   for (const RealFile& f : kRealFiles) {
     SCOPED_TRACE(f.name);
     const Photometry p = load_photometry(shared_file(f.name));
     const double rel = p.luminaire_flux_lm / f.flux_trap_lm - 1;
+    static const char* const kSymmetry[] = {"rotational", "quadrant", "bilateral C0-C180", "bilateral C90-C270", "none"};
+    static const char* const kShape[] = {"point", "rectangle", "disc", "cylinder"};
+    std::printf("| %s | %.2f | %.1f | %+.4f | %.2f | %s | %s %.3f x %.3f x %.3f m |\n", f.name.c_str(),
+                p.luminaire_flux_lm, f.flux_trap_lm, 100 * rel, 100 * p.upward_fraction,
+                kSymmetry[static_cast<int>(p.symmetry)], kShape[static_cast<int>(p.opening.shape)], p.opening.length_m,
+                p.opening.width_m, p.opening.height_m);
     EXPECT_LT(std::abs(rel), 0.005) << p.luminaire_flux_lm << " lm vs README " << f.flux_trap_lm;
     // The README rounds to 0.1 lm: the same rule should agree far better than 0.5 %.
     EXPECT_NEAR(p.luminaire_flux_lm, f.flux_trap_lm, 0.06 + 1e-5 * f.flux_trap_lm);
@@ -173,6 +182,33 @@ TEST(PhotometryRealFiles, HeaderFieldsAndQuirks) {
     const Photometry p = load_photometry(shared_file("eulumdat-analysis/sample_20.ldt"));  // Dg = 0
     ASSERT_EQ(p.gamma_angles_deg.size(), 55u);
     EXPECT_TRUE(p.warnings.empty());
+  }
+}
+
+// The three products shipped in data/photometry, with the figures of its README.
+TEST(PhotometryShippedProducts, FluxAsDocumented) {
+  const std::string data = std::string(ILP_SOURCE_DIR) + "/data/photometry/";
+  struct Product {
+    std::string file;
+    double flux_lm, lamp_flux_lm, power_w, up_percent;
+    OpeningShape shape;
+  };
+  for (const Product& pr : {Product{"erco_iku_downlight.ldt", 611.8, 611.8, 6.9, 0, OpeningShape::disc},
+                            Product{"linear_led_2112lm.ldt", 2111.2, 2112, 22.3, 0, OpeningShape::rectangle},
+                            Product{"ledalite_direct_indirect.ies", 5294.3, 5800, 63.7, 69.2, OpeningShape::rectangle}}) {
+    SCOPED_TRACE(pr.file);
+    const Photometry p = load_photometry(data + pr.file);
+    EXPECT_NEAR(p.luminaire_flux_lm, pr.flux_lm, 0.05);
+    EXPECT_NEAR(p.lamp_flux_lm, pr.lamp_flux_lm, 0.05);
+    EXPECT_NEAR(p.input_power_w, pr.power_w, 1e-9);
+    EXPECT_NEAR(100 * p.upward_fraction, pr.up_percent, 0.05);
+    EXPECT_EQ(p.opening.shape, pr.shape);
+    EXPECT_TRUE(p.warnings.empty());
+    // Byte for byte the shared file.
+    const std::string shared = pr.file == "erco_iku_downlight.ldt"  ? "eulumdat-analysis/sample_17.ldt"
+                               : pr.file == "linear_led_2112lm.ldt" ? "eulumdat-analysis/sample_01.ldt"
+                                                                    : "radiance/examp1.ies";
+    EXPECT_EQ(test::read_file(data + pr.file), shared_text(shared));
   }
 }
 
