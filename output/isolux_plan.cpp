@@ -263,13 +263,31 @@ bool crosses_other_line(const Box& b, const std::vector<PxLine>& lines, std::siz
 }
 
 // A line's own other parts (it may curl back) must not cross its label either: only
-// the stretch within `reach` of the label's spot may.
+// the stretch within `reach` of the label's spot s may (reach 0: none may).
 bool crosses_own_line_elsewhere(const Box& b, const PxLine& l, double s, double reach) {
   for (std::size_t i = 1; i < l.points.size(); ++i) {
-    if (l.at[i] >= s - reach && l.at[i - 1] <= s + reach) continue;
+    if (reach > 0.0 && l.at[i] >= s - reach && l.at[i - 1] <= s + reach) continue;
     if (segment_hits_box(l.points[i - 1], l.points[i], b)) return true;
   }
   return false;
+}
+
+// A label next to a short line (e.g. a corner's arc): boxes touching the line's middle
+// from eight directions, the first that fits and that no line crosses.
+void place_beside(const PxLine& l, std::size_t own, const std::vector<PxLine>& lines, const std::string& text,
+                  Placer& placer) {
+  constexpr double kLeast_px = 12.0;  // a shorter line is a speck: no label
+  const double length = l.at.empty() ? 0.0 : l.at.back();
+  if (length < kLeast_px) return;
+  const V2 at = point_at(l, 0.5 * length);
+  const Box probe = text_box(at, text, kContourFont_px, 3.0);
+  const V2 half = 0.5 * probe.sizes() + V2::Constant(2.0);
+  for (const V2 dir : {V2(1, 0), V2(-1, 0), V2(0, -1), V2(0, 1), V2(1, -1), V2(-1, -1), V2(1, 1), V2(-1, 1)}) {
+    const Box b = text_box(at + dir.cwiseProduct(half), text, kContourFont_px, 3.0);
+    if (!placer.fits(b) || crosses_other_line(b, lines, own) || crosses_own_line_elsewhere(b, l, -1.0, 0.0)) continue;
+    placer.labels->push_back({IsoluxLabel::Kind::contour, text, b, false});
+    return;
+  }
 }
 
 void place_contour_labels(const std::vector<PxLine>& lines, double reference_lux, Placer& placer) {
@@ -284,7 +302,10 @@ void place_contour_labels(const std::vector<PxLine>& lines, double reference_lux
     const std::string text = lux_text(l.level);
     const double w = text_width_px(text, kContourFont_px) + 6.0;
     const double length = l.at.empty() ? 0.0 : l.at.back();
-    if (length < 2.0 * w) continue;  // a speck: no room for its number
+    if (length < 2.0 * w) {  // too short to carry its number: beside it, if at all
+      place_beside(l, k, lines, text, placer);
+      continue;
+    }
     const int wanted = std::max(1, static_cast<int>(std::floor(length / kContourLabelEvery_px)));
     const double stretch = length / wanted;
     for (int n = 0; n < wanted; ++n) {
@@ -452,6 +473,14 @@ std::string legend(const IsoluxGridView& v, const IsoluxLayout& layout, double x
     labels += text_element(x + kBar_px + kTick_px + 3.0, y + 4.0, "start", text);
   }
   svg += cat("<path d=\"", marks, "\" stroke=\"#333333\"/>\n", labels);
+  // The isoline levels as marks across the bar, the target's thicker (as its line).
+  for (double level : layout.levels_lux) {
+    if (level > layout.scale.max_lux) continue;
+    const double ly = bar_bottom - layout.scale.fraction(level) * bar_px;
+    const bool target = std::abs(level - layout.reference_lux) <= 1e-9 * layout.reference_lux;
+    svg += cat("<path d=\"M", xy(x - 4.0, ly), 'h', px(kBar_px + 4.0), "\" stroke=\"#1a1a1a\" stroke-width=\"",
+               target ? "2.2" : "1.1", "\"/>\n");
+  }
   double y = bar_bottom + 24.0;
   const auto row = [&](const std::string& text, std::string_view extra = "") {
     svg += text_element(x, y, "start", text, extra);

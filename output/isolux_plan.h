@@ -63,6 +63,7 @@ struct IsoluxLabel {
   Kind kind = Kind::value;
   std::string text;
   Eigen::AlignedBox2d box_px;  // text plus its margin; no two labels' boxes intersect
+  bool on_line = true;         // an isoline's label: centred on its line, or (false) beside a short one
 };
 
 // What the plan draws, computed before any SVG is written (and what the tests check).
@@ -84,7 +85,8 @@ struct IsoluxLayout {
 // Lays the plan out: x right, y up, one scale on both axes (the plan about 700 px wide
 // or at most 640 px high), the legend right of it. Isoline labels are placed on their
 // lines (about one per 260 px of line, at least one per line where one fits), each on a
-// spot where no other isoline crosses its box; point values at every n-th point with n
+// spot where no other isoline crosses its box (a line too short to carry its number
+// gets it beside its middle, where no line crosses it); point values at every n-th point with n
 // chosen so that neighbouring values are at least 44 px apart; a label that would
 // overlap one already placed (luminaire ids first, then isolines, then point values),
 // a luminaire outline or the plan's edge is left out. Throws std::invalid_argument for
