@@ -143,7 +143,8 @@ TEST(IsoluxPlan, ColourScaleIsTiedToTheTargetNotToAHotSpot) {
   EXPECT_TRUE(Contains(svg_after, ">above 1000 lx: top colour</text>"));
   EXPECT_FALSE(Contains(svg_before, "top colour").operator bool());
   // Every other cell keeps its colour: the cells' fills differ in the hot one only.
-  const auto fills = [](const std::string& svg) {
+  const auto fills = [](const std::string& document) {
+    const std::string svg = group(document, "cells");
     std::vector<std::string> out;
     for (std::size_t i = svg.find("<rect x="); i != std::string::npos; i = svg.find("<rect x=", i + 1)) {
       const std::size_t f = svg.find("fill=\"", i);
@@ -153,10 +154,11 @@ TEST(IsoluxPlan, ColourScaleIsTiedToTheTargetNotToAHotSpot) {
   };
   const std::vector<std::string> a = fills(svg_before), b = fills(svg_after);
   ASSERT_EQ(a.size(), b.size());
+  ASSERT_EQ(a.size(), static_cast<std::size_t>(before.points));
   int changed = 0;
   for (std::size_t k = 0; k < a.size(); ++k) changed += a[k] != b[k];
   EXPECT_EQ(changed, 1);
-  EXPECT_TRUE(Contains(svg_after, svg_colour(colour_map(1.0))));
+  EXPECT_EQ(b[0], "fill=\"" + svg_colour(colour_map(1.0)) + "\"");  // the hot cell: the top colour
 }
 
 TEST(IsoluxPlan, TargetLevelsLinesAreDrawnThickerAndAllLevelsInRangeAppear) {
@@ -303,6 +305,31 @@ TEST(IsoluxPlan, WithoutATargetTheScaleRestsOnTheAverage) {
   EXPECT_TRUE(Contains(svg, "no target: scale on Em 200 lx"));
   EXPECT_TRUE(Contains(svg, "= initial (maintenance factor 1)"));
   EXPECT_TRUE(WellFormed(svg));
+}
+
+TEST(IsoluxPlan, VerticalGridNamesItsAxesAndNeedsNoRoomOrLuminaires) {
+  // A board 3 m wide, 1.2 m high: a linear ramp from 200 to 400 lx along it.
+  IsoluxGridView v;
+  v.name = "board";
+  v.nx = 15;
+  v.ny = 6;
+  v.spacing_m = V2(0.2, 0.2);
+  v.origin_m = V2(0.1, 0.1);
+  for (int j = 0; j < v.ny; ++j)
+    for (int i = 0; i < v.nx; ++i) v.maintained_lux.push_back(200.0 + 200.0 * (0.1 + 0.2 * i) / 3.0);
+  v.target_lux = 300.0;
+  v.x_label = "along the board (m)";
+  v.y_label = "height above its bottom (m)";
+  const std::string svg = isolux_plan_svg(v);
+  EXPECT_TRUE(WellFormed(svg));
+  EXPECT_TRUE(Contains(svg, ">along the board (m)</text>"));
+  EXPECT_TRUE(Contains(svg, ">height above its bottom (m)</text>"));
+  EXPECT_FALSE(Contains(svg, ">N</text>").operator bool()) << "no north without north_deg";
+  // The ramp's isolines are vertical lines at x = 3 (E - 200) / 200 m: 210 lx at 0.15 m ... 300 at 1.5 m.
+  const IsoluxLayout layout = isolux_plan_layout(v);
+  for (const ContourLine& l : layout.lines)
+    for (const V2& p : l.points_m) EXPECT_NEAR(p.x(), 3.0 * (l.level - 200.0) / 200.0, 1e-9) << l.level;
+  EXPECT_TRUE(LabelsApart(layout));
 }
 
 TEST(IsoluxPlan, TextIsEscaped) {
