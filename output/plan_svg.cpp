@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -13,6 +12,7 @@
 #include <vector>
 
 #include "output/colour_map.h"
+#include "output/svg_plan_parts.h"
 #include "output/svg_text.h"
 
 namespace ilp {
@@ -34,67 +34,19 @@ constexpr std::string_view kGradientId = "ilp-plan-lux";
 
 using svg::cat;
 using svg::char_count;
+using svg::exact;
+using svg::fixed;
+using svg::px;
+using svg::significant;
+using svg::text_element;
 using svg::xml_escape;
+using svg::xy;
 
 double label_width_px(std::string_view text) { return static_cast<double>(char_count(text)) * kLabelCharWidth_px; }
 
-// ---- numbers (std::to_chars: independent of the C++ and C locales) -------------
-
-// v with `decimals` fixed decimals, trailing zeros dropped, never "-0".
-std::string fixed(double v, int decimals) {
-  std::array<char, 64> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v, std::chars_format::fixed,
-                                    std::clamp(decimals, 0, 12));
-  std::string s(buffer.data(), result.ptr);
-  if (s.find('.') != std::string::npos) {
-    s.erase(s.find_last_not_of('0') + 1);
-    if (s.back() == '.') s.pop_back();
-  }
-  return s == "-0" ? "0" : s;
-}
-
-// A coordinate in px.
-std::string px(double v) { return fixed(v, 2); }
-
-// "x,y" in px.
-std::string xy(double x, double y) { return cat(px(x), ',', px(y)); }
-
-// 3 significant digits but whole numbers from 100 up and at most 3 decimals: "1500",
-// "437", "62.5", "0.125", "0.001" (so 1.3e-8 lx reads "0").
-std::string significant(double v) {
-  if (v == 0.0 || !std::isfinite(v)) return fixed(v, 0);
-  return fixed(v, std::min(3, 2 - static_cast<int>(std::floor(std::log10(std::abs(v))))));
-}
-
-// The fewest decimals (up to 12) that give v to within a millionth of `resolution`.
-std::string exact(double v, double resolution) {
-  for (int decimals = 0;; ++decimals) {
-    const double rounded = std::round(v * std::pow(10.0, decimals)) / std::pow(10.0, decimals);
-    if (decimals == 12 || std::abs(rounded - v) <= 1e-6 * resolution) return fixed(v, decimals);
-  }
-}
-
-// The smallest of 1, 2, 5 x 10^n that is >= v > 0.
-double nice_step(double v) {
-  const double decade = std::pow(10.0, std::floor(std::log10(v)));
-  for (double m : {1.0, 2.0, 5.0})
-    if (m * decade >= v * (1.0 - 1e-9)) return m * decade;
-  return 10.0 * decade;
-}
-
 // ---- geometry ------------------------------------------------------------------
 
-// The plan's mapping from metres (x right, y up) to SVG px (x right, y down).
-struct Frame {
-  Eigen::AlignedBox2d extent_m;
-  double scale_px_per_m = 1.0;
-  double left_px = 0.0, top_px = 0.0;
-
-  double x_px(double x_m) const { return left_px + (x_m - extent_m.min().x()) * scale_px_per_m; }
-  double y_px(double y_m) const { return top_px + (extent_m.max().y() - y_m) * scale_px_per_m; }
-  double width_px() const { return extent_m.sizes().x() * scale_px_per_m; }
-  double height_px() const { return extent_m.sizes().y() * scale_px_per_m; }
-};
+using Frame = svg::PlanFrame;
 
 void extend(Eigen::AlignedBox2d& box, const Patch& p) {
   for (const Eigen::Vector3d& v : p.vertices_m) box.extend(v.head<2>());
@@ -130,52 +82,6 @@ void check(const Scene& scene, const PlanView& view) {
     if (!l.position_m.allFinite() || !std::isfinite(l.size_m) || l.size_m < 0.0 || !std::isfinite(l.flux_lm))
       throw std::invalid_argument(
           cat("render_plan_svg: luminaire '", l.id, "' has a non-finite position, size or flux, or a negative size"));
-}
-
-std::string text_element(double x, double y, std::string_view anchor, const std::string& text,
-                         std::string_view extra = "") {
-  return cat("<text x=\"", px(x), "\" y=\"", px(y), "\" text-anchor=\"", anchor, '"', extra, '>', xml_escape(text),
-             "</text>\n");
-}
-
-// Ticks along the frame's bottom and left edges at a 1-2-5 step in metres that keeps
-// labels apart, and the axis labels.
-std::string axes(const Frame& f) {
-  std::string marks, labels;
-  const double right_px = f.left_px + f.width_px(), bottom_px = f.top_px + f.height_px();
-  for (int axis = 0; axis < 2; ++axis) {
-    const double lo = f.extent_m.min()[axis], hi = f.extent_m.max()[axis];
-    const double step = nice_step((axis == 0 ? 56.0 : 44.0) / f.scale_px_per_m);
-    for (double k = std::ceil(lo / step - 1e-9); k <= std::floor(hi / step + 1e-9); ++k) {
-      const double v = k * step;
-      const std::string label = exact(v, step);
-      if (axis == 0) {
-        const double x = f.x_px(v);
-        marks += cat('M', xy(x, bottom_px), 'v', px(kTick_px));
-        labels += text_element(x, bottom_px + kTick_px + 13.0, "middle", label);
-      } else {
-        const double y = f.y_px(v);
-        marks += cat('M', xy(f.left_px, y), 'h', px(-kTick_px));
-        labels += text_element(f.left_px - kTick_px - 3.0, y + 4.0, "end", label);
-      }
-    }
-  }
-  std::string svg;
-  if (!marks.empty()) svg += cat("<path d=\"", marks, "\" stroke=\"#333333\" fill=\"none\"/>\n");
-  svg += labels;
-  svg += text_element(0.5 * (f.left_px + right_px), bottom_px + 38.0, "middle", "x (m)");
-  const double cy = 0.5 * (f.top_px + bottom_px);
-  svg += text_element(16.0, cy, "middle", "y (m)", cat(" transform=\"rotate(-90 16 ", px(cy), ")\""));
-  return svg;
-}
-
-// A 1-2-5 length of 64 to 160 px, below the x label.
-std::string scale_bar(const Frame& f) {
-  const double length_m = nice_step(64.0 / f.scale_px_per_m);
-  const double y = f.top_px + f.height_px() + 50.0, length_px = length_m * f.scale_px_per_m;
-  return cat("<rect x=\"", px(f.left_px), "\" y=\"", px(y), "\" width=\"", px(length_px),
-             "\" height=\"5\" fill=\"#222222\"/>\n",
-             text_element(f.left_px + length_px + 6.0, y + 6.0, "start", cat(exact(length_m, length_m), " m")));
 }
 
 // The colour bar with ticks at quarters of the scale, then the goal's min and max.
@@ -264,12 +170,7 @@ std::string render_plan_svg(const Scene& scene, const PlanView& view) {
   std::string svg = cat("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"", px(width_px), "\" height=\"",
                         px(height_px), "\" viewBox=\"0 0 ", px(width_px), ' ', px(height_px),
                         "\" font-family=\"sans-serif\" font-size=\"", px(kFont_px), "\">\n");
-  // The legend's gradient: stops at every 60th, which include the colour map's knots
-  // (every 15th), so the bar interpolates exactly as colour_map does.
-  svg += cat("<defs>\n<linearGradient id=\"", kGradientId, "\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">\n");
-  for (int k = 0; k <= 60; ++k)
-    svg += cat("<stop offset=\"", fixed(k / 60.0, 4), "\" stop-color=\"", svg_colour(colour_map(k / 60.0)), "\"/>\n");
-  svg += "</linearGradient>\n</defs>\n";
+  svg += cat("<defs>\n", svg::colour_map_gradient(kGradientId), "</defs>\n");
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   if (!view.title.empty())
     svg += text_element(16.0, 30.0, "start", view.title, " font-size=\"15\" font-weight=\"bold\"");
@@ -314,8 +215,8 @@ std::string render_plan_svg(const Scene& scene, const PlanView& view) {
     svg += cat("<rect x=\"", px(f.x_px(frame_m.min().x())), "\" y=\"", px(f.y_px(frame_m.max().y())), "\" width=\"",
                px(frame_m.sizes().x() * f.scale_px_per_m), "\" height=\"", px(frame_m.sizes().y() * f.scale_px_per_m),
                "\" fill=\"none\" stroke=\"#333333\" stroke-width=\"1.5\"/>\n");
-  svg += axes(f);
-  svg += scale_bar(f);
+  svg += svg::plan_axes(f);
+  svg += svg::plan_scale_bar(f);
 
   if (!view.luminaires.empty()) {
     svg += "<g font-size=\"11\" stroke-linejoin=\"round\">\n";
