@@ -69,6 +69,7 @@ int run_bench(const BenchArgs& args) {
   job.search->layout = LayoutFamily::free;
   job.search->count_min = job.search->count_max = args.luminaires;
   job.constraints.max_luminaires.reset();
+  job = job_variants(job).front().job;  // products: the first product at its first rotation
   const ProgressCallback progress = make_progress(args.quiet);
 
   // Build (no cache: the build is what is measured).
@@ -108,9 +109,7 @@ int run_bench(const BenchArgs& args) {
     random_layout(model, args.luminaires, rng, xy, w);
     const LayoutEvaluation layout = evaluate_layout(model, job, xy, w);
     Scene scene = prepared.loaded.scene;
-    for (std::size_t j = 0; j < layout.luminaires.size(); ++j)
-      add_square_luminaire(scene, luminaire_name(j), layout.luminaires[j].position_m, job.luminaire_size_m,
-                           layout.luminaires[j].flux_lm);
+    add_layout(scene, *job.search, layout.luminaires);
     const auto t0 = Clock::now();
     const ExactSolution exact = solve_exact(scene, exact_solve_options(job), progress);
     full_solve_seconds = seconds_since(t0);

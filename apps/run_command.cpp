@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -59,6 +60,76 @@ PreparedJob prepare_and_log(const JobConfig& job, const ProgressCallback& progre
 
 std::string unit_of(GoalMetric metric) { return metric == GoalMetric::uniformity ? "" : "lx"; }
 
+// Every variant of the job (each product at each rotation) prepared, its notes logged.
+std::vector<PreparedJob> prepare_variants(const std::vector<JobVariant>& variants, const ProgressCallback& progress,
+                                          const std::string& cache_dir) {
+  std::vector<PreparedJob> out;
+  for (const JobVariant& v : variants) {
+    if (v.variant) {
+      std::cerr << "variant " << out.size() + 1 << " of " << variants.size() << ": " << v.variant->product << " at "
+                << v.variant->rotation_deg << " degrees\n";
+      for (const std::string& note : v.variant->notes) std::cerr << note << "\n";
+    }
+    out.push_back(prepare_and_log(v.job, progress, cache_dir));
+  }
+  return out;
+}
+
+struct Chosen {
+  std::size_t variant = 0;
+  JobOutcome outcome;
+  std::vector<std::string> tried;  // one line per variant
+};
+
+// Solves each variant with its job adjusted by `adjust` (a sweep point's targets) and
+// keeps the best outcome (every goal met, then least power).
+Chosen solve_variants(const std::vector<PreparedJob>& prepared, const std::vector<JobVariant>& variants,
+                      const std::function<void(JobConfig&)>& adjust, const ProgressCallback& progress) {
+  Chosen best;
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    JobConfig job = variants[v].job;
+    adjust(job);
+    JobOutcome outcome = solve_prepared(prepared[v], job, progress);
+    if (variants[v].variant) {
+      std::ostringstream line;
+      line << std::fixed << std::setprecision(1) << variants[v].variant->product << " at "
+           << variants[v].variant->rotation_deg << " deg: " << outcome.luminaires.size() << " luminaires, "
+           << outcome.power_w << " W, " << (outcome.all_met ? "every goal met" : "goals missed");
+      best.tried.push_back(line.str());
+      std::cerr << "variant " << v + 1 << ": " << line.str() << "\n";
+    }
+    if (v == 0 || better_outcome(outcome, best.outcome)) {
+      best.variant = v;
+      best.outcome = std::move(outcome);
+    }
+  }
+  return best;
+}
+
+// Product x count, watts each and in all.
+std::vector<BillLine> bill_of_materials(const JobVariant& variant, const JobOutcome& outcome) {
+  if (outcome.luminaires.empty()) return {};
+  BillLine line;
+  line.count = static_cast<int>(outcome.luminaires.size());
+  line.total_power_w = outcome.power_w;
+  if (variant.variant) {
+    line.product = variant.variant->product;
+    line.source = variant.variant->source;
+    line.rated_flux_lm = variant.variant->rated_flux_lm;
+    line.unit_power_w = variant.variant->power_w;
+    line.output_fraction = outcome.luminaires.front().flux_lm / line.rated_flux_lm;
+  } else {
+    const LuminaireSearch& s = *variant.job.search;
+    line.product = "square Lambertian panel " + (std::ostringstream() << s.type.length_m).str() + " m";
+    line.source = "square_lambertian";
+    line.rated_flux_lm = s.flux_max_lm;
+    line.unit_power_w = s.flux_max_lm / s.efficacy_lm_per_w;
+    line.output_fraction = s.uniform_output ? outcome.luminaires.front().flux_lm / s.flux_max_lm : 1.0;
+    if (!s.uniform_output) line.product += " (each at its own flux)";
+  }
+  return {line};
+}
+
 ResultRecord make_record(const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
                          const std::vector<std::pair<std::string, double>>& timings) {
   ResultRecord r;
@@ -67,7 +138,8 @@ ResultRecord make_record(const PreparedJob& prepared, const JobConfig& job, cons
   r.objective = job.objective == Objective::min_power ? "min_power" : "closest_to_target";
   for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
     const PlacedLuminaire& l = outcome.luminaires[j];
-    r.luminaires.push_back({luminaire_name(j), l.position_m.x(), l.position_m.y(), l.position_m.z(), l.flux_lm, l.power_w});
+    r.luminaires.push_back({luminaire_name(j), l.position_m.x(), l.position_m.y(), l.position_m.z(), l.flux_lm, l.power_w,
+                            job.search->product, job.search->rotation_deg});
   }
   for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
     const GoalOutcome& o = outcome.goals[g];
@@ -179,9 +251,13 @@ std::vector<std::string> write_outputs(const std::string& dir, const PreparedJob
     view.goal_patches = prepared.model.goal_patches;
     view.goal_lux = goal_lux;
     view.outline_patches = prepared.model.grid.mounting_patches();
-    for (std::size_t j = 0; j < outcome.luminaires.size(); ++j)
-      view.luminaires.push_back({luminaire_name(j), outcome.luminaires[j].position_m, job.luminaire_size_m,
-                                 outcome.luminaires[j].flux_lm});
+    const LuminaireSearch& s = *job.search;
+    for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
+      PlanLuminaire l{luminaire_name(j), outcome.luminaires[j].position_m, s.type.length_m, outcome.luminaires[j].flux_lm,
+                      {}, s.product};
+      for (const Eigen::Vector3d& v : luminaire_outline_m(s.type, {l.position_m, s.rotation_deg})) l.outline_m.push_back(v.head<2>());
+      view.luminaires.push_back(std::move(l));
+    }
     const std::string svg = render_plan_svg(scene, view);
     write_file_atomically((folder / "plan.svg").string(), [&](std::ostream& out) { out << svg; });
     written.push_back((folder / "plan.svg").string());
@@ -231,11 +307,15 @@ std::string default_cache_dir() {
 
 int run_job(const RunArgs& args) {
   const auto start = Clock::now();
-  const JobConfig job = load_for_run(args.config, args.threads);
+  const JobConfig loaded = load_for_run(args.config, args.threads);
   const ProgressCallback progress = make_progress(args.quiet);
-  const std::string dir = output_directory(job, args.out_dir);
-  const PreparedJob prepared = prepare_and_log(job, progress, cache_folder(args.cache_dir, args.no_cache));
-  const JobOutcome outcome = solve_prepared(prepared, job, progress);
+  const std::string dir = output_directory(loaded, args.out_dir);
+  const std::vector<JobVariant> variants = job_variants(loaded);
+  const std::vector<PreparedJob> all = prepare_variants(variants, progress, cache_folder(args.cache_dir, args.no_cache));
+  const Chosen chosen = solve_variants(all, variants, [](JobConfig&) {}, progress);
+  const PreparedJob& prepared = all[chosen.variant];
+  const JobConfig& job = variants[chosen.variant].job;
+  const JobOutcome& outcome = chosen.outcome;
   const std::vector<std::pair<std::string, double>> timings{
       {"scene", prepared.scene_seconds},
       {"BVH", prepared.bvh_seconds},
@@ -244,7 +324,9 @@ int run_job(const RunArgs& args) {
       {"search", outcome.search.seconds},
       {"verification", outcome.verify_seconds},
       {"total", seconds_since(start)}};
-  const ResultRecord record = make_record(prepared, job, outcome, timings);
+  ResultRecord record = make_record(prepared, job, outcome, timings);
+  record.bill_of_materials = bill_of_materials(variants[chosen.variant], outcome);
+  record.variants = chosen.tried;
   print_result(std::cout, record);
   for (const std::string& file : write_outputs(dir, prepared, job, outcome, record)) std::cout << "wrote " << file << "\n";
   return outcome.all_met ? 0 : 2;
@@ -266,7 +348,8 @@ int run_sweep(const SweepArgs& args) {
   }
   const ProgressCallback progress = make_progress(args.quiet);
   const std::string dir = output_directory(job, args.out_dir);
-  const PreparedJob prepared = prepare_and_log(job, progress, cache_folder(args.cache_dir, args.no_cache));
+  const std::vector<JobVariant> variants = job_variants(job);
+  const std::vector<PreparedJob> prepared = prepare_variants(variants, progress, cache_folder(args.cache_dir, args.no_cache));
 
   std::ostringstream csv;
   csv << std::setprecision(9) << csv_field(sweep.key)
@@ -281,11 +364,12 @@ int run_sweep(const SweepArgs& args) {
   std::cout << std::left << std::setw(28) << sweep.key << std::right << std::setw(12) << "luminaires" << std::setw(11)
             << "power W" << std::setw(10) << "W/m²" << "  goals\n";
   for (std::size_t i = 0; i < sweep.values.size(); ++i) {
-    JobConfig point = job;
-    set_goal_parameter(point, sweep.key, sweep.values[i]);
     std::cerr << "sweep point " << i + 1 << " of " << sweep.values.size() << ": " << sweep.key << " = "
               << sweep.values[i] << "\n";
-    const JobOutcome outcome = solve_prepared(prepared, point, progress);
+    const JobOutcome outcome =
+        solve_variants(prepared, variants, [&](JobConfig& point) { set_goal_parameter(point, sweep.key, sweep.values[i]); },
+                       progress)
+            .outcome;
     csv << sweep.values[i] << ',' << outcome.luminaires.size() << ',' << outcome.power_w << ','
         << outcome.power_density_w_per_m2 << ',' << outcome.feasible << ',' << outcome.all_met << ','
         << outcome.flux_correction << ',' << outcome.search.evaluations << ',' << outcome.search.seconds << ','

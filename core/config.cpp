@@ -220,12 +220,75 @@ void read_scene(const Map& scene, JobConfig& job) {
 // The keys of luminaires that describe the search; each needs mounting_surface.
 constexpr const char* kSearchKeys[] = {"model",          "flux_lm",             "efficacy_lm_per_w",
                                        "mount_offset_m", "candidate_spacing_m", "count",
-                                       "layout",         "array"};
+                                       "layout",         "array",               "products",
+                                       "wall_distance_m", "ceiling_module_m"};
 
 // A list of 2 numbers [x, y], each read and checked by `check`.
 Eigen::Vector2d pair_of(const Value& v, double (*check)(const Value&)) {
   if (!v.node().IsSequence() || v.node().size() != 2) v.fail("must be a list of 2 numbers [x, y]");
   return {check(v.element(0)), check(v.element(1))};
+}
+
+// The square panel's flux: a fixed package (one number) or a range [min, max].
+void read_panel_flux(const Map& luminaires, const Value& mounting, LuminaireSearch& search) {
+  const auto flux = luminaires.get("flux_lm");
+  if (!flux) mounting.fail("needs luminaires.flux_lm: [min, max] or one number (or luminaires.products)");
+  search.flux_loc = flux->loc();
+  if (flux->node().IsScalar()) {
+    search.flux_min_lm = search.flux_max_lm = flux->number_in(1e-6, 1e9, false, "[1e-6, 1e9] lm");
+  } else {
+    if (!flux->node().IsSequence() || flux->node().size() != 2) flux->fail("must be a list [min, max] or one number");
+    search.flux_min_lm = flux->element(0).number_in(0.0, 1e9, false, "[0, 1e9] lm");
+    search.flux_max_lm = flux->element(1).number_in(1e-6, 1e9, false, "[1e-6, 1e9] lm");
+    if (search.flux_max_lm < search.flux_min_lm) flux->element(1).fail("must be at least the minimum flux_lm[0]");
+  }
+  if (auto v = luminaires.get("efficacy_lm_per_w")) search.efficacy_lm_per_w = v->number_in(1e-3, 1e4, false, "[0.001, 10000] lm/W");
+}
+
+void read_products(const Value& section, const JobConfig& job, LuminaireSearch& search) {
+  const std::filesystem::path base = std::filesystem::path(job.path).parent_path();
+  std::set<std::string> names;
+  for (const Value& item : section.list()) {
+    const Map m(item, {"name", "photometry", "model", "size_m", "flux_lm", "power_w", "dimming", "maintenance_factor",
+                       "rotations_deg"});
+    ProductSetting p;
+    p.loc = item.loc();
+    p.name = m.require("name").text();
+    if (p.name.empty()) m.require("name").fail("must not be empty");
+    if (!names.insert(p.name).second) m.require("name").fail("product name used twice");
+    const auto photometry = m.get("photometry"), model = m.get("model");
+    if (photometry && model) model->fail("not with photometry (a product is one or the other)");
+    if (photometry) {
+      p.photometry_path = (base / photometry->text()).lexically_normal().string();
+      p.photometry_loc = photometry->loc();
+      if (auto v = m.get("size_m")) v->fail("only for model: square_lambertian (a photometric file gives its size)");
+    } else {
+      if (!model) item.fail("needs photometry: FILE (.ies or .ldt) or model: square_lambertian");
+      if (model->text() != "square_lambertian") model->fail("must be square_lambertian");
+      if (auto v = m.get("size_m")) p.size_m = v->number_in(0.01, 10.0, false, "[0.01, 10] m");
+      if (!m.get("flux_lm") || !m.get("power_w")) item.fail("model: square_lambertian needs flux_lm and power_w");
+    }
+    if (auto v = m.get("flux_lm")) p.flux_lm = v->number_in(1e-3, 1e7, false, "[0.001, 1e7] lm");
+    if (auto v = m.get("power_w")) {
+      p.power_w = v->number_in(1e-3, 1e6, false, "[0.001, 1e6] W");
+      p.power_loc = v->loc();
+    } else {
+      p.power_loc = p.photometry_loc;
+    }
+    if (auto v = m.get("dimming")) {
+      if (!v->node().IsSequence() || v->node().size() != 2) v->fail("must be a list [min, max] of fractions of the rated output");
+      p.dim_min = v->element(0).number_in(0.0, 1.0, false, "[0, 1]");
+      p.dim_max = v->element(1).number_in(0.0, 1.0, false, "[0, 1]");
+      if (!(p.dim_max > 0.0) || p.dim_max < p.dim_min) v->element(1).fail("must be > 0 and at least dimming[0]");
+    }
+    if (auto v = m.get("maintenance_factor")) p.maintenance_factor = v->number_in(0.1, 1.0, false, "[0.1, 1]");
+    if (auto v = m.get("rotations_deg")) {
+      for (const Value& r : v->list()) p.rotations_deg.push_back(r.number_in(-360.0, 360.0, false, "[-360, 360] degrees"));
+      if (p.rotations_deg.empty()) v->fail("must list at least one rotation");
+    }
+    search.products.push_back(p);
+  }
+  if (search.products.empty()) section.fail("must list at least one product");
 }
 
 void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
@@ -238,15 +301,16 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
     search.model = v->text();
     if (search.model != "square_lambertian") v->fail("must be square_lambertian");
   }
-  const auto flux = luminaires.get("flux_lm");
-  if (!flux) mounting.fail("needs luminaires.flux_lm: [min, max]");
-  if (!flux->node().IsSequence() || flux->node().size() != 2) flux->fail("must be a list [min, max]");
-  search.flux_min_lm = flux->element(0).number();
-  if (search.flux_min_lm < 0.0) flux->element(0).fail("must be >= 0");
-  search.flux_max_lm = flux->element(1).number();
-  if (!(search.flux_max_lm > search.flux_min_lm)) flux->element(1).fail("must be above the minimum flux_lm[0]");
-  search.flux_loc = flux->loc();
-  if (auto v = luminaires.get("efficacy_lm_per_w")) search.efficacy_lm_per_w = v->positive();
+  search.type = LuminaireType::square_lambertian(job.luminaire_size_m);
+  if (auto products = luminaires.get("products")) {
+    for (const char* key : {"model", "flux_lm", "efficacy_lm_per_w"})
+      if (auto v = luminaires.get(key)) v->fail("not with luminaires.products (each product gives its own)");
+    read_products(*products, job, search);
+  } else {
+    read_panel_flux(luminaires, mounting, search);
+  }
+  if (auto v = luminaires.get("wall_distance_m")) search.wall_distance_m = v->number_in(0.0, 100.0, false, "[0, 100]");
+  if (auto v = luminaires.get("ceiling_module_m")) search.ceiling_module_m = v->number_in(0.05, 10.0, false, "[0.05, 10]");
   if (auto v = luminaires.get("mount_offset_m")) {
     search.mount_offset_m = v->number_in(0.0, 10.0, true, "(0, 10)");
     if (search.mount_offset_m <= 0.0) v->fail("must be in (0, 10)");
@@ -701,7 +765,8 @@ JobConfig load_job_config(const std::string& path) {
                job);
     if (auto v = top.get("luminaires"))
       read_luminaires(Map(*v, {"size_m", "placed", "model", "flux_lm", "efficacy_lm_per_w", "mounting_surface",
-                               "mount_offset_m", "candidate_spacing_m", "count", "layout", "array"}),
+                               "mount_offset_m", "candidate_spacing_m", "count", "layout", "array", "products",
+                               "wall_distance_m", "ceiling_module_m"}),
                       job);
     if (auto v = top.get("goals")) read_goals(*v, job);
     if (auto v = top.get("constraints")) read_constraints(Map(*v, {"max_luminaires", "min_distance_m"}), job);

@@ -70,6 +70,23 @@ enum class LayoutFamily {
   array,  // a regular rows x columns array, one flux for all
 };
 
+// luminaires.products: a luminaire one can buy. Photometric (an IES LM-63 or EULUMDAT
+// file) or the square Lambertian test panel; lumens and watts from the file unless
+// given; a fixed lumen package unless a dimming range is given.
+struct ProductSetting {
+  std::string name;
+  FileLoc loc;
+  std::string photometry_path;         // resolved against the config's folder; empty: square_lambertian
+  FileLoc photometry_loc;
+  double size_m = 0.6;                 // square_lambertian only: the panel's side
+  std::optional<double> flux_lm;       // rated output; default: the file's luminaire flux
+  std::optional<double> power_w;       // electric power at the rated output; default: the file's input watts
+  FileLoc power_loc;
+  double dim_min = 1.0, dim_max = 1.0; // dimming: [min, max] as fractions of the rated output
+  std::optional<double> maintenance_factor;
+  std::vector<double> rotations_deg;   // empty: 0 for rotationally symmetric distributions, else 0 and 90
+};
+
 // luminaires: the luminaires the search places (present when mounting_surface is given).
 struct LuminaireSearch {
   std::string model = "square_lambertian";  // the only model: a square Lambertian panel facing down
@@ -85,6 +102,16 @@ struct LuminaireSearch {
   int count_min = 1;                        // count: N or [min, max]: how many luminaires (free layout)
   int count_max = 1;
   FileLoc count_loc;
+  std::vector<ProductSetting> products;     // luminaires.products; empty: the model/flux_lm/efficacy keys
+  double wall_distance_m = 0.0;             // a luminaire's outline keeps at least this from the mounting surface's edges
+  double ceiling_module_m = 0.0;            // > 0: centres snap to the module's cell centres (a 0.6 m grid ceiling)
+  // The variant a search runs for (set from a product by the job runner; defaults: the
+  // square panel of luminaires.size_m): its type and rotation, and whether every
+  // luminaire of a layout gives the same output (products) or each its own (the panel).
+  LuminaireType type = LuminaireType::square_lambertian(0.6);
+  double rotation_deg = 0.0;
+  std::string product;                      // the product's name; empty for the plain panel
+  bool uniform_output = false;
   LayoutFamily layout = LayoutFamily::free;
   // layout: array. rows x columns; spacing and offset (the first luminaire's centre,
   // from the mounting surface's lower x, y corner) fixed when given, else searched.

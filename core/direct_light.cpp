@@ -116,7 +116,7 @@ std::vector<LuminaireGeometry> luminaire_geometry(const Scene& scene, std::span<
 // the concentric map).
 Eigen::Vector3d opening_point(const LuminaireGeometry& g, double u, double v) {
   Eigen::Vector3d local;
-  if (g.type->shape == OpeningShape::rectangle) {
+  if (g.type->shape == OutlineShape::rectangle) {
     local = Eigen::Vector3d((u - 0.5) * g.type->length_m, (v - 0.5) * g.type->width_m, 0.0);
   } else {
     const PolarPoint p = concentric_disk(u, v);
@@ -151,13 +151,18 @@ Unoccluded unoccluded_light(const Scene& scene, const LuminaireGeometry& g, cons
     out.lux_per_lm = out.form_factor / g.area_m2;  // reciprocity: E = M F(x -> opening), M = 1 lm / A
     return out;
   }
-  const double distance = (x - g.centre_m).norm();
-  const int m = std::clamp(static_cast<int>(std::ceil(g.size_m / (kSourceSpacingPerDistance * std::max(distance, 1e-9)))),
-                           1, kMaxSourcesPerSide);
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j)
-      out.lux_per_lm += point_source_lux_per_lm(g, opening_point(g, (i + 0.5) / m, (j + 0.5) / m), x, n);
-  out.lux_per_lm /= static_cast<double>(m) * m;
+  // Point sources per side of the opening, each side cut by its own length (a linear
+  // luminaire 1.2 m x 4 cm needs several along and one across).
+  const double spacing = kSourceSpacingPerDistance * std::max((x - g.centre_m).norm(), 1e-9);
+  auto sources_along = [&](double side_m) {
+    return std::clamp(static_cast<int>(std::ceil(side_m / spacing)), 1, kMaxSourcesPerSide);
+  };
+  int mx = sources_along(g.type->length_m), my = sources_along(g.type->width_m);
+  if (g.type->shape == OutlineShape::disc) mx = my = std::max(mx, my);  // the concentric map's cells
+  for (int i = 0; i < mx; ++i)
+    for (int j = 0; j < my; ++j)
+      out.lux_per_lm += point_source_lux_per_lm(g, opening_point(g, (i + 0.5) / mx, (j + 0.5) / my), x, n);
+  out.lux_per_lm /= static_cast<double>(mx) * my;
   return out;
 }
 

@@ -24,13 +24,13 @@ bool LuminaireType::lambertian() const {
 }
 
 double LuminaireType::opening_area_m2() const {
-  if (shape == OpeningShape::rectangle) return length_m * width_m;
+  if (shape == OutlineShape::rectangle) return length_m * width_m;
   return 0.25 * std::numbers::pi * length_m * width_m;
 }
 
 std::vector<Eigen::Vector3d> LuminaireType::outline_local() const {
   std::vector<Eigen::Vector3d> out;
-  if (shape == OpeningShape::rectangle) {
+  if (shape == OutlineShape::rectangle) {
     const double a = 0.5 * length_m, b = 0.5 * width_m;
     out = {{-a, -b, 0.0}, {a, -b, 0.0}, {a, b, 0.0}, {-a, b, 0.0}};
     return out;
@@ -55,7 +55,7 @@ Eigen::Vector2d LuminaireType::half_footprint_m(double rotation_deg) const {
 
 std::string LuminaireType::key() const {
   std::ostringstream os;
-  os << std::setprecision(17) << "luminaire " << name << " " << (shape == OpeningShape::rectangle ? "rect" : "disc")
+  os << std::setprecision(17) << "luminaire " << name << " " << (shape == OutlineShape::rectangle ? "rect" : "disc")
      << " " << length_m << " x " << width_m << " " << distribution->key();
   return os.str();
 }

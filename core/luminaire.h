@@ -35,11 +35,11 @@ class LambertianDistribution final : public IntensityDistribution {
   std::string key() const override { return "lambertian"; }
 };
 
-enum class OpeningShape { rectangle, disc };
+enum class OutlineShape { rectangle, disc };
 
 struct LuminaireType {
   std::string name = "square_lambertian";  // the product (or model) name shown in reports
-  OpeningShape shape = OpeningShape::rectangle;
+  OutlineShape shape = OutlineShape::rectangle;
   double length_m = 0.6;  // along local x; a disc's diameter
   double width_m = 0.6;   // along local y; a disc's diameter
   // The distribution; a Lambertian opening (the square panel) when it is a LambertianDistribution:

@@ -38,7 +38,8 @@ CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const Can
   if (mounting_surface < 0 || mounting_surface >= static_cast<int>(scene.surfaces.size()))
     throw std::invalid_argument("mounting surface: no surface with index " + std::to_string(mounting_surface));
   const std::string& name = scene.surfaces[static_cast<std::size_t>(mounting_surface)].name;
-  if (!(options.spacing_m > 0.0) || !(options.luminaire_size_m > 0.0) || !(options.mount_offset_m > 0.0))
+  if (!(options.spacing_m > 0.0) || !(options.half_footprint_m.minCoeff() > 0.0) || !(options.mount_offset_m > 0.0) ||
+      !(options.wall_distance_m >= 0.0) || !(options.module_m >= 0.0))
     throw std::invalid_argument("mounting surface '" + name + "': spacing, luminaire size and offset must be > 0");
   Eigen::AlignedBox2d box;
   for (std::size_t i = 0; i < scene.patches.size(); ++i) {
@@ -56,27 +57,38 @@ CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const Can
     throw std::invalid_argument("mounting surface '" + name +
                                 "' has no patch facing down: luminaires hang under a horizontal ceiling");
 
-  const double half = 0.5 * options.luminaire_size_m;
-  lower_ = box.min().array() + half;
-  upper_ = box.max().array() - half;
+  const Eigen::Vector2d half = options.half_footprint_m.array() + options.wall_distance_m;
+  lower_ = box.min() + half;
+  upper_ = box.max() - half;
+  if (options.module_m > 0.0) {
+    // The module's cell centres, counted from the surface's lower corner.
+    for (int axis = 0; axis < 2; ++axis) {
+      const double first = box.min()[axis] + 0.5 * options.module_m;
+      lower_[axis] = first + std::ceil((lower_[axis] - first) / options.module_m - 1e-9) * options.module_m;
+      upper_[axis] = first + std::floor((upper_[axis] - first) / options.module_m + 1e-9) * options.module_m;
+    }
+  }
   if ((upper_.array() < lower_.array()).any())
     throw std::invalid_argument("mounting surface '" + name + "' is smaller than one luminaire");
   const Eigen::Vector2d extent = upper_ - lower_;
-  nx_ = std::max(1, static_cast<int>(std::ceil(extent.x() / options.spacing_m - 1e-9)));
-  ny_ = std::max(1, static_cast<int>(std::ceil(extent.y() / options.spacing_m - 1e-9)));
+  const double spacing = options.module_m > 0.0 ? options.module_m : options.spacing_m;
+  nx_ = std::max(1, static_cast<int>(std::ceil(extent.x() / spacing - 1e-9)));
+  ny_ = std::max(1, static_cast<int>(std::ceil(extent.y() / spacing - 1e-9)));
   step_ = Eigen::Vector2d(extent.x() / nx_, extent.y() / ny_);
+  if (options.module_m > 0.0 && extent.minCoeff() <= 0.0)
+    step_ = Eigen::Vector2d::Constant(options.module_m);  // a single row or column of modules
 
-  // A candidate exists where the centre and the four corners of the square (just
-  // inside) all lie over the surface.
+  // A candidate exists where the centre and the four corners of the footprint (just
+  // inside, with the wall distance) all lie over the surface.
   candidate_of_node_.assign(static_cast<std::size_t>((nx_ + 1) * (ny_ + 1)), -1);
-  const double corner = 0.999 * half;
+  const Eigen::Vector2d corner = 0.999 * half;
   for (int j = 0; j <= ny_; ++j)
     for (int i = 0; i <= nx_; ++i) {
       const Eigen::Vector2d xy = lower_ + Eigen::Vector2d(i * step_.x(), j * step_.y());
       const std::optional<double> z = surface_height(scene, mounting_patches_, xy);
       bool fits = z.has_value();
-      for (const Eigen::Vector2d& d : {Eigen::Vector2d(-corner, -corner), Eigen::Vector2d(corner, -corner),
-                                      Eigen::Vector2d(-corner, corner), Eigen::Vector2d(corner, corner)})
+      for (const Eigen::Vector2d& d : {Eigen::Vector2d(-corner.x(), -corner.y()), Eigen::Vector2d(corner.x(), -corner.y()),
+                                      Eigen::Vector2d(-corner.x(), corner.y()), Eigen::Vector2d(corner.x(), corner.y())})
         fits = fits && surface_height(scene, mounting_patches_, xy + d).has_value();
       if (!fits) continue;
       candidate_of_node_[static_cast<std::size_t>(j * (nx_ + 1) + i)] = static_cast<int>(positions_.size());
@@ -84,7 +96,10 @@ CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const Can
     }
   if (positions_.empty())
     throw std::invalid_argument("mounting surface '" + name + "': no position where a whole " +
-                                (std::ostringstream() << options.luminaire_size_m).str() + " m luminaire fits");
+                                (std::ostringstream() << 2.0 * options.half_footprint_m.x() << " x "
+                                                      << 2.0 * options.half_footprint_m.y()).str() +
+                                " m luminaire fits" +
+                                (options.wall_distance_m > 0.0 ? " with the wall distance" : ""));
 }
 
 namespace {

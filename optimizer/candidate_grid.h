@@ -24,7 +24,11 @@ namespace ilp {
 
 struct CandidateGridOptions {
   double spacing_m = 0.5;       // at most this between neighbouring candidates
-  double luminaire_size_m = 0.6;  // the whole square must lie on the surface
+  // Half the luminaire's extent along x and y as placed (LuminaireType::half_footprint_m):
+  // its whole outline must lie on the surface.
+  Eigen::Vector2d half_footprint_m = Eigen::Vector2d::Constant(0.3);
+  double wall_distance_m = 0.0;   // and keep at least this from the surface's edges (its walls)
+  double module_m = 0.0;          // > 0: candidates at the cell centres of a ceiling module of this size
   double mount_offset_m = 0.02;   // the emitting face hangs this far below the surface
 };
 

@@ -33,9 +33,7 @@ Verification verify_layout(const PreparedJob& prepared, const JobConfig& job, co
   if (settings.method == VerificationMethod::none) return out;
   const auto start = Clock::now();
   Scene scene = prepared.loaded.scene;
-  for (std::size_t j = 0; j < layout.size(); ++j)
-    add_square_luminaire(scene, luminaire_name(j), layout[j].position_m, job.luminaire_size_m,
-                         layout[j].flux_lm);
+  add_layout(scene, *job.search, layout);
   const bool exact = settings.method == VerificationMethod::exact ||
                      (settings.method == VerificationMethod::automatic && scene.patches.size() <= settings.max_exact_patches);
   out.rays_per_patch = settings.rays_per_patch;
@@ -118,6 +116,28 @@ double verified_flux_scale(const JobConfig& job, const std::vector<GoalJudgement
 }
 
 }  // namespace
+
+void add_layout(Scene& scene, const LuminaireSearch& search, const std::vector<PlacedLuminaire>& layout) {
+  for (std::size_t j = 0; j < layout.size(); ++j)
+    add_luminaire(scene, luminaire_name(j), search.type, {layout[j].position_m, search.rotation_deg}, layout[j].flux_lm);
+}
+
+std::vector<JobVariant> job_variants(const JobConfig& job) {
+  if (!job.search || job.search->products.empty()) return {JobVariant{job, std::nullopt}};
+  std::vector<JobVariant> out;
+  for (ProductVariant& v : product_variants(*job.search)) {
+    JobConfig j = job_for_variant(job, v);
+    out.push_back({std::move(j), std::move(v)});
+  }
+  return out;
+}
+
+bool better_outcome(const JobOutcome& a, const JobOutcome& b) {
+  if (a.all_met != b.all_met) return a.all_met;
+  if (a.feasible != b.feasible) return a.feasible;
+  if (a.all_met || a.feasible) return a.power_w < b.power_w;
+  return a.search.best.objective < b.search.best.objective;
+}
 
 std::string luminaire_name(std::size_t j) {
   std::string name = "L";  // (not "L" + ...: GCC 12 warns falsely on operator+(const char*, string&&))

@@ -13,6 +13,7 @@
 
 #include "core/config.h"
 #include "core/job.h"
+#include "core/luminaire_product.h"
 #include "core/progress.h"
 #include "core/ray_caster.h"
 #include "optimizer/layout_search.h"
@@ -92,6 +93,23 @@ struct JobOutcome {
   int searches = 1;                         // search rounds run (see VerificationSettings::rounds)
   std::vector<std::string> calibration;     // what each round changed in the search targets
 };
+
+// The jobs a run tries: one per product and rotation (luminaires.products, through
+// job_for_variant), else the job itself with no variant.
+struct JobVariant {
+  JobConfig job;
+  std::optional<ProductVariant> variant;
+};
+std::vector<JobVariant> job_variants(const JobConfig& job);
+
+// Is a better than b: every goal met (as verified) first, then least power, then the
+// search's own order.
+bool better_outcome(const JobOutcome& a, const JobOutcome& b);
+
+// Adds the layout's luminaires to `scene` as real ones, named L1, L2, ..., of the
+// search's type at its rotation: how a layout found is placed everywhere (the
+// verification, the benchmark's full solve).
+void add_layout(Scene& scene, const LuminaireSearch& search, const std::vector<PlacedLuminaire>& layout);
 
 // "L1", "L2", ...: the name of the j-th (0-based) luminaire of a layout.
 std::string luminaire_name(std::size_t j);

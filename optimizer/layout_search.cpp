@@ -56,10 +56,16 @@ class LayoutCoding {
     lo_ = model.grid.lower_m();
     hi_ = model.grid.upper_m();
     if (s.layout == LayoutFamily::free) {
+      // One output for all (a product): positions only; else a relative flux each.
+      per_luminaire_ = s.uniform_output ? 2 : 3;
       const double w_lo = s.flux_max_lm > 0.0 ? s.flux_min_lm / s.flux_max_lm : 0.0;
       for (int j = 0; j < n_; ++j) {
         lower_.insert(lower_.end(), {lo_.x(), lo_.y(), w_lo});
         upper_.insert(upper_.end(), {hi_.x(), hi_.y(), 1.0});
+        if (s.uniform_output) {
+          lower_.pop_back();
+          upper_.pop_back();
+        }
       }
       // Start: spread evenly over the surface in a near-square arrangement.
       const Eigen::Vector2d extent = hi_ - lo_ + Eigen::Vector2d::Constant(1e-9);
@@ -70,11 +76,12 @@ class LayoutCoding {
         const int in_row = std::min(columns, n_ - r * columns);
         initial_.insert(initial_.end(), {lo_.x() + (c + 0.5) / in_row * (hi_.x() - lo_.x()),
                                          lo_.y() + (r + 0.5) / rows * (hi_.y() - lo_.y()), 1.0});
+        if (s.uniform_output) initial_.pop_back();
       }
       return;
     }
     // Array: per axis an offset (first centre) and a spacing, each fixed or searched.
-    const Eigen::Vector2d surface_min = lo_ - Eigen::Vector2d::Constant(0.5 * job.luminaire_size_m);
+    const Eigen::Vector2d surface_min = lo_ - s.type.half_footprint_m(s.rotation_deg);
     const int counts[2] = {s.array_columns, s.array_rows};
     for (int axis = 0; axis < 2; ++axis) {
       Axis& a = axes_[axis];
@@ -119,9 +126,10 @@ class LayoutCoding {
     xy.resize(static_cast<std::size_t>(n_));
     w.resize(static_cast<std::size_t>(n_));
     if (job_.search->layout == LayoutFamily::free) {
+      const int k = per_luminaire_;
       for (int j = 0; j < n_; ++j) {
-        xy[static_cast<std::size_t>(j)] = Eigen::Vector2d(x[3 * j], x[3 * j + 1]);
-        w[static_cast<std::size_t>(j)] = x[3 * j + 2];
+        xy[static_cast<std::size_t>(j)] = Eigen::Vector2d(x[k * j], x[k * j + 1]);
+        w[static_cast<std::size_t>(j)] = k == 3 ? x[k * j + 2] : 1.0;
       }
       return;
     }
@@ -150,6 +158,7 @@ class LayoutCoding {
   };
   const JobConfig& job_;
   int n_ = 0;
+  int per_luminaire_ = 3;  // free layout: variables per luminaire (x, y and, unless uniform, w)
   Eigen::Vector2d lo_, hi_;
   Axis axes_[2];
   std::vector<double> lower_, upper_, initial_;

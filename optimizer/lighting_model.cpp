@@ -19,14 +19,17 @@ int find_goal_area(const LightingModel& model, const std::string& name) {
 
 namespace {
 
-CandidateGrid make_grid(const Scene& scene, const LuminaireSearch& search, double size_m) {
+CandidateGrid make_grid(const Scene& scene, const LuminaireSearch& search) {
   const int surface = scene.find_surface(search.mounting_surface);
   if (surface < 0)
     throw ConfigError(located(search.mounting_loc, "luminaires.mounting_surface: unknown surface '" +
                                                        search.mounting_surface + "'"));
   try {
     return CandidateGrid(scene, surface,
-                         {.spacing_m = search.candidate_spacing_m, .luminaire_size_m = size_m,
+                         {.spacing_m = search.candidate_spacing_m,
+                          .half_footprint_m = search.type.half_footprint_m(search.rotation_deg),
+                          .wall_distance_m = search.wall_distance_m,
+                          .module_m = search.ceiling_module_m,
                           .mount_offset_m = search.mount_offset_m});
   } catch (const std::invalid_argument& e) {
     throw ConfigError(located(search.mounting_loc, std::string("luminaires.mounting_surface: ") + e.what()));
@@ -41,7 +44,7 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& j
   const LuminaireSearch& search = *job.search;
   LightingModel model;
   model.scene = job_scene;
-  model.grid = make_grid(job_scene, search, job.luminaire_size_m);
+  model.grid = make_grid(job_scene, search);
 
   // Fixed sources first, in the job scene's order; then one candidate per grid position.
   const std::vector<LightSource> fixed = scene_light_sources(job_scene);
@@ -50,8 +53,8 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& j
     if (job_scene.surfaces[static_cast<std::size_t>(fixed[l].surface)].is_luminaire())
       model.fixed_flux_lm += fixed_flux[static_cast<Eigen::Index>(l)];
   for (std::size_t c = 0; c < model.grid.size(); ++c) {
-    const int surface = add_square_luminaire(model.scene, std::string("candidate ").append(std::to_string(c + 1)),
-                                             model.grid.positions_m()[c], job.luminaire_size_m, 0.0);
+    const int surface = add_luminaire(model.scene, std::string("candidate ").append(std::to_string(c + 1)), search.type,
+                                      {model.grid.positions_m()[c], search.rotation_deg}, 0.0);
     model.scene.surfaces[static_cast<std::size_t>(surface)].is_virtual = true;
   }
 

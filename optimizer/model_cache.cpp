@@ -185,6 +185,9 @@ std::string key_text(const JobConfig& job) {
 
   // Luminaires: the placed ones and the candidates' grid.
   t << "luminaire size " << job.luminaire_size_m << "\n";
+  if (job.search)
+    t << job.search->type.key() << " rotation " << job.search->rotation_deg << " wall " << job.search->wall_distance_m
+      << " module " << job.search->ceiling_module_m << "\n";
   for (const LuminaireSetting& l : job.luminaires) {
     t << "placed ";
     put(t, l.name);

@@ -113,14 +113,45 @@ std::string legend(const ColourScale& scale, const Eigen::VectorXd& lux, double 
   return svg;
 }
 
-// Square, cross and labels of one luminaire; labels go left of the square when they
-// would leave the plan on the right.
+// The luminaire's outline in the plane: its real one, or a square of size_m.
+std::vector<Eigen::Vector2d> plan_outline_m(const PlanLuminaire& l) {
+  if (!l.outline_m.empty()) return l.outline_m;
+  const Eigen::Vector2d c = l.position_m.head<2>();
+  const double h = 0.5 * l.size_m;
+  return {c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h), c + Eigen::Vector2d(h, h), c + Eigen::Vector2d(-h, h)};
+}
+
+// Outline, a cross through it and labels of one luminaire (a tiny one is drawn at
+// least kMinLuminaire_px across); labels go left of it when they would leave the plan
+// on the right.
 std::string luminaire(const Frame& f, const PlanLuminaire& l) {
   const double cx = f.x_px(l.position_m.x()), cy = f.y_px(l.position_m.y());
-  const double half = 0.5 * std::max(l.size_m * f.scale_px_per_m, kMinLuminaire_px);
-  const double x0 = cx - half, x1 = cx + half, y0 = cy - half, y1 = cy + half;
-  const std::string d = cat('M', xy(x0, y0), 'H', px(x1), 'V', px(y1), 'H', px(x0), "Z M", xy(x0, y0), 'L', xy(x1, y1),
-                            'M', xy(x0, y1), 'L', xy(x1, y0));
+  std::vector<Eigen::Vector2d> outline_px;
+  double x0 = cx, x1 = cx, y0 = cy, y1 = cy;
+  for (const Eigen::Vector2d& v : plan_outline_m(l)) {
+    outline_px.emplace_back(f.x_px(v.x()), f.y_px(v.y()));
+    x0 = std::min(x0, outline_px.back().x());
+    x1 = std::max(x1, outline_px.back().x());
+    y0 = std::min(y0, outline_px.back().y());
+    y1 = std::max(y1, outline_px.back().y());
+  }
+  const double grow = std::max(1.0, kMinLuminaire_px / std::max(1e-9, std::max(x1 - x0, y1 - y0)));
+  std::string d;
+  for (std::size_t k = 0; k < outline_px.size(); ++k) {
+    const Eigen::Vector2d q = Eigen::Vector2d(cx, cy) + grow * (outline_px[k] - Eigen::Vector2d(cx, cy));
+    d += cat(k == 0 ? "M" : "L", xy(q.x(), q.y()));
+  }
+  x0 = cx - grow * (cx - x0);
+  x1 = cx + grow * (x1 - cx);
+  y0 = cy - grow * (cy - y0);
+  y1 = cy + grow * (y1 - cy);
+  // The cross along the outline's first two edges' directions (the luminaire's axes).
+  const Eigen::Vector2d a = 0.5 * grow * (outline_px[1] - outline_px[0]), b = 0.5 * grow * (outline_px.back() - outline_px[0]);
+  if (outline_px.size() == 4)
+    d += cat("Z M", xy(cx - a.x() - b.x(), cy - a.y() - b.y()), 'L', xy(cx + a.x() + b.x(), cy + a.y() + b.y()), 'M',
+             xy(cx + a.x() - b.x(), cy + a.y() - b.y()), 'L', xy(cx - a.x() + b.x(), cy - a.y() + b.y()));
+  else
+    d += cat("Z M", xy(x0, cy), 'L', xy(x1, cy), 'M', xy(cx, y0), 'L', xy(cx, y1));
   const std::string flux = cat(significant(l.flux_lm), " lm");
   const double label_px = std::max(label_width_px(l.id), label_width_px(flux));
   const bool left = x1 + 4.0 + label_px > f.left_px + f.width_px() && x0 - 4.0 - label_px >= f.left_px;
@@ -129,8 +160,8 @@ std::string luminaire(const Frame& f, const PlanLuminaire& l) {
   const Eigen::Vector3d& p = l.position_m;
   constexpr std::string_view kHalo = " fill=\"#111111\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\"";
   return cat("<g>\n<title>",
-             xml_escape(cat(l.id, ": ", flux, ", ", significant(l.size_m), " m square at (", significant(p.x()), ", ",
-                            significant(p.y()), ", ", significant(p.z()), ") m")),
+             xml_escape(cat(l.id, ": ", l.product.empty() ? cat(significant(l.size_m), " m square") : l.product, ", ",
+                            flux, " at (", significant(p.x()), ", ", significant(p.y()), ", ", significant(p.z()), ") m")),
              "</title>\n",
              // A dark line on a white halo, and dark text on a white halo: legible on
              // every colour of the map.
@@ -152,8 +183,7 @@ std::string render_plan_svg(const Scene& scene, const PlanView& view) {
   Eigen::AlignedBox2d extent_m = frame_m;
   for (int p : view.goal_patches) extend(extent_m, scene.patches[p]);
   for (const PlanLuminaire& l : view.luminaires) {
-    const Eigen::Vector2d c = l.position_m.head<2>(), h = Eigen::Vector2d::Constant(0.5 * l.size_m);
-    extent_m.extend(c - h).extend(c + h);
+    for (const Eigen::Vector2d& v : plan_outline_m(l)) extent_m.extend(v);
   }
 
   Frame f;

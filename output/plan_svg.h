@@ -14,8 +14,12 @@ namespace ilp {
 struct PlanLuminaire {
   std::string id;                                        // label (plain text; escaped on output)
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // centre; z is not drawn
-  double size_m = 0.0;                                   // side of the square
+  double size_m = 0.0;                                   // side of the square (when outline_m is empty)
   double flux_lm = 0.0;
+  // The opening's real outline in the plane, scene frame (a rotated rectangle, a disc's
+  // polygon); empty: a square of size_m.
+  std::vector<Eigen::Vector2d> outline_m;
+  std::string product;                                   // shown in the tooltip when given
 };
 
 struct PlanView {

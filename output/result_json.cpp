@@ -22,8 +22,24 @@ json to_json(const ResultRecord& r) {
   j["objective"] = r.objective;
   j["luminaires"] = json::array();
   for (const LuminaireRecord& l : r.luminaires)
-    j["luminaires"].push_back(
-        {{"id", l.id}, {"x_m", l.x_m}, {"y_m", l.y_m}, {"z_m", l.z_m}, {"flux_lm", l.flux_lm}, {"power_w", l.power_w}});
+    j["luminaires"].push_back({{"id", l.id},
+                               {"product", l.product},
+                               {"x_m", l.x_m},
+                               {"y_m", l.y_m},
+                               {"z_m", l.z_m},
+                               {"rotation_deg", l.rotation_deg},
+                               {"flux_lm", l.flux_lm},
+                               {"power_w", l.power_w}});
+  j["bill_of_materials"] = json::array();
+  for (const BillLine& b : r.bill_of_materials)
+    j["bill_of_materials"].push_back({{"product", b.product},
+                                      {"source", b.source},
+                                      {"count", b.count},
+                                      {"rated_flux_lm", b.rated_flux_lm},
+                                      {"unit_power_w", b.unit_power_w},
+                                      {"output_fraction", b.output_fraction},
+                                      {"total_power_w", b.total_power_w}});
+  j["variants"] = r.variants;
   j["goals"] = json::array();
   for (const GoalRecord& g : r.goals) {
     json goal = {{"name", g.name},     {"surfaces", g.surfaces}, {"metric", g.metric},
@@ -69,7 +85,15 @@ ResultRecord from_json(const json& j) {
   r.objective = j.at("objective").get<std::string>();
   for (const json& l : j.at("luminaires"))
     r.luminaires.push_back({l.at("id").get<std::string>(), l.at("x_m").get<double>(), l.at("y_m").get<double>(),
-                            l.at("z_m").get<double>(), l.at("flux_lm").get<double>(), l.at("power_w").get<double>()});
+                            l.at("z_m").get<double>(), l.at("flux_lm").get<double>(), l.at("power_w").get<double>(),
+                            l.value("product", std::string()), l.value("rotation_deg", 0.0)});
+  if (j.contains("bill_of_materials"))
+    for (const json& b : j.at("bill_of_materials"))
+      r.bill_of_materials.push_back({b.at("product").get<std::string>(), b.at("source").get<std::string>(),
+                                     b.at("count").get<int>(), b.at("rated_flux_lm").get<double>(),
+                                     b.at("unit_power_w").get<double>(), b.at("output_fraction").get<double>(),
+                                     b.at("total_power_w").get<double>()});
+  r.variants = j.value("variants", std::vector<std::string>());
   for (const json& g : j.at("goals")) {
     GoalRecord goal;
     goal.name = g.at("name").get<std::string>();
@@ -154,13 +178,26 @@ void print_result(std::ostream& os, const ResultRecord& r) {
   }
   os << (r.all_met ? "Optimal layout (" : "Closest layout found (") << r.objective << ", " << r.luminaires.size()
      << " luminaires)\n";
+  bool products = false;
+  for (const LuminaireRecord& l : r.luminaires) products = products || !l.product.empty();
   os << std::right << std::setw(6) << "id" << std::setw(9) << "x m" << std::setw(9) << "y m" << std::setw(9) << "z m"
-     << std::setw(11) << "flux lm" << std::setw(10) << "power W" << "\n";
+     << std::setw(11) << "flux lm" << std::setw(10) << "power W";
+  if (products) os << std::setw(7) << "rot °" << "  product";
+  os << "\n";
   double flux = 0.0;
   for (const LuminaireRecord& l : r.luminaires) {
     os << std::setw(6) << l.id << std::setw(9) << fixed(l.x_m, 3) << std::setw(9) << fixed(l.y_m, 3) << std::setw(9)
-       << fixed(l.z_m, 3) << std::setw(11) << fixed(l.flux_lm, 1) << std::setw(10) << fixed(l.power_w, 2) << "\n";
+       << fixed(l.z_m, 3) << std::setw(11) << fixed(l.flux_lm, 1) << std::setw(10) << fixed(l.power_w, 2);
+    if (products) os << std::setw(7) << fixed(l.rotation_deg, 0) << "  " << l.product;
+    os << "\n";
     flux += l.flux_lm;
+  }
+  if (!r.bill_of_materials.empty()) {
+    os << "Bill of materials:\n";
+    for (const BillLine& b : r.bill_of_materials)
+      os << "  " << b.count << " x " << b.product << " (" << fixed(b.rated_flux_lm, 0) << " lm, "
+         << fixed(b.unit_power_w, 1) << " W each" << (b.output_fraction < 1.0 - 1e-9 ? ", set to " + fixed(100.0 * b.output_fraction, 1) + " %" : "")
+         << "; " << b.source << "): " << fixed(b.total_power_w, 1) << " W\n";
   }
   os << "Total power " << fixed(r.power_w, 1) << " W for " << fixed(flux, 0) << " lm; power density "
      << fixed(r.power_density_w_per_m2, 2) << " W/m² over " << fixed(r.mounting_area_m2, 2) << " m² of mounting surface\n";

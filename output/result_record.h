@@ -15,6 +15,19 @@ struct LuminaireRecord {
   double x_m = 0.0, y_m = 0.0, z_m = 0.0;  // centre of the emitting face
   double flux_lm = 0.0;
   double power_w = 0.0;
+  std::string product;      // the product's name ("" for the plain panel)
+  double rotation_deg = 0.0;
+};
+
+// One line of the bill of materials: a product and how many of it the layout uses.
+struct BillLine {
+  std::string product;
+  std::string source;       // the photometric file, or "square_lambertian"
+  int count = 0;
+  double rated_flux_lm = 0.0;
+  double unit_power_w = 0.0;   // at full output
+  double output_fraction = 1.0;  // the output they are set to (dimming), of the rated
+  double total_power_w = 0.0;    // as set
 };
 
 struct GoalRecord {
@@ -67,6 +80,8 @@ struct ResultRecord {
   bool time_limited = false;
   std::vector<std::pair<std::string, double>> timings_s;  // phase, seconds, in order
   std::vector<AttemptRecord> attempts;
+  std::vector<BillLine> bill_of_materials;
+  std::vector<std::string> variants;        // each product and rotation tried, with its outcome
 };
 
 // Throws std::runtime_error naming the file on unreadable or malformed input.

@@ -251,7 +251,7 @@ TEST(DirectLight, ADiscOpeningUnderItsAxisMatchesTheDiscClosedForm) {
   // E = pi L R^2 / (R^2 + h^2) with L = 1 / (pi A): lux per lm = R^2 / (A (R^2 + h^2)).
   Scene scene = floor_scene();
   LuminaireType disc = LuminaireType::square_lambertian(1.0);
-  disc.shape = OpeningShape::disc;
+  disc.shape = OutlineShape::disc;
   add_luminaire(scene, "disc", disc, {V(0, 0, 1.0), 0.0}, 1.0);
   const RayCaster caster(scene);
   const double R = 0.5, A = std::numbers::pi * R * R;

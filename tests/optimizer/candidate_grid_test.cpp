@@ -35,7 +35,7 @@ Scene ceiling_scene(const std::vector<Eigen::Vector4d>& rectangles) {
 
 TEST(CandidateGrid, CoversARectangleEvenly) {
   const Scene scene = ceiling_scene({Eigen::Vector4d(0, 6, 0, 4)});
-  const CandidateGrid grid(scene, scene.find_surface("ceiling"), {.spacing_m = 0.5, .luminaire_size_m = 0.6,
+  const CandidateGrid grid(scene, scene.find_surface("ceiling"), {.spacing_m = 0.5, .half_footprint_m = Eigen::Vector2d::Constant(0.3),
                                                                    .mount_offset_m = 0.05});
   // Centres in [0.3, 5.7] x [0.3, 3.7]: 5.4 / 0.5 -> 11 cells, 3.4 / 0.5 -> 7 cells.
   EXPECT_EQ(grid.nodes_x(), 12);
@@ -52,7 +52,7 @@ TEST(CandidateGrid, CoversARectangleEvenly) {
 
 TEST(CandidateGrid, BlendReproducesNodesAndLinearFunctions) {
   const Scene scene = ceiling_scene({Eigen::Vector4d(0, 6, 0, 4)});
-  const CandidateGrid grid(scene, 0, {.spacing_m = 0.5, .luminaire_size_m = 0.6, .mount_offset_m = 0.05});
+  const CandidateGrid grid(scene, 0, {.spacing_m = 0.5, .half_footprint_m = Eigen::Vector2d::Constant(0.3), .mount_offset_m = 0.05});
   // At a node: that candidate alone.
   const Eigen::Vector3d node = grid.positions_m()[13];
   const GridPoint at_node = grid.locate(node.head<2>());
@@ -92,7 +92,7 @@ TEST(CandidateGrid, BlendReproducesNodesAndLinearFunctions) {
 TEST(CandidateGrid, LShapedCeilingHasNoCandidatesOverTheGap) {
   // L: [0, 4] x [0, 2] and [0, 2] x [2, 4]; the square [2, 4] x [2, 4] is open.
   const Scene scene = ceiling_scene({Eigen::Vector4d(0, 4, 0, 2), Eigen::Vector4d(0, 2, 2, 4)});
-  const CandidateGrid grid(scene, 0, {.spacing_m = 0.4, .luminaire_size_m = 0.4, .mount_offset_m = 0.05});
+  const CandidateGrid grid(scene, 0, {.spacing_m = 0.4, .half_footprint_m = Eigen::Vector2d::Constant(0.2), .mount_offset_m = 0.05});
   for (const Eigen::Vector3d& p : grid.positions_m()) {
     const bool in_gap = p.x() + 0.2 > 2.0 + 1e-9 && p.y() + 0.2 > 2.0 + 1e-9;
     EXPECT_FALSE(in_gap) << "candidate at " << p.transpose() << " would overhang the open corner";
@@ -114,7 +114,7 @@ TEST(CandidateGrid, RejectsSurfacesThatCannotHoldALuminaire) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("'floor' has no patch facing down"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(CandidateGrid(scene, 0, {.spacing_m = 0.5, .luminaire_size_m = 7.0, .mount_offset_m = 0.05}),
+  EXPECT_THROW(CandidateGrid(scene, 0, {.spacing_m = 0.5, .half_footprint_m = Eigen::Vector2d::Constant(3.5), .mount_offset_m = 0.05}),
                std::invalid_argument);
 }
 

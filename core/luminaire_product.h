@@ -1,0 +1,61 @@
+// From the job's luminaire products (luminaires.products) to the variants a search
+// tries: each product at each of its rotations, with its luminaire type (the
+// photometric file's distribution and opening, or the square Lambertian panel), its
+// rated lumens and watts, its dimming range and maintenance factor.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/config.h"
+#include "core/luminaire.h"
+#include "core/photometry.h"
+
+namespace ilp {
+
+// A photometric file's candela web as a luminaire distribution, per lumen of its flux.
+// The file's smooth interpolant (Photometry::intensity_cd) is sampled once on a fine
+// table (every 1 degree of C, 0.25 degree of gamma) that lookups read bilinearly: the
+// direct light asks millions of times, and the table is ~20x cheaper than the cubic.
+class PhotometricDistribution final : public IntensityDistribution {
+ public:
+  explicit PhotometricDistribution(std::shared_ptr<const Photometry> photometry);
+  double cd_per_lm(const Eigen::Vector3d& direction_local) const override;
+  std::string key() const override;
+  const Photometry& photometry() const { return *photometry_; }
+
+ private:
+  static constexpr int kCSteps = 360, kGammaSteps = 720;
+  std::shared_ptr<const Photometry> photometry_;
+  std::vector<double> table_;  // (kCSteps + 1) x (kGammaSteps + 1), cd per lm
+};
+
+// The luminaire type of a photometric file: its distribution and its luminous opening
+// (a rectangle, or a disc for round, cylindrical and point openings; a point source
+// gets a 0.1 m disc so that it has an outline that shades and can be drawn).
+LuminaireType photometric_luminaire_type(const std::string& name, std::shared_ptr<const Photometry> photometry);
+
+struct ProductVariant {
+  std::string product;     // the product's name
+  std::string source;      // the photometric file, or "square_lambertian"
+  LuminaireType type;
+  double rotation_deg = 0.0;
+  double rated_flux_lm = 0.0;  // at full output
+  double power_w = 0.0;        // at full output
+  double dim_min = 1.0, dim_max = 1.0;  // the output range, fractions of rated_flux_lm
+  double maintenance_factor = 1.0;
+  std::vector<std::string> notes;  // the file's warnings, what was taken from where
+};
+
+// Every product at every rotation, in the job's order. Throws ConfigError naming the
+// config's file:line and key for a photometric file that cannot be read (with the
+// file's own line and field) or that lacks what the product needs (watts).
+std::vector<ProductVariant> product_variants(const LuminaireSearch& search);
+
+// `job` with its search set to one variant: the type, rotation, product name, a flux
+// range of the dimming range x the rated output, the efficacy of rated lumens per
+// watt, and one output for every luminaire of a layout.
+JobConfig job_for_variant(const JobConfig& job, const ProductVariant& variant);
+
+}  // namespace ilp
