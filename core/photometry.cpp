@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -610,7 +611,7 @@ Photometry parse_ies(std::string_view raw, const std::string& path) {
   p.opening = ies_opening(width, length, height, p);
   finish(p, data_line);
   p.lamp_sets.push_back(LampSet{static_cast<int>(lamps), "", p.lamp_flux_lm, "", "", p.input_power_w});
-  if (!p.absolute && p.luminaire_flux_lm > 1.02 * p.lamp_flux_lm) {
+  if (!p.absolute && p.lamp_flux_lm > 0 && p.luminaire_flux_lm > 1.02 * p.lamp_flux_lm) {
     warn(p, "the web integrates to " + fmt(p.luminaire_flux_lm) + " lm, more than the stated lamp flux " +
                 fmt(p.lamp_flux_lm) + " lm (light output ratio " + fmt(p.luminaire_flux_lm / p.lamp_flux_lm) + " > 1)");
   }
@@ -868,6 +869,10 @@ Photometry parse_eulumdat(std::string_view raw, const std::string& path) {
 // ------------------------------------------------------------------ public: loading, flux, intensity
 
 Photometry load_photometry(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw PhotometryError(path + (std::filesystem::exists(path, ec) ? ": not a regular file" : ": no such photometric file"));
+  }
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw PhotometryError(path + ": cannot open the photometric file");
   const std::streamoff size = in.tellg();

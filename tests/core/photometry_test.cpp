@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <numbers>
 #include <sstream>
@@ -424,6 +425,23 @@ TEST(PhotometryInterpolation, ReproducesTheFileAtItsNodes) {
   }
 }
 
+TEST(PhotometryInterpolation, SmoothDistributionsBetweenPlanes) {
+  // I = 100 + 50 cos(C - 20) on 15-degree planes: the cubic through the parabola slopes is
+  // within 0.05 cd between planes (flat slopes would be off by ~0.8 cd, linear by ~0.4 cd).
+  const auto f = [](double c, double) { return 100 + 50 * cosd(c - 20); };
+  const Photometry p = parse_ies(make_ies(steps(0, 180, 5), steps(0, 360, 15), f), "wave.ies");
+  double worst = 0;
+  for (double c = 0.5; c < 360; c += 2.5) worst = std::max(worst, std::abs(p.intensity_cd(c, 40) - f(c, 40)));
+  EXPECT_LT(worst, 0.05);
+  // The same wave in gamma, 15 degrees of phase a step: PCHIP is within 0.13 cd (it flattens
+  // at the extrema; linear would be off by 0.42 cd).
+  const auto h = [](double, double g) { return 100 + 50 * cosd(3 * g); };
+  const Photometry q = parse_ies(make_ies(steps(0, 180, 5), {0}, h), "gamma_wave.ies");
+  worst = 0;
+  for (double g = 0.3; g < 180; g += 1.1) worst = std::max(worst, std::abs(q.intensity_cd(0, g) - h(0, g)));
+  EXPECT_LT(worst, 0.15);
+}
+
 TEST(PhotometryInterpolation, ShapePreservingAndContinuouslyDifferentiable) {
   const Photometry p = load_photometry(shared_file("renderpipeline/area_light.ies"));
   // Between two nodes the value stays within them (no overshoot), never below 0.
@@ -528,6 +546,13 @@ TEST(PhotometryLayout, LineEndingsBomAndExtensions) {
   const std::string one_line = old.substr(0, data) + replace_all(old.substr(data), "\n", " ");
   EXPECT_DOUBLE_EQ(parse_ies(one_line, "one line").luminaire_flux_lm, parse_ies(old, "old").luminaire_flux_lm);
   EXPECT_THROW(load_photometry(dir.file("missing.ies")), PhotometryError);
+  std::filesystem::create_directories(dir.file("folder.ies"));
+  try {
+    load_photometry(dir.file("folder.ies"));
+    ADD_FAILURE() << "a folder was read";
+  } catch (const PhotometryError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
 }
 
 TEST(PhotometryLayout, Iso88591TextBecomesUtf8) {
