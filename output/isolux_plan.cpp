@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <numbers>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -123,12 +126,12 @@ std::vector<V2> luminaire_outline_m(const IsoluxLuminaire& l) {
   if (l.round) {
     constexpr int kSides = 48;
     for (int k = 0; k < kSides; ++k) {
-      const double a = 2.0 * M_PI * k / kSides;
+      const double a = 2.0 * std::numbers::pi * k / kSides;
       out.push_back(l.centre_m + 0.5 * l.length_m * V2(std::cos(a), std::sin(a)));
     }
     return out;
   }
-  const double a = l.rotation_deg * M_PI / 180.0;
+  const double a = l.rotation_deg * std::numbers::pi / 180.0;
   const V2 u(std::cos(a), std::sin(a)), w(-std::sin(a), std::cos(a));
   const V2 hu = 0.5 * l.length_m * u, hw = 0.5 * l.width_m * w;
   return {l.centre_m - hu - hw, l.centre_m + hu - hw, l.centre_m + hu + hw, l.centre_m - hu + hw};
@@ -198,7 +201,7 @@ struct Placer {
   }
 };
 
-void place_luminaire_labels(const IsoluxGridView& v, const svg::PlanFrame& f, Placer& placer,
+void place_luminaire_labels(const IsoluxGridView& v, Placer& placer,
                             const std::vector<Box>& outlines_px) {
   for (std::size_t k = 0; k < v.luminaires.size(); ++k) {
     const std::string& id = v.luminaires[k].id;
@@ -217,7 +220,6 @@ void place_luminaire_labels(const IsoluxGridView& v, const svg::PlanFrame& f, Pl
       }
     }
   }
-  (void)f;
 }
 
 // A polyline in px with its cumulative arc length.
@@ -282,7 +284,7 @@ void place_beside(const PxLine& l, std::size_t own, const std::vector<PxLine>& l
   const V2 at = point_at(l, 0.5 * length);
   const Box probe = text_box(at, text, kContourFont_px, 3.0);
   const V2 half = 0.5 * probe.sizes() + V2::Constant(2.0);
-  for (const V2 dir : {V2(1, 0), V2(-1, 0), V2(0, -1), V2(0, 1), V2(1, -1), V2(-1, -1), V2(1, 1), V2(-1, 1)}) {
+  for (const V2& dir : {V2(1, 0), V2(-1, 0), V2(0, -1), V2(0, 1), V2(1, -1), V2(-1, -1), V2(1, 1), V2(-1, 1)}) {
     const Box b = text_box(at + dir.cwiseProduct(half), text, kContourFont_px, 3.0);
     if (!placer.fits(b) || crosses_other_line(b, lines, own) || crosses_own_line_elsewhere(b, l, -1.0, 0.0)) continue;
     placer.labels->push_back({IsoluxLabel::Kind::contour, text, b, false});
@@ -556,7 +558,7 @@ IsoluxLayout isolux_plan_layout(const IsoluxGridView& v) {
     outlines_px.push_back(b);
   }
   Placer placer{frame_box_px(f), outlines_px, &layout.labels};
-  place_luminaire_labels(v, f, placer, outlines_px);
+  place_luminaire_labels(v, placer, outlines_px);
   std::vector<PxLine> lines;
   for (const ContourLine& line : layout.lines) lines.push_back(to_px(line, f));
   place_contour_labels(lines, layout.reference_lux, placer);

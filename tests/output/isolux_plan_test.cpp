@@ -17,6 +17,7 @@
 
 #include "output/colour_map.h"
 #include "output/svg_plan_parts.h"
+#include "output/svg_text.h"
 #include "tests/output/isolux_demo.h"
 #include "tests/output/png_checks.h"
 #include "tests/output/svg_checks.h"
@@ -91,7 +92,7 @@ struct PxToM {
   V2 operator()(const V2& q) const { return anchor_m + V2(q.x() - anchor_px.x(), anchor_px.y() - q.y()) / scale; }
 };
 
-std::string cat_points(int n) { return ">" + std::to_string(n) + " points; values at every 2nd point</text>"; }
+std::string cat_points(int n) { return ilp::svg::cat(">", std::to_string(n), " points; values at every 2nd point</text>"); }
 
 TEST(IsoluxLevels, AreFractionsOfTheTargetRoundedToTwoDigits) {
   EXPECT_EQ(isolux_levels(500.0), (std::vector<double>{250, 300, 350, 400, 500, 600, 750, 1000}));
@@ -158,7 +159,7 @@ TEST(IsoluxPlan, ColourScaleIsTiedToTheTargetNotToAHotSpot) {
   int changed = 0;
   for (std::size_t k = 0; k < a.size(); ++k) changed += a[k] != b[k];
   EXPECT_EQ(changed, 1);
-  EXPECT_EQ(b[0], "fill=\"" + svg_colour(colour_map(1.0)) + "\"");  // the hot cell: the top colour
+  EXPECT_EQ(b[0], ilp::svg::cat("fill=\"", svg_colour(colour_map(1.0)), "\""));  // the hot cell: the top colour
 }
 
 TEST(IsoluxPlan, TargetLevelsLinesAreDrawnThickerAndAllLevelsInRangeAppear) {
@@ -237,7 +238,7 @@ TEST(IsoluxPlan, CrowdedPlanStillHasNoOverlappingLabels) {
     }
   v.luminaires.clear();
   for (int k = 0; k < 24; ++k)
-    v.luminaires.push_back({"luminaire-" + std::to_string(k), "", V2(0.6 + 0.22 * k, 2.0 + 0.3 * (k % 3)), 0.6, 0.1,
+    v.luminaires.push_back({ilp::svg::cat("luminaire-", std::to_string(k)), "", V2(0.6 + 0.22 * k, 2.0 + 0.3 * (k % 3)), 0.6, 0.1,
                             15.0 * k, k % 4 == 0});
   const IsoluxLayout layout = isolux_plan_layout(v);
   EXPECT_TRUE(LabelsApart(layout));
@@ -270,7 +271,7 @@ TEST(IsoluxPlan, LuminairesAreDrawnAtTheirRealSizeAndOrientation) {
   const std::string svg = isolux_plan_svg(v);
   const double s = layout.scale_px_per_m;
   // The disc: a circle of radius 0.3 m.
-  EXPECT_TRUE(Contains(svg, "r=\"" + ilp::svg::px(0.3 * s) + "\""));
+  EXPECT_TRUE(Contains(svg, ilp::svg::cat("r=\"", ilp::svg::px(0.3 * s), "\"")));
   // The rotated rectangle: 0.3 m wide (x) and 1.2 m tall (y) on the plan.
   const std::size_t at = svg.find("<title>long: 1.2 x 0.3 m at 90 deg");
   ASSERT_NE(at, std::string::npos);
