@@ -46,6 +46,7 @@ constexpr double kValueGap_px = 44.0;         // least distance between neighbou
 constexpr double kContourLabelEvery_px = 260.0;
 constexpr double kCandidateStep_px = 8.0;     // how far along a line label spots are tried
 constexpr double kFillOpacity = 0.6;          // the fill stays light enough for dark lines and text
+constexpr double kMaxExtent_m = 1e5;           // a plan wider than 100 km is an input error
 constexpr double kPadding_fraction = 0.03;    // the frame's margin around what is drawn
 constexpr std::string_view kGradientId = "ilp-isolux-lux";
 constexpr std::string_view kClipId = "ilp-isolux-room";
@@ -152,6 +153,9 @@ svg::PlanFrame make_frame(const IsoluxGridView& v, double top_px) {
   for (const IsoluxLuminaire& l : v.luminaires)
     for (const V2& p : luminaire_outline_m(l)) extent.extend(p);
   if (extent.isEmpty()) extent = Box(V2::Zero(), V2::Ones());
+  if (!extent.sizes().allFinite() || extent.sizes().maxCoeff() > kMaxExtent_m)
+    throw std::invalid_argument(cat("isolux plan '", v.name, "': the grid, room and luminaires span more than ",
+                                    fixed(kMaxExtent_m, 0), " m"));
   const double pad = std::max(1e-3, kPadding_fraction * extent.sizes().maxCoeff());
   extent.min() -= V2::Constant(pad);
   extent.max() += V2::Constant(pad);
@@ -175,7 +179,7 @@ PlanGeometry plan_geometry(const IsoluxGridView& v) {
   g.frame = make_frame(v, g.top_px);
   g.bar_px = std::clamp(g.frame.height_px() - 220.0, 160.0, 320.0);
   g.width_px = g.frame.left_px + g.frame.width_px() + kGap_px + kLegendColumn_px;
-  constexpr double kLegendBelowBar_px = 24.0 + 7 * 16.0 + 60.0;  // rows of text, then the north arrow
+  constexpr double kLegendBelowBar_px = 24.0 + 9 * 16.0 + 60.0;  // rows of text, then the north arrow
   g.height_px = g.top_px + std::max(g.frame.height_px(), 40.0 + g.bar_px + kLegendBelowBar_px) + kBottom_px;
   return g;
 }
@@ -332,8 +336,14 @@ void place_contour_labels(const std::vector<PxLine>& lines, double reference_lux
 int centred_start(int n, int step) { return n > 0 ? ((n - 1) % step) / 2 : 0; }
 
 void place_value_labels(const IsoluxGridView& v, const svg::PlanFrame& f, IsoluxLayout& layout, Placer& placer) {
-  layout.value_step_x = std::max(1, static_cast<int>(std::ceil(kValueGap_px / (v.spacing_m.x() * f.scale_px_per_m) - 1e-9)));
-  layout.value_step_y = std::max(1, static_cast<int>(std::ceil(kValueGap_px / (v.spacing_m.y() * f.scale_px_per_m) - 1e-9)));
+  // Capped at the grid's size (one value at most along that axis), which also keeps the
+  // conversion to int in range for a spacing that is tiny on the plan.
+  const auto step = [&](double spacing_m, int n) {
+    const double wanted = std::ceil(kValueGap_px / (spacing_m * f.scale_px_per_m) - 1e-9);
+    return static_cast<int>(std::clamp(wanted, 1.0, static_cast<double>(std::max(n, 1))));
+  };
+  layout.value_step_x = step(v.spacing_m.x(), v.nx);
+  layout.value_step_y = step(v.spacing_m.y(), v.ny);
   for (int j = centred_start(v.ny, layout.value_step_y); j < v.ny; j += layout.value_step_y)
     for (int i = centred_start(v.nx, layout.value_step_x); i < v.nx; i += layout.value_step_x) {
       const double lux = v.maintained_lux[static_cast<std::size_t>(j) * v.nx + i];
@@ -493,13 +503,18 @@ std::string legend(const IsoluxGridView& v, const IsoluxLayout& layout, double x
   if (layout.points > 0) row(cat("min ", lux_text(layout.min_lux), " lx, max ", lux_text(layout.max_lux), " lx"));
   if (above) row(cat("above ", lux_text(layout.scale.max_lux), " lx: top colour"));
   row("isolines (lx):");
-  std::string levels;
-  for (double level : layout.levels_lux) levels += cat(levels.empty() ? "" : " ", lux_text(level));
-  row(levels);
-  row(cat(std::to_string(layout.points), " points; values at ",
-          layout.value_step_x == layout.value_step_y
-              ? every(layout.value_step_x)
-              : cat(every(layout.value_step_x), " along x, ", every(layout.value_step_y), " along y")));
+  // Four levels a row, so that four-digit levels stay inside the column.
+  for (std::size_t first = 0; first < layout.levels_lux.size(); first += 4) {
+    std::string levels;
+    for (std::size_t k = first; k < std::min(first + 4, layout.levels_lux.size()); ++k)
+      levels += cat(levels.empty() ? "" : " ", lux_text(layout.levels_lux[k]));
+    row(levels);
+  }
+  row(cat(std::to_string(layout.points), " points, values at"));
+  row(layout.value_step_x == layout.value_step_y
+          ? every(layout.value_step_x)
+          : cat("every ", std::to_string(layout.value_step_x), " / ", std::to_string(layout.value_step_y),
+                " points (x / y)"));
   row("grey: no point (band, solid)");
   return svg;
 }

@@ -91,7 +91,8 @@ struct IsoluxLayout {
 // overlap one already placed (luminaire ids first, then isolines, then point values),
 // a luminaire outline or the plan's edge is left out. Throws std::invalid_argument for
 // maintained_lux not of nx * ny entries, a spacing not > 0, a target neither NaN nor
-// > 0, a maintenance factor outside (0, 1], or a non-finite coordinate or luminaire size.
+// > 0, a maintenance factor outside (0, 1], a non-finite coordinate or luminaire size, or
+// a drawing (grid, room and luminaires) more than 100 km across.
 IsoluxLayout isolux_plan_layout(const IsoluxGridView& view);
 
 // The plan as one standalone SVG document (deterministic, locale-independent):

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -92,7 +93,7 @@ struct PxToM {
   V2 operator()(const V2& q) const { return anchor_m + V2(q.x() - anchor_px.x(), anchor_px.y() - q.y()) / scale; }
 };
 
-std::string cat_points(int n) { return ilp::svg::cat(">", std::to_string(n), " points; values at every 2nd point</text>"); }
+std::string cat_points(int n) { return ilp::svg::cat(">", std::to_string(n), " points, values at</text>"); }
 
 TEST(IsoluxLevels, AreFractionsOfTheTargetRoundedToTwoDigits) {
   EXPECT_EQ(isolux_levels(500.0), (std::vector<double>{250, 300, 350, 400, 500, 600, 750, 1000}));
@@ -125,6 +126,9 @@ TEST(IsoluxPlan, OfficeDocumentIsWellFormedAndSaysWhatItShows) {
   EXPECT_EQ(layout.points, finite);
   EXPECT_EQ(count(group(svg, "cells"), "<rect "), static_cast<std::size_t>(finite));
   EXPECT_TRUE(Contains(svg, cat_points(finite)));
+  EXPECT_TRUE(Contains(svg, ">every 2nd point</text>"));
+  EXPECT_TRUE(Contains(svg, ">250 300 350 400</text>"));
+  EXPECT_TRUE(Contains(svg, ">500 600 750 1000</text>"));
 }
 
 TEST(IsoluxPlan, ColourScaleIsTiedToTheTargetNotToAHotSpot) {
@@ -331,6 +335,49 @@ TEST(IsoluxPlan, VerticalGridNamesItsAxesAndNeedsNoRoomOrLuminaires) {
   for (const ContourLine& l : layout.lines)
     for (const V2& p : l.points_m) EXPECT_NEAR(p.x(), 3.0 * (l.level - 200.0) / 200.0, 1e-9) << l.level;
   EXPECT_TRUE(LabelsApart(layout));
+}
+
+TEST(IsoluxPlan, RandomViewsNeverFailAndKeepTheirLabelsApart) {
+  // Fields with NaN and infinite values, luminaires anywhere (sizes up to the room's),
+  // spacings from 1 mm to 1 m, with or without a target: no exception, a well-formed
+  // document, labels apart. Seeded, so the same views every run.
+  std::mt19937 rng(20261201);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 40; ++trial) {
+    IsoluxGridView v;
+    v.name = ilp::svg::cat("random ", std::to_string(trial));
+    v.nx = 1 + static_cast<int>(unit(rng) * 40);
+    v.ny = 1 + static_cast<int>(unit(rng) * 40);
+    const double spacing = std::pow(10.0, -3.0 + 3.0 * unit(rng));
+    v.spacing_m = V2(spacing, spacing * (0.5 + unit(rng)));
+    v.origin_m = V2(unit(rng) * 10.0 - 5.0, unit(rng) * 10.0 - 5.0);
+    const double scale_lux = std::pow(10.0, 4.0 * unit(rng));
+    for (int k = 0; k < v.nx * v.ny; ++k) {
+      const double r = unit(rng);
+      v.maintained_lux.push_back(r < 0.1 ? kNaN : r < 0.12 ? std::numeric_limits<double>::infinity()
+                                                            : scale_lux * (0.5 + std::sin(0.3 * k) * unit(rng)));
+    }
+    const V2 size(v.nx * v.spacing_m.x(), v.ny * v.spacing_m.y());
+    v.room_outline_m = {{v.origin_m - 0.2 * size, v.origin_m + V2(1.2 * size.x(), -0.2 * size.y()),
+                         v.origin_m + 1.2 * size}};
+    for (int k = 0; k < static_cast<int>(unit(rng) * 12); ++k)
+      v.luminaires.push_back({ilp::svg::cat("L", std::to_string(k)), "",
+                              v.origin_m + V2(unit(rng) * size.x(), unit(rng) * size.y()), unit(rng) * size.x(),
+                              unit(rng) * size.y(), 360.0 * unit(rng), unit(rng) < 0.3});
+    if (unit(rng) < 0.7) v.target_lux = scale_lux * (0.2 + unit(rng));
+    v.maintenance_factor = 0.5 + 0.5 * unit(rng);
+    if (unit(rng) < 0.5) v.north_deg = 360.0 * unit(rng);
+    SCOPED_TRACE(ilp::svg::cat("trial ", std::to_string(trial)));
+    std::string svg;
+    ASSERT_NO_THROW(svg = isolux_plan_svg(v));
+    EXPECT_TRUE(WellFormed(svg));
+    EXPECT_FALSE(has_non_finite_number(svg));
+    EXPECT_TRUE(LabelsApart(isolux_plan_layout(v)));
+  }
+  // A luminaire far away makes the drawing too wide: an error, not a plan of specks.
+  IsoluxGridView far = test::office_isolux_view();
+  far.luminaires[0].centre_m = V2(1e9, 0.0);
+  EXPECT_THROW(isolux_plan_svg(far), std::invalid_argument);
 }
 
 TEST(IsoluxPlan, TextIsEscaped) {
