@@ -42,6 +42,7 @@ constexpr double kCharWidth_em = 0.62;        // DejaVu Sans digits are 0.636 em
 constexpr double kContourFont_px = 11.0;
 constexpr double kValueFont_px = 10.0;
 constexpr double kLuminaireFont_px = 11.0;
+constexpr double kMarker_px = 6.0;            // half the size of the min and max markers
 constexpr double kValueGap_px = 44.0;         // least distance between neighbouring point values
 constexpr double kContourLabelEvery_px = 260.0;
 constexpr double kCandidateStep_px = 8.0;     // how far along a line label spots are tried
@@ -136,6 +137,12 @@ std::vector<V2> luminaire_outline_m(const IsoluxLuminaire& l) {
   const V2 u(std::cos(a), std::sin(a)), w(-std::sin(a), std::cos(a));
   const V2 hu = 0.5 * l.length_m * u, hw = 0.5 * l.width_m * w;
   return {l.centre_m - hu - hw, l.centre_m + hu - hw, l.centre_m + hu + hw, l.centre_m - hu + hw};
+}
+
+// Where point k (= j nx + i) lies, in metres.
+V2 point_m(const IsoluxGridView& v, int k) {
+  const int i = k % v.nx, j = k / v.nx;
+  return v.origin_m + V2(i * v.spacing_m.x(), j * v.spacing_m.y());
 }
 
 Box cells_box_m(const IsoluxGridView& v) {
@@ -448,6 +455,25 @@ std::string luminaires_svg(const IsoluxGridView& v, const svg::PlanFrame& f) {
   return svg + "</g>\n";
 }
 
+// Triangles at the minimum's point (open, pointing down) and the maximum's (filled, up).
+std::string extreme_markers(const IsoluxGridView& v, const IsoluxLayout& layout, const svg::PlanFrame& f) {
+  std::string svg;
+  const double m = kMarker_px;
+  if (layout.min_point >= 0) {
+    const V2 c = f.to_px(point_m(v, layout.min_point));
+    svg += cat("<path class=\"min-marker\" d=\"M", xy(c.x() - m, c.y() - 0.6 * m), 'L', xy(c.x() + m, c.y() - 0.6 * m), 'L',
+               xy(c.x(), c.y() + m), "Z\" fill=\"white\" stroke=\"#111111\" stroke-width=\"1.5\"><title>min ",
+               lux_text(layout.min_lux), " lx</title></path>\n");
+  }
+  if (layout.max_point >= 0) {
+    const V2 c = f.to_px(point_m(v, layout.max_point));
+    svg += cat("<path class=\"max-marker\" d=\"M", xy(c.x() - m, c.y() + 0.6 * m), 'L', xy(c.x() + m, c.y() + 0.6 * m), 'L',
+               xy(c.x(), c.y() - m), "Z\" fill=\"#111111\" stroke=\"white\" stroke-width=\"1.5\"><title>max ",
+               lux_text(layout.max_lux), " lx</title></path>\n");
+  }
+  return svg;
+}
+
 std::string north_arrow(double north_deg, double cx, double cy) {
   return cat("<g transform=\"rotate(", fixed(north_deg, 3), ' ', xy(cx, cy), ")\">\n<path d=\"M", xy(cx, cy - 18.0),
              "L", xy(cx + 7.0, cy + 10.0), "L", xy(cx, cy + 5.0), "L", xy(cx - 7.0, cy + 10.0),
@@ -500,7 +526,8 @@ std::string legend(const IsoluxGridView& v, const IsoluxLayout& layout, double x
   };
   row(layout.reference_is_target ? cat("target Em ", lux_text(layout.reference_lux), " lx")
                                  : cat("no target: scale on Em ", lux_text(layout.reference_lux), " lx"));
-  if (layout.points > 0) row(cat("min ", lux_text(layout.min_lux), " lx, max ", lux_text(layout.max_lux), " lx"));
+  if (layout.points > 0)
+    row(cat("\u25bd min ", lux_text(layout.min_lux), " lx, \u25b2 max ", lux_text(layout.max_lux), " lx"));
   if (above) row(cat("above ", lux_text(layout.scale.max_lux), " lx: top colour"));
   row("isolines (lx):");
   // Four levels a row, so that four-digit levels stay inside the column.
@@ -538,12 +565,19 @@ IsoluxLayout isolux_plan_layout(const IsoluxGridView& v) {
   double sum = 0.0;
   layout.min_lux = std::numeric_limits<double>::infinity();
   layout.max_lux = -layout.min_lux;
-  for (double lux : v.maintained_lux) {
+  for (std::size_t k = 0; k < v.maintained_lux.size(); ++k) {
+    const double lux = v.maintained_lux[k];
     if (!std::isfinite(lux)) continue;
     ++layout.points;
     sum += lux;
-    layout.min_lux = std::min(layout.min_lux, lux);
-    layout.max_lux = std::max(layout.max_lux, lux);
+    if (lux < layout.min_lux) {
+      layout.min_lux = lux;
+      layout.min_point = static_cast<int>(k);
+    }
+    if (lux > layout.max_lux) {
+      layout.max_lux = lux;
+      layout.max_point = static_cast<int>(k);
+    }
   }
   if (layout.points == 0) layout.min_lux = layout.max_lux = std::numeric_limits<double>::quiet_NaN();
   layout.reference_is_target = !std::isnan(v.target_lux);
@@ -572,7 +606,13 @@ IsoluxLayout isolux_plan_layout(const IsoluxGridView& v) {
     b.extend(V2(b.center() - V2::Constant(3.0))).extend(V2(b.center() + V2::Constant(3.0)));
     outlines_px.push_back(b);
   }
-  Placer placer{frame_box_px(f), outlines_px, &layout.labels};
+  std::vector<Box> obstacles_px = outlines_px;
+  for (int point : {layout.min_point, layout.max_point})
+    if (point >= 0) {
+      const V2 c = f.to_px(point_m(v, point));
+      obstacles_px.emplace_back(c - V2::Constant(kMarker_px + 1.0), c + V2::Constant(kMarker_px + 1.0));
+    }
+  Placer placer{frame_box_px(f), obstacles_px, &layout.labels};
   place_luminaire_labels(v, placer, outlines_px);
   std::vector<PxLine> lines;
   for (const ContourLine& line : layout.lines) lines.push_back(to_px(line, f));
@@ -608,6 +648,7 @@ std::string isolux_plan_svg(const IsoluxGridView& v) {
   for (const ContourLine& line : layout.lines) lines.push_back(to_px(line, f));
   svg += isolines(lines, layout.reference_lux);
   svg += luminaires_svg(v, f);
+  svg += extreme_markers(v, layout, f);
   svg += labels_svg(layout.labels);
   svg += svg::plan_axes(f, v.x_label, v.y_label);
   svg += svg::plan_scale_bar(f);

@@ -166,6 +166,34 @@ TEST(IsoluxPlan, ColourScaleIsTiedToTheTargetNotToAHotSpot) {
   EXPECT_EQ(b[0], ilp::svg::cat("fill=\"", svg_colour(colour_map(1.0)), "\""));  // the hot cell: the top colour
 }
 
+TEST(IsoluxPlan, MinimumAndMaximumPointsAreMarkedAndNoLabelCoversThem) {
+  const IsoluxGridView v = test::office_isolux_view();
+  const IsoluxLayout layout = isolux_plan_layout(v);
+  ASSERT_GE(layout.min_point, 0);
+  ASSERT_GE(layout.max_point, 0);
+  EXPECT_DOUBLE_EQ(v.maintained_lux[layout.min_point], layout.min_lux);
+  EXPECT_DOUBLE_EQ(v.maintained_lux[layout.max_point], layout.max_lux);
+  for (double lux : v.maintained_lux)
+    if (std::isfinite(lux)) {
+      EXPECT_GE(lux, layout.min_lux);
+      EXPECT_LE(lux, layout.max_lux);
+    }
+  const std::string svg = isolux_plan_svg(v);
+  EXPECT_EQ(count(svg, "class=\"min-marker\""), 1u);
+  EXPECT_EQ(count(svg, "class=\"max-marker\""), 1u);
+  EXPECT_TRUE(Contains(svg, ilp::svg::cat("<title>min ", std::to_string(std::lround(layout.min_lux)), " lx</title>")));
+  // Each marker's apex, in px, from the point's place: metres -> px as the frame maps them.
+  const double pad = 0.03 * 6.0;
+  for (int point : {layout.min_point, layout.max_point}) {
+    const V2 p_m = v.origin_m + V2((point % v.nx) * v.spacing_m.x(), (point / v.nx) * v.spacing_m.y());
+    const V2 p_px(layout.plan_px.min().x() + (p_m.x() + pad) * layout.scale_px_per_m,
+                  layout.plan_px.max().y() - (p_m.y() + pad) * layout.scale_px_per_m);
+    const Eigen::AlignedBox2d marker(p_px - V2::Constant(6.0), p_px + V2::Constant(6.0));
+    for (const IsoluxLabel& l : layout.labels)
+      EXPECT_TRUE(l.box_px.intersection(marker).isEmpty()) << "label '" << l.text << "' covers a marker";
+  }
+}
+
 TEST(IsoluxPlan, TargetLevelsLinesAreDrawnThickerAndAllLevelsInRangeAppear) {
   const IsoluxGridView v = test::office_isolux_view();
   const IsoluxLayout layout = isolux_plan_layout(v);
