@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <numbers>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -39,10 +42,12 @@ constexpr double kCharWidth_em = 0.62;        // DejaVu Sans digits are 0.636 em
 constexpr double kContourFont_px = 11.0;
 constexpr double kValueFont_px = 10.0;
 constexpr double kLuminaireFont_px = 11.0;
+constexpr double kMarker_px = 6.0;            // half the size of the min and max markers
 constexpr double kValueGap_px = 44.0;         // least distance between neighbouring point values
 constexpr double kContourLabelEvery_px = 260.0;
 constexpr double kCandidateStep_px = 8.0;     // how far along a line label spots are tried
 constexpr double kFillOpacity = 0.6;          // the fill stays light enough for dark lines and text
+constexpr double kMaxExtent_m = 1e5;           // a plan wider than 100 km is an input error
 constexpr double kPadding_fraction = 0.03;    // the frame's margin around what is drawn
 constexpr std::string_view kGradientId = "ilp-isolux-lux";
 constexpr std::string_view kClipId = "ilp-isolux-room";
@@ -123,15 +128,21 @@ std::vector<V2> luminaire_outline_m(const IsoluxLuminaire& l) {
   if (l.round) {
     constexpr int kSides = 48;
     for (int k = 0; k < kSides; ++k) {
-      const double a = 2.0 * M_PI * k / kSides;
+      const double a = 2.0 * std::numbers::pi * k / kSides;
       out.push_back(l.centre_m + 0.5 * l.length_m * V2(std::cos(a), std::sin(a)));
     }
     return out;
   }
-  const double a = l.rotation_deg * M_PI / 180.0;
+  const double a = l.rotation_deg * std::numbers::pi / 180.0;
   const V2 u(std::cos(a), std::sin(a)), w(-std::sin(a), std::cos(a));
   const V2 hu = 0.5 * l.length_m * u, hw = 0.5 * l.width_m * w;
   return {l.centre_m - hu - hw, l.centre_m + hu - hw, l.centre_m + hu + hw, l.centre_m - hu + hw};
+}
+
+// Where point k (= j nx + i) lies, in metres.
+V2 point_m(const IsoluxGridView& v, int k) {
+  const int i = k % v.nx, j = k / v.nx;
+  return v.origin_m + V2(i * v.spacing_m.x(), j * v.spacing_m.y());
 }
 
 Box cells_box_m(const IsoluxGridView& v) {
@@ -149,6 +160,9 @@ svg::PlanFrame make_frame(const IsoluxGridView& v, double top_px) {
   for (const IsoluxLuminaire& l : v.luminaires)
     for (const V2& p : luminaire_outline_m(l)) extent.extend(p);
   if (extent.isEmpty()) extent = Box(V2::Zero(), V2::Ones());
+  if (!extent.sizes().allFinite() || extent.sizes().maxCoeff() > kMaxExtent_m)
+    throw std::invalid_argument(cat("isolux plan '", v.name, "': the grid, room and luminaires span more than ",
+                                    fixed(kMaxExtent_m, 0), " m"));
   const double pad = std::max(1e-3, kPadding_fraction * extent.sizes().maxCoeff());
   extent.min() -= V2::Constant(pad);
   extent.max() += V2::Constant(pad);
@@ -172,7 +186,7 @@ PlanGeometry plan_geometry(const IsoluxGridView& v) {
   g.frame = make_frame(v, g.top_px);
   g.bar_px = std::clamp(g.frame.height_px() - 220.0, 160.0, 320.0);
   g.width_px = g.frame.left_px + g.frame.width_px() + kGap_px + kLegendColumn_px;
-  constexpr double kLegendBelowBar_px = 24.0 + 7 * 16.0 + 60.0;  // rows of text, then the north arrow
+  constexpr double kLegendBelowBar_px = 24.0 + 9 * 16.0 + 60.0;  // rows of text, then the north arrow
   g.height_px = g.top_px + std::max(g.frame.height_px(), 40.0 + g.bar_px + kLegendBelowBar_px) + kBottom_px;
   return g;
 }
@@ -198,7 +212,7 @@ struct Placer {
   }
 };
 
-void place_luminaire_labels(const IsoluxGridView& v, const svg::PlanFrame& f, Placer& placer,
+void place_luminaire_labels(const IsoluxGridView& v, Placer& placer,
                             const std::vector<Box>& outlines_px) {
   for (std::size_t k = 0; k < v.luminaires.size(); ++k) {
     const std::string& id = v.luminaires[k].id;
@@ -217,7 +231,6 @@ void place_luminaire_labels(const IsoluxGridView& v, const svg::PlanFrame& f, Pl
       }
     }
   }
-  (void)f;
 }
 
 // A polyline in px with its cumulative arc length.
@@ -282,7 +295,7 @@ void place_beside(const PxLine& l, std::size_t own, const std::vector<PxLine>& l
   const V2 at = point_at(l, 0.5 * length);
   const Box probe = text_box(at, text, kContourFont_px, 3.0);
   const V2 half = 0.5 * probe.sizes() + V2::Constant(2.0);
-  for (const V2 dir : {V2(1, 0), V2(-1, 0), V2(0, -1), V2(0, 1), V2(1, -1), V2(-1, -1), V2(1, 1), V2(-1, 1)}) {
+  for (const V2& dir : {V2(1, 0), V2(-1, 0), V2(0, -1), V2(0, 1), V2(1, -1), V2(-1, -1), V2(1, 1), V2(-1, 1)}) {
     const Box b = text_box(at + dir.cwiseProduct(half), text, kContourFont_px, 3.0);
     if (!placer.fits(b) || crosses_other_line(b, lines, own) || crosses_own_line_elsewhere(b, l, -1.0, 0.0)) continue;
     placer.labels->push_back({IsoluxLabel::Kind::contour, text, b, false});
@@ -330,8 +343,14 @@ void place_contour_labels(const std::vector<PxLine>& lines, double reference_lux
 int centred_start(int n, int step) { return n > 0 ? ((n - 1) % step) / 2 : 0; }
 
 void place_value_labels(const IsoluxGridView& v, const svg::PlanFrame& f, IsoluxLayout& layout, Placer& placer) {
-  layout.value_step_x = std::max(1, static_cast<int>(std::ceil(kValueGap_px / (v.spacing_m.x() * f.scale_px_per_m) - 1e-9)));
-  layout.value_step_y = std::max(1, static_cast<int>(std::ceil(kValueGap_px / (v.spacing_m.y() * f.scale_px_per_m) - 1e-9)));
+  // Capped at the grid's size (one value at most along that axis), which also keeps the
+  // conversion to int in range for a spacing that is tiny on the plan.
+  const auto step = [&](double spacing_m, int n) {
+    const double wanted = std::ceil(kValueGap_px / (spacing_m * f.scale_px_per_m) - 1e-9);
+    return static_cast<int>(std::clamp(wanted, 1.0, static_cast<double>(std::max(n, 1))));
+  };
+  layout.value_step_x = step(v.spacing_m.x(), v.nx);
+  layout.value_step_y = step(v.spacing_m.y(), v.ny);
   for (int j = centred_start(v.ny, layout.value_step_y); j < v.ny; j += layout.value_step_y)
     for (int i = centred_start(v.nx, layout.value_step_x); i < v.nx; i += layout.value_step_x) {
       const double lux = v.maintained_lux[static_cast<std::size_t>(j) * v.nx + i];
@@ -436,6 +455,25 @@ std::string luminaires_svg(const IsoluxGridView& v, const svg::PlanFrame& f) {
   return svg + "</g>\n";
 }
 
+// Triangles at the minimum's point (open, pointing down) and the maximum's (filled, up).
+std::string extreme_markers(const IsoluxGridView& v, const IsoluxLayout& layout, const svg::PlanFrame& f) {
+  std::string svg;
+  const double m = kMarker_px;
+  if (layout.min_point >= 0) {
+    const V2 c = f.to_px(point_m(v, layout.min_point));
+    svg += cat("<path class=\"min-marker\" d=\"M", xy(c.x() - m, c.y() - 0.6 * m), 'L', xy(c.x() + m, c.y() - 0.6 * m), 'L',
+               xy(c.x(), c.y() + m), "Z\" fill=\"white\" stroke=\"#111111\" stroke-width=\"1.5\"><title>min ",
+               lux_text(layout.min_lux), " lx</title></path>\n");
+  }
+  if (layout.max_point >= 0) {
+    const V2 c = f.to_px(point_m(v, layout.max_point));
+    svg += cat("<path class=\"max-marker\" d=\"M", xy(c.x() - m, c.y() + 0.6 * m), 'L', xy(c.x() + m, c.y() + 0.6 * m), 'L',
+               xy(c.x(), c.y() - m), "Z\" fill=\"#111111\" stroke=\"white\" stroke-width=\"1.5\"><title>max ",
+               lux_text(layout.max_lux), " lx</title></path>\n");
+  }
+  return svg;
+}
+
 std::string north_arrow(double north_deg, double cx, double cy) {
   return cat("<g transform=\"rotate(", fixed(north_deg, 3), ' ', xy(cx, cy), ")\">\n<path d=\"M", xy(cx, cy - 18.0),
              "L", xy(cx + 7.0, cy + 10.0), "L", xy(cx, cy + 5.0), "L", xy(cx - 7.0, cy + 10.0),
@@ -488,16 +526,22 @@ std::string legend(const IsoluxGridView& v, const IsoluxLayout& layout, double x
   };
   row(layout.reference_is_target ? cat("target Em ", lux_text(layout.reference_lux), " lx")
                                  : cat("no target: scale on Em ", lux_text(layout.reference_lux), " lx"));
-  if (layout.points > 0) row(cat("min ", lux_text(layout.min_lux), " lx, max ", lux_text(layout.max_lux), " lx"));
+  if (layout.points > 0)
+    row(cat("\u25bd min ", lux_text(layout.min_lux), " lx, \u25b2 max ", lux_text(layout.max_lux), " lx"));
   if (above) row(cat("above ", lux_text(layout.scale.max_lux), " lx: top colour"));
   row("isolines (lx):");
-  std::string levels;
-  for (double level : layout.levels_lux) levels += cat(levels.empty() ? "" : " ", lux_text(level));
-  row(levels);
-  row(cat(std::to_string(layout.points), " points; values at ",
-          layout.value_step_x == layout.value_step_y
-              ? every(layout.value_step_x)
-              : cat(every(layout.value_step_x), " along x, ", every(layout.value_step_y), " along y")));
+  // Four levels a row, so that four-digit levels stay inside the column.
+  for (std::size_t first = 0; first < layout.levels_lux.size(); first += 4) {
+    std::string levels;
+    for (std::size_t k = first; k < std::min(first + 4, layout.levels_lux.size()); ++k)
+      levels += cat(levels.empty() ? "" : " ", lux_text(layout.levels_lux[k]));
+    row(levels);
+  }
+  row(cat(std::to_string(layout.points), " points, values at"));
+  row(layout.value_step_x == layout.value_step_y
+          ? every(layout.value_step_x)
+          : cat("every ", std::to_string(layout.value_step_x), " / ", std::to_string(layout.value_step_y),
+                " points (x / y)"));
   row("grey: no point (band, solid)");
   return svg;
 }
@@ -521,12 +565,19 @@ IsoluxLayout isolux_plan_layout(const IsoluxGridView& v) {
   double sum = 0.0;
   layout.min_lux = std::numeric_limits<double>::infinity();
   layout.max_lux = -layout.min_lux;
-  for (double lux : v.maintained_lux) {
+  for (std::size_t k = 0; k < v.maintained_lux.size(); ++k) {
+    const double lux = v.maintained_lux[k];
     if (!std::isfinite(lux)) continue;
     ++layout.points;
     sum += lux;
-    layout.min_lux = std::min(layout.min_lux, lux);
-    layout.max_lux = std::max(layout.max_lux, lux);
+    if (lux < layout.min_lux) {
+      layout.min_lux = lux;
+      layout.min_point = static_cast<int>(k);
+    }
+    if (lux > layout.max_lux) {
+      layout.max_lux = lux;
+      layout.max_point = static_cast<int>(k);
+    }
   }
   if (layout.points == 0) layout.min_lux = layout.max_lux = std::numeric_limits<double>::quiet_NaN();
   layout.reference_is_target = !std::isnan(v.target_lux);
@@ -555,8 +606,14 @@ IsoluxLayout isolux_plan_layout(const IsoluxGridView& v) {
     b.extend(V2(b.center() - V2::Constant(3.0))).extend(V2(b.center() + V2::Constant(3.0)));
     outlines_px.push_back(b);
   }
-  Placer placer{frame_box_px(f), outlines_px, &layout.labels};
-  place_luminaire_labels(v, f, placer, outlines_px);
+  std::vector<Box> obstacles_px = outlines_px;
+  for (int point : {layout.min_point, layout.max_point})
+    if (point >= 0) {
+      const V2 c = f.to_px(point_m(v, point));
+      obstacles_px.emplace_back(c - V2::Constant(kMarker_px + 1.0), c + V2::Constant(kMarker_px + 1.0));
+    }
+  Placer placer{frame_box_px(f), obstacles_px, &layout.labels};
+  place_luminaire_labels(v, placer, outlines_px);
   std::vector<PxLine> lines;
   for (const ContourLine& line : layout.lines) lines.push_back(to_px(line, f));
   place_contour_labels(lines, layout.reference_lux, placer);
@@ -591,6 +648,7 @@ std::string isolux_plan_svg(const IsoluxGridView& v) {
   for (const ContourLine& line : layout.lines) lines.push_back(to_px(line, f));
   svg += isolines(lines, layout.reference_lux);
   svg += luminaires_svg(v, f);
+  svg += extreme_markers(v, layout, f);
   svg += labels_svg(layout.labels);
   svg += svg::plan_axes(f, v.x_label, v.y_label);
   svg += svg::plan_scale_bar(f);

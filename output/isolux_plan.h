@@ -79,6 +79,7 @@ struct IsoluxLayout {
   std::vector<IsoluxLabel> labels;            // luminaire ids, then isoline values, then point values
   int value_step_x = 1, value_step_y = 1;     // values are printed at every n-th point (before collisions)
   double min_lux = 0.0, max_lux = 0.0;        // over the finite values (NaN when none)
+  int min_point = -1, max_point = -1;         // index (j * nx + i) of the first min / max; -1 when none
   int points = 0;                             // finite values
 };
 
@@ -91,7 +92,8 @@ struct IsoluxLayout {
 // overlap one already placed (luminaire ids first, then isolines, then point values),
 // a luminaire outline or the plan's edge is left out. Throws std::invalid_argument for
 // maintained_lux not of nx * ny entries, a spacing not > 0, a target neither NaN nor
-// > 0, a maintenance factor outside (0, 1], or a non-finite coordinate or luminaire size.
+// > 0, a maintenance factor outside (0, 1], a non-finite coordinate or luminaire size, or
+// a drawing (grid, room and luminaires) more than 100 km across.
 IsoluxLayout isolux_plan_layout(const IsoluxGridView& view);
 
 // The plan as one standalone SVG document (deterministic, locale-independent):
@@ -100,6 +102,8 @@ IsoluxLayout isolux_plan_layout(const IsoluxGridView& view);
 //    top colour, as the legend says); no point: the grey shows through;
 //  - the isolines (the target's line thicker), each labelled with its lux value;
 //  - point values, luminaire outlines (rotated rectangles, discs) with their ids;
+//  - the minimum's point marked with an open triangle pointing down, the maximum's
+//    with a filled one pointing up (no label covers them);
 //  - axes in metres, a scale bar, an optional north arrow, and a legend "maintained
 //    illuminance (lx)" with the maintenance factor, the target, the levels, and the
 //    grid's min and max.

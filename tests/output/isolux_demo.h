@@ -4,10 +4,12 @@
 // points are missing, maintenance factor 0.8.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "output/isolux_plan.h"
+#include "output/svg_text.h"
 
 namespace ilp::test {
 
@@ -25,7 +27,7 @@ inline IsoluxGridView office_isolux_view(double intensity_cd = 1650.0, double sp
   const std::array<Eigen::Vector2d, 4> at = {Eigen::Vector2d(1.5, 1.0), Eigen::Vector2d(4.5, 1.0),
                                               Eigen::Vector2d(1.5, 3.0), Eigen::Vector2d(4.5, 3.0)};
   for (int k = 0; k < 4; ++k)
-    v.luminaires.push_back({"L" + std::to_string(k + 1), "panel 1200", at[k], 1.2, 0.3, 0.0, false});
+    v.luminaires.push_back({svg::cat("L", std::to_string(k + 1)), "panel 1200", at[k], 1.2, 0.3, 0.0, false});
   for (int j = 0; j < v.ny; ++j)
     for (int i = 0; i < v.nx; ++i) {
       const Eigen::Vector2d p = v.origin_m + Eigen::Vector2d(i * spacing_m, j * spacing_m);

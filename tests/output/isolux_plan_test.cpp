@@ -11,12 +11,14 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "output/colour_map.h"
 #include "output/svg_plan_parts.h"
+#include "output/svg_text.h"
 #include "tests/output/isolux_demo.h"
 #include "tests/output/png_checks.h"
 #include "tests/output/svg_checks.h"
@@ -91,7 +93,7 @@ struct PxToM {
   V2 operator()(const V2& q) const { return anchor_m + V2(q.x() - anchor_px.x(), anchor_px.y() - q.y()) / scale; }
 };
 
-std::string cat_points(int n) { return ">" + std::to_string(n) + " points; values at every 2nd point</text>"; }
+std::string cat_points(int n) { return ilp::svg::cat(">", std::to_string(n), " points, values at</text>"); }
 
 TEST(IsoluxLevels, AreFractionsOfTheTargetRoundedToTwoDigits) {
   EXPECT_EQ(isolux_levels(500.0), (std::vector<double>{250, 300, 350, 400, 500, 600, 750, 1000}));
@@ -124,6 +126,9 @@ TEST(IsoluxPlan, OfficeDocumentIsWellFormedAndSaysWhatItShows) {
   EXPECT_EQ(layout.points, finite);
   EXPECT_EQ(count(group(svg, "cells"), "<rect "), static_cast<std::size_t>(finite));
   EXPECT_TRUE(Contains(svg, cat_points(finite)));
+  EXPECT_TRUE(Contains(svg, ">every 2nd point</text>"));
+  EXPECT_TRUE(Contains(svg, ">250 300 350 400</text>"));
+  EXPECT_TRUE(Contains(svg, ">500 600 750 1000</text>"));
 }
 
 TEST(IsoluxPlan, ColourScaleIsTiedToTheTargetNotToAHotSpot) {
@@ -158,7 +163,35 @@ TEST(IsoluxPlan, ColourScaleIsTiedToTheTargetNotToAHotSpot) {
   int changed = 0;
   for (std::size_t k = 0; k < a.size(); ++k) changed += a[k] != b[k];
   EXPECT_EQ(changed, 1);
-  EXPECT_EQ(b[0], "fill=\"" + svg_colour(colour_map(1.0)) + "\"");  // the hot cell: the top colour
+  EXPECT_EQ(b[0], ilp::svg::cat("fill=\"", svg_colour(colour_map(1.0)), "\""));  // the hot cell: the top colour
+}
+
+TEST(IsoluxPlan, MinimumAndMaximumPointsAreMarkedAndNoLabelCoversThem) {
+  const IsoluxGridView v = test::office_isolux_view();
+  const IsoluxLayout layout = isolux_plan_layout(v);
+  ASSERT_GE(layout.min_point, 0);
+  ASSERT_GE(layout.max_point, 0);
+  EXPECT_DOUBLE_EQ(v.maintained_lux[layout.min_point], layout.min_lux);
+  EXPECT_DOUBLE_EQ(v.maintained_lux[layout.max_point], layout.max_lux);
+  for (double lux : v.maintained_lux)
+    if (std::isfinite(lux)) {
+      EXPECT_GE(lux, layout.min_lux);
+      EXPECT_LE(lux, layout.max_lux);
+    }
+  const std::string svg = isolux_plan_svg(v);
+  EXPECT_EQ(count(svg, "class=\"min-marker\""), 1u);
+  EXPECT_EQ(count(svg, "class=\"max-marker\""), 1u);
+  EXPECT_TRUE(Contains(svg, ilp::svg::cat("<title>min ", std::to_string(std::lround(layout.min_lux)), " lx</title>")));
+  // Each marker's apex, in px, from the point's place: metres -> px as the frame maps them.
+  const double pad = 0.03 * 6.0;
+  for (int point : {layout.min_point, layout.max_point}) {
+    const V2 p_m = v.origin_m + V2((point % v.nx) * v.spacing_m.x(), (point / v.nx) * v.spacing_m.y());
+    const V2 p_px(layout.plan_px.min().x() + (p_m.x() + pad) * layout.scale_px_per_m,
+                  layout.plan_px.max().y() - (p_m.y() + pad) * layout.scale_px_per_m);
+    const Eigen::AlignedBox2d marker(p_px - V2::Constant(6.0), p_px + V2::Constant(6.0));
+    for (const IsoluxLabel& l : layout.labels)
+      EXPECT_TRUE(l.box_px.intersection(marker).isEmpty()) << "label '" << l.text << "' covers a marker";
+  }
 }
 
 TEST(IsoluxPlan, TargetLevelsLinesAreDrawnThickerAndAllLevelsInRangeAppear) {
@@ -237,7 +270,7 @@ TEST(IsoluxPlan, CrowdedPlanStillHasNoOverlappingLabels) {
     }
   v.luminaires.clear();
   for (int k = 0; k < 24; ++k)
-    v.luminaires.push_back({"luminaire-" + std::to_string(k), "", V2(0.6 + 0.22 * k, 2.0 + 0.3 * (k % 3)), 0.6, 0.1,
+    v.luminaires.push_back({ilp::svg::cat("luminaire-", std::to_string(k)), "", V2(0.6 + 0.22 * k, 2.0 + 0.3 * (k % 3)), 0.6, 0.1,
                             15.0 * k, k % 4 == 0});
   const IsoluxLayout layout = isolux_plan_layout(v);
   EXPECT_TRUE(LabelsApart(layout));
@@ -270,7 +303,7 @@ TEST(IsoluxPlan, LuminairesAreDrawnAtTheirRealSizeAndOrientation) {
   const std::string svg = isolux_plan_svg(v);
   const double s = layout.scale_px_per_m;
   // The disc: a circle of radius 0.3 m.
-  EXPECT_TRUE(Contains(svg, "r=\"" + ilp::svg::px(0.3 * s) + "\""));
+  EXPECT_TRUE(Contains(svg, ilp::svg::cat("r=\"", ilp::svg::px(0.3 * s), "\"")));
   // The rotated rectangle: 0.3 m wide (x) and 1.2 m tall (y) on the plan.
   const std::size_t at = svg.find("<title>long: 1.2 x 0.3 m at 90 deg");
   ASSERT_NE(at, std::string::npos);
@@ -330,6 +363,49 @@ TEST(IsoluxPlan, VerticalGridNamesItsAxesAndNeedsNoRoomOrLuminaires) {
   for (const ContourLine& l : layout.lines)
     for (const V2& p : l.points_m) EXPECT_NEAR(p.x(), 3.0 * (l.level - 200.0) / 200.0, 1e-9) << l.level;
   EXPECT_TRUE(LabelsApart(layout));
+}
+
+TEST(IsoluxPlan, RandomViewsNeverFailAndKeepTheirLabelsApart) {
+  // Fields with NaN and infinite values, luminaires anywhere (sizes up to the room's),
+  // spacings from 1 mm to 1 m, with or without a target: no exception, a well-formed
+  // document, labels apart. Seeded, so the same views every run.
+  std::mt19937 rng(20261201);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 40; ++trial) {
+    IsoluxGridView v;
+    v.name = ilp::svg::cat("random ", std::to_string(trial));
+    v.nx = 1 + static_cast<int>(unit(rng) * 40);
+    v.ny = 1 + static_cast<int>(unit(rng) * 40);
+    const double spacing = std::pow(10.0, -3.0 + 3.0 * unit(rng));
+    v.spacing_m = V2(spacing, spacing * (0.5 + unit(rng)));
+    v.origin_m = V2(unit(rng) * 10.0 - 5.0, unit(rng) * 10.0 - 5.0);
+    const double scale_lux = std::pow(10.0, 4.0 * unit(rng));
+    for (int k = 0; k < v.nx * v.ny; ++k) {
+      const double r = unit(rng);
+      v.maintained_lux.push_back(r < 0.1 ? kNaN : r < 0.12 ? std::numeric_limits<double>::infinity()
+                                                            : scale_lux * (0.5 + std::sin(0.3 * k) * unit(rng)));
+    }
+    const V2 size(v.nx * v.spacing_m.x(), v.ny * v.spacing_m.y());
+    v.room_outline_m = {{v.origin_m - 0.2 * size, v.origin_m + V2(1.2 * size.x(), -0.2 * size.y()),
+                         v.origin_m + 1.2 * size}};
+    for (int k = 0; k < static_cast<int>(unit(rng) * 12); ++k)
+      v.luminaires.push_back({ilp::svg::cat("L", std::to_string(k)), "",
+                              v.origin_m + V2(unit(rng) * size.x(), unit(rng) * size.y()), unit(rng) * size.x(),
+                              unit(rng) * size.y(), 360.0 * unit(rng), unit(rng) < 0.3});
+    if (unit(rng) < 0.7) v.target_lux = scale_lux * (0.2 + unit(rng));
+    v.maintenance_factor = 0.5 + 0.5 * unit(rng);
+    if (unit(rng) < 0.5) v.north_deg = 360.0 * unit(rng);
+    SCOPED_TRACE(ilp::svg::cat("trial ", std::to_string(trial)));
+    std::string svg;
+    ASSERT_NO_THROW(svg = isolux_plan_svg(v));
+    EXPECT_TRUE(WellFormed(svg));
+    EXPECT_FALSE(has_non_finite_number(svg));
+    EXPECT_TRUE(LabelsApart(isolux_plan_layout(v)));
+  }
+  // A luminaire far away makes the drawing too wide: an error, not a plan of specks.
+  IsoluxGridView far = test::office_isolux_view();
+  far.luminaires[0].centre_m = V2(1e9, 0.0);
+  EXPECT_THROW(isolux_plan_svg(far), std::invalid_argument);
 }
 
 TEST(IsoluxPlan, TextIsEscaped) {
