@@ -1,0 +1,174 @@
+// Real products: photometric luminaires in the direct light and the radiosity solve
+// (against the inverse-square law, the file's own interpolant and conservation of
+// flux), and the variants a job's products give.
+#include "core/luminaire_product.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include "core/direct_light.h"
+#include "core/exact_solver.h"
+#include "core/ray_caster.h"
+#include "core/reference_scenes.h"
+
+namespace ilp {
+namespace {
+
+using V = Eigen::Vector3d;
+const std::string kData = std::string(ILP_SOURCE_DIR) + "/data/photometry/";
+const std::string kShared = std::string(ILP_SOURCE_DIR) + "/../shared/photometry/";
+
+std::shared_ptr<const Photometry> photometry(const std::string& path) {
+  return std::make_shared<const Photometry>(load_photometry(path));
+}
+
+// The distribution integrated over the sphere: 1 lm per lm.
+double sphere_integral(const IntensityDistribution& d) {
+  constexpr int kGamma = 720, kC = 720;
+  double sum = 0.0;
+  for (int i = 0; i < kGamma; ++i) {
+    const double g0 = std::numbers::pi * i / kGamma, g1 = std::numbers::pi * (i + 1) / kGamma;
+    const double solid = (std::cos(g0) - std::cos(g1)) * 2.0 * std::numbers::pi / kC;
+    for (int j = 0; j < kC; ++j) {
+      const double g = 0.5 * (g0 + g1), c = 2.0 * std::numbers::pi * (j + 0.5) / kC;
+      sum += d.cd_per_lm(V(std::sin(g) * std::cos(c), std::sin(g) * std::sin(c), -std::cos(g))) * solid;
+    }
+  }
+  return sum;
+}
+
+TEST(PhotometricDistribution, EmitsOneLumenPerLumenAndFollowsTheFilesInterpolant) {
+  for (const char* file : {"erco_iku_downlight.ldt", "linear_led_2112lm.ldt", "ledalite_direct_indirect.ies"}) {
+    const auto p = photometry(kData + file);
+    const PhotometricDistribution d(p);
+    EXPECT_NEAR(sphere_integral(d), 1.0, 5e-3) << file;
+    // The table against the file's own (cubic) interpolant, between its nodes.
+    for (double c : {7.3, 45.0, 101.9, 270.4})
+      for (double g : {1.1, 33.3, 61.7, 88.8, 121.0}) {
+        const double exact = p->intensity_cd(c, g) / p->luminaire_flux_lm;
+        const V dir = c_gamma_to_direction(c, g);
+        EXPECT_NEAR(d.cd_per_lm(dir), exact, 5e-3 * exact + 1e-9) << file << " C " << c << " gamma " << g;
+      }
+  }
+}
+
+TEST(PhotometricLuminaire, AnIesPointSourceFollowsTheInverseSquareLawUnderAndOffAxis) {
+  // medium_scatter.ies: an asymmetric wash light, 0.103 x 0.059 m; 3 m above a floor it
+  // is one point source: E = I(C, gamma) cos^3(gamma) / h^2.
+  const auto p = photometry(kShared + "renderpipeline/medium_scatter.ies");
+  Scene scene = reference::make_quad_scene({{"floor", V(-20, -20, 0), V(20, -20, 0), V(20, 20, 0), V(-20, 20, 0)}}, 0.0);
+  const double h = 3.0, flux = 1000.0;
+  add_luminaire(scene, "wash", photometric_luminaire_type("wash", p), {V(0, 0, h), 0.0}, flux);
+  const RayCaster caster(scene);
+  std::vector<ReceiverPoint> points;
+  for (const V& x : {V(0, 0, 0), V(1, 0, 0), V(0, 2, 0), V(-1.5, 0.5, 0), V(2, -2, 0)}) points.push_back({x, V::UnitZ()});
+  const Eigen::VectorXd lux =
+      flux * compute_luminaire_light_at_points(scene, caster, points, luminaire_surfaces(scene), {}).lux_per_lm.col(0);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const V d = points[k].position_m - V(0, 0, h);
+    const Eigen::Vector2d cg = direction_to_c_gamma_deg(d);
+    const double cos_gamma = h / d.norm();
+    const double expected = flux / p->luminaire_flux_lm * p->intensity_cd(cg[0], cg[1]) * std::pow(cos_gamma, 3) / (h * h);
+    EXPECT_NEAR(lux[static_cast<Eigen::Index>(k)], expected, 5e-3 * expected) << points[k].position_m.transpose();
+  }
+}
+
+TEST(PhotometricLuminaire, RotatedNinetyDegreesItsPatternTurnsWithIt) {
+  const auto p = photometry(kShared + "renderpipeline/medium_scatter.ies");
+  const LuminaireType type = photometric_luminaire_type("wash", p);
+  auto lux_at = [&](double rotation_deg, const V& x) {
+    Scene scene = reference::make_quad_scene({{"floor", V(-20, -20, 0), V(20, -20, 0), V(20, 20, 0), V(-20, 20, 0)}}, 0.0);
+    add_luminaire(scene, "wash", type, {V(0, 0, 3), rotation_deg}, 1.0);
+    const RayCaster caster(scene);
+    const std::vector<ReceiverPoint> points{{x, V::UnitZ()}};
+    return compute_luminaire_light_at_points(scene, caster, points, luminaire_surfaces(scene), {}).lux_per_lm(0, 0);
+  };
+  for (const V& x : {V(1.5, 0.3, 0), V(-0.7, 1.9, 0), V(0.2, -2.5, 0)}) {
+    const V turned(-x.y(), x.x(), 0);
+    EXPECT_NEAR(lux_at(90.0, turned), lux_at(0.0, x), 1e-6 * lux_at(0.0, x));
+  }
+  EXPECT_GT(std::abs(lux_at(0.0, V(1.5, 0, 0)) - lux_at(0.0, V(-1.5, 0, 0))), 0.1 * lux_at(0.0, V(1.5, 0, 0)));
+}
+
+TEST(PhotometricLuminaire, ItsDirectLightLandsWhollyInAClosedRoomAndTheFurnaceBalances) {
+  // A direct/indirect pendant (69 % up) in a closed 4 x 3 x 3 m grey box: every lumen
+  // lands on some wall (sum of A E_direct = flux), and the exact solve's absorbed plus
+  // lost flux equals the emitted flux whatever the distribution.
+  for (const char* file : {"ledalite_direct_indirect.ies", "linear_led_2112lm.ldt"}) {
+    Scene scene = reference::make_closed_box(V(0, 0, 0), V(4, 3, 3), 0.6, 0.25);
+    const double flux = 5000.0;
+    add_luminaire(scene, "pendant", photometric_luminaire_type("pendant", photometry(kData + file)), {V(2, 1.5, 2.2), 30.0},
+                  flux);
+    const RayCaster caster(scene);
+    std::vector<int> walls;
+    for (std::size_t i = 0; i < scene.patches.size(); ++i)
+      if (!scene.surfaces[scene.patches[i].surface].is_luminaire()) walls.push_back(static_cast<int>(i));
+    DirectLightOptions options;
+    options.receiver_points = 16;
+    const LuminaireLight light = compute_luminaire_light(scene, caster, walls, luminaire_surfaces(scene), options);
+    double landed = 0.0;
+    for (std::size_t r = 0; r < walls.size(); ++r)
+      landed += scene.patches[static_cast<std::size_t>(walls[r])].area_m2 * light.lux_per_lm(static_cast<Eigen::Index>(r), 0);
+    EXPECT_NEAR(landed, 1.0, 0.01) << file;
+
+    ExactSolveOptions exact;
+    exact.form_factors.rays_per_patch = 256;
+    const ExactSolution solution = solve_exact(scene, exact);
+    const ExactSolveSummary& s = solution.summary;
+    EXPECT_NEAR(s.emitted_lm, flux, 1e-6 * flux);
+    EXPECT_NEAR(s.absorbed_lm + s.lost_lm, s.emitted_lm, 0.015 * s.emitted_lm) << file;
+  }
+}
+
+LuminaireSearch search_with(std::vector<ProductSetting> products) {
+  LuminaireSearch s;
+  s.products = std::move(products);
+  return s;
+}
+
+TEST(ProductVariants, RotationsWattsAndFluxComeFromTheFileUnlessGiven) {
+  ProductSetting iku{.name = "iku", .photometry_path = kData + "erco_iku_downlight.ldt"};
+  ProductSetting linear{.name = "linear", .photometry_path = kData + "linear_led_2112lm.ldt"};
+  linear.flux_lm = 4222.4;  // twice the file's: the watts scale with it
+  linear.dim_min = 0.3;
+  const std::vector<ProductVariant> v = product_variants(search_with({iku, linear}));
+  ASSERT_EQ(v.size(), 3u);  // the round downlight once, the linear one at 0 and 90 degrees
+  EXPECT_EQ(v[0].product, "iku");
+  EXPECT_NEAR(v[0].rated_flux_lm, 611.8, 0.1);
+  EXPECT_NEAR(v[0].power_w, 6.9, 1e-9);
+  EXPECT_EQ(v[0].type.shape, OutlineShape::disc);
+  EXPECT_EQ(v[1].rotation_deg, 0.0);
+  EXPECT_EQ(v[2].rotation_deg, 90.0);
+  EXPECT_NEAR(v[1].rated_flux_lm, 4222.4, 1e-9);
+  EXPECT_NEAR(v[1].power_w, 2.0 * 22.3, 0.05);
+  EXPECT_NEAR(v[1].type.length_m, 1.201, 1e-9);
+
+  JobConfig job;
+  job.search.emplace();
+  const JobConfig j = job_for_variant(job, v[2]);
+  EXPECT_TRUE(j.search->uniform_output);
+  EXPECT_EQ(j.search->rotation_deg, 90.0);
+  EXPECT_NEAR(j.search->flux_min_lm, 0.3 * 4222.4, 1e-9);
+  EXPECT_NEAR(j.search->flux_max_lm, 4222.4, 1e-9);
+  EXPECT_NEAR(j.search->flux_max_lm / j.search->efficacy_lm_per_w, v[2].power_w, 1e-9);
+}
+
+TEST(ProductVariants, AFileThatCannotBeReadNamesTheConfigAndTheFile) {
+  const std::string bad = ::testing::TempDir() + "/ilp_truncated.ies";
+  std::ofstream(bad) << "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3 1 1 2 0.5 0.5 0\n";
+  ProductSetting p{.name = "broken", .photometry_path = bad, .photometry_loc = {"job.yaml", 12, 5}};
+  try {
+    product_variants(search_with({p}));
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("job.yaml:12:5"), std::string::npos) << what;
+    EXPECT_NE(what.find(bad), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace ilp
