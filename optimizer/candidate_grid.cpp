@@ -175,4 +175,15 @@ GridPoint CandidateGrid::locate(const Eigen::Vector2d& xy_m) const {
   return out;
 }
 
+Eigen::Vector2d CandidateGrid::nearest_candidate_m(const Eigen::Vector2d& xy_m) const {
+  Eigen::Vector2d best = xy_m;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : positions_)
+    if (const double d2 = (p.head<2>() - xy_m).squaredNorm(); d2 < best_d2) {
+      best_d2 = d2;
+      best = p.head<2>();
+    }
+  return best;
+}
+
 }  // namespace ilp

@@ -70,6 +70,9 @@ class CandidateGrid {
   // grid's edges), else bilinear over the cell's four, else the nearest candidate
   // (positions off the surface snap to it).
   GridPoint locate(const Eigen::Vector2d& xy_m) const;
+  // The grid node nearest to (x, y) that holds a candidate (for layouts snapped to a
+  // ceiling module); (x, y) itself when the grid is empty.
+  Eigen::Vector2d nearest_candidate_m(const Eigen::Vector2d& xy_m) const;
 
  private:
   int node(int i, int j) const { return candidate_of_node_[static_cast<std::size_t>(j * (nx_ + 1) + i)]; }

@@ -474,6 +474,8 @@ SearchResult search_layout(const LightingModel& model, const JobConfig& job, con
       result.time_limited = result.time_limited || global.time_limited || local.time_limited;
     }
     coding.decode(best_x.data(), xy, w);
+    if (s.ceiling_module_m > 0.0)  // the module's cell centres (the grid's nodes)
+      for (Eigen::Vector2d& p : xy) p = model.grid.nearest_candidate_m(p);
     LayoutEvaluation found = evaluate(xy, w);
     record.evaluations = evaluations;
     record.seconds = std::chrono::duration<double>(Clock::now() - attempt_start).count();

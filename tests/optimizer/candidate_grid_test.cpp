@@ -120,3 +120,39 @@ TEST(CandidateGrid, RejectsSurfacesThatCannotHoldALuminaire) {
 
 }  // namespace
 }  // namespace ilp
+
+namespace ilp {
+namespace {
+
+TEST(CandidateGrid, AWallDistanceAndACeilingModuleShapeWhereCandidatesGo) {
+  // A 6 x 4 m ceiling; a 1.2 x 0.1 m linear luminaire turned 90 degrees (0.05 x 0.6 half extents).
+  const Scene scene = ceiling_scene({Eigen::Vector4d(0, 6, 0, 4)});
+  LuminaireType linear = LuminaireType::square_lambertian(1.2);
+  linear.width_m = 0.1;
+  const Eigen::Vector2d half = linear.half_footprint_m(90.0);
+  EXPECT_NEAR(half.x(), 0.05, 1e-12);
+  EXPECT_NEAR(half.y(), 0.6, 1e-12);
+  const CandidateGrid walls(scene, 0, {.spacing_m = 0.5, .half_footprint_m = half, .wall_distance_m = 0.4,
+                                       .mount_offset_m = 0.05});
+  for (const Eigen::Vector3d& p : walls.positions_m()) {
+    EXPECT_GE(p.x() - half.x(), 0.4 - 1e-9);
+    EXPECT_LE(p.x() + half.x(), 6.0 - 0.4 + 1e-9);
+    EXPECT_GE(p.y() - half.y(), 0.4 - 1e-9);
+    EXPECT_LE(p.y() + half.y(), 4.0 - 0.4 + 1e-9);
+  }
+  EXPECT_NEAR(walls.lower_m().y(), 1.0, 1e-12);  // 0.4 m from the wall + 0.6 m half length
+  // A 0.6 m module: every candidate at a cell centre (0.3 + 0.6 k), none off it.
+  const CandidateGrid module(scene, 0, {.spacing_m = 0.5, .half_footprint_m = Eigen::Vector2d::Constant(0.3),
+                                        .module_m = 0.6, .mount_offset_m = 0.05});
+  ASSERT_EQ(module.size(), 10u * 6u);
+  for (const Eigen::Vector3d& p : module.positions_m())
+    for (int axis = 0; axis < 2; ++axis) {
+      const double k = (p[axis] - 0.3) / 0.6;
+      EXPECT_NEAR(k, std::round(k), 1e-9) << p.transpose();
+    }
+  EXPECT_NEAR(module.nearest_candidate_m(Eigen::Vector2d(1.1, 2.05)).x(), 0.9, 1e-12);
+  EXPECT_NEAR(module.nearest_candidate_m(Eigen::Vector2d(1.1, 2.05)).y(), 2.1, 1e-12);
+}
+
+}  // namespace
+}  // namespace ilp
