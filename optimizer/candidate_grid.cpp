@@ -114,7 +114,7 @@ std::array<double, 4> catmull_rom(double t) {
 }  // namespace
 
 GridPoint CandidateGrid::locate(const Eigen::Vector2d& xy_m) const {
-  const Eigen::Vector2d xy = xy_m.cwiseMax(lower_).cwiseMin(upper_);
+  const Eigen::Vector2d xy = xy_m.allFinite() ? xy_m.cwiseMax(lower_).cwiseMin(upper_) : lower_;  // NaN: no int cast of it
   const Eigen::Vector2d cell = ((xy - lower_).array() / step_.array().max(1e-300)).matrix();
   const int i = std::clamp(static_cast<int>(std::floor(cell.x())), 0, nx_ - 1);
   const int j = std::clamp(static_cast<int>(std::floor(cell.y())), 0, ny_ - 1);
