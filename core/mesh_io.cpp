@@ -233,7 +233,19 @@ DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     auto tokens = split_ws(line);
     if (tokens.empty()) continue;
-    if (tokens[0] == "format" && tokens.size() >= 2) format = std::string(tokens[1]);
+    // OpenMesh loops for ever on a header it cannot finish: refuse what it would not know.
+    const FileLoc loc{path.string(), line_no};
+    if (line_no == 1 && tokens[0] != "ply")
+      throw SceneError(path.string() + ": could not read the mesh: not a PLY file (no 'ply' on the first line)");
+    if (tokens[0] == "format") {
+      if (tokens.size() != 3 || (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" &&
+                                 tokens[1] != "binary_big_endian"))
+        throw SceneError(located(loc, "format must be ascii, binary_little_endian or binary_big_endian, then a version"));
+      format = std::string(tokens[1]);
+    } else if (tokens[0] != "ply" && tokens[0] != "comment" && tokens[0] != "obj_info" && tokens[0] != "element" &&
+               tokens[0] != "property" && tokens[0] != "end_header") {
+      throw SceneError(located(loc, "unknown PLY header keyword '" + std::string(tokens[0]) + "'"));
+    }
     if (tokens[0] == "element") {
       if (tokens.size() != 3) throw SceneError(located({path.string(), line_no}, "element needs a name and a count"));
       elements.push_back({std::string(tokens[1]), header_count(tokens[2], std::string(tokens[1]), path, line_no, file_bytes),
@@ -241,16 +253,21 @@ DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
       if (tokens[1] == "vertex") out.vertices = elements.back().count;
       if (tokens[1] == "face") out.faces = elements.back().count;
     }
-    if (tokens[0] == "property" && !elements.empty() && tokens.size() >= 3) {
-      if (tokens[1] == "list" && tokens.size() >= 5) elements.back().properties.push_back({true, ply_type_bytes(tokens[2])});
-      else elements.back().properties.push_back({false, ply_type_bytes(tokens[1])});
+    if (tokens[0] == "property") {
+      const bool list = tokens.size() >= 2 && tokens[1] == "list";
+      if (elements.empty() || tokens.size() != (list ? 5u : 3u) || ply_type_bytes(tokens[list ? 2 : 1]) == 0 ||
+          (list && ply_type_bytes(tokens[3]) == 0))
+        throw SceneError(located(loc, "property must follow an element and be 'property TYPE NAME' or 'property list "
+                                      "COUNT_TYPE TYPE NAME' with PLY types (char, uchar, short, ..., float, double)"));
+      elements.back().properties.push_back({list, ply_type_bytes(tokens[list ? 2 : 1])});
     }
     if (tokens[0] == "end_header") {
       ended = true;
       break;
     }
   }
-  if (!ended) return out;  // not a PLY header OpenMesh can read: it says so
+  if (!ended) throw SceneError(path.string() + ": the PLY header has no end_header (a truncated or damaged file)");
+  if (format.empty()) throw SceneError(path.string() + ": the PLY header has no format line");
   long double need = 0;
   for (const Element& e : elements) {
     std::size_t bytes = 0;

@@ -148,6 +148,22 @@ TEST(IlpReliability, MountOffsetBelowTheFloorIsRefused) {
   EXPECT_FALSE(fs::exists(dir.file("out")));
 }
 
+// candidate_spacing_m 1e-12 overflowed the int grid size and gave 4 candidates; the
+// config refuses below 1 mm, and a spacing that makes too many nodes is refused at the key.
+TEST(IlpReliability, CandidateGridTooFineIsRefusedAtItsKey) {
+  TempDir dir;
+  const std::string job = write_job(
+      dir, "a", "",
+      "luminaires:\n  size_m: 0.3\n  flux_lm: [10, 20000]\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.001\n  count: 1\ngoals:\n  - surface: mat\n    average_lux: 200\n");
+  const RunResult r = run_ilp(dir, {"run", job, "--out", dir.file("out"), "-q", "--no-cache"});
+  expect_exit(r, 1);
+  EXPECT_TRUE(OutputContains(r.err, job + ":9:"));
+  EXPECT_TRUE(OutputContains(r.err, "luminaires.candidate_spacing_m: 0.001 m"));
+  EXPECT_TRUE(OutputContains(r.err, "grid nodes, more than 4e+06"));
+  EXPECT_FALSE(fs::exists(dir.file("out")));
+}
+
 // ---------------------------------------------------------------------------------
 // The output set as one transaction
 
@@ -191,10 +207,11 @@ pid_t start_ilp(const TempDir& dir, const std::string& env, const std::vector<st
   return pid;
 }
 
-// Waits (up to 120 s) until `err` says the writer paused; false if the process ended.
-bool wait_for_pause(pid_t pid, const std::string& err) {
+// Waits (up to 120 s) until `err` says the writer paused at `point`; false if the
+// process ended first.
+bool wait_for_pause(pid_t pid, const std::string& err, const std::string& point) {
   for (int i = 0; i < 1200; ++i) {
-    if (read_file(err).find("ilp-test: paused at") != std::string::npos) return true;
+    if (read_file(err).find("ilp-test: paused at " + point + "\n") != std::string::npos) return true;
     int status = 0;
     if (waitpid(pid, &status, WNOHANG) == pid) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -242,9 +259,10 @@ TEST(IlpReliability, KilledRunLeavesTheOldSetOrTheNewNeverAMix) {
   ASSERT_EQ(which_set(out, old_set), "old");
   ASSERT_EQ(run_ilp(dir, {"run", job_new, "--out", dir.file("scratch"), "-q"}).exit_code, 0);  // fills the cache
 
-  const std::string err = dir.file("killed.txt");
+  int run = 0;
   for (const char* point : {"1", "2", "3", "4", "carried", "swapped"})
     for (int sig : {SIGINT, SIGTERM, SIGKILL}) {
+      const std::string err = dir.file("killed" + std::to_string(++run) + ".txt");
       SCOPED_TRACE(std::string("paused at ") + point + ", signal " + std::to_string(sig));
       // Back to the old set when a previous kill let the new one in.
       if (which_set(out, old_set) != "old") {
@@ -254,7 +272,7 @@ TEST(IlpReliability, KilledRunLeavesTheOldSetOrTheNewNeverAMix) {
       }
       const pid_t pid = start_ilp(dir, std::string("ILP_TEST_OUTPUT_PAUSE=") + point, {"run", job_new, "--out", out, "-q"},
                                   err);
-      ASSERT_TRUE(wait_for_pause(pid, err)) << read_file(err);
+      ASSERT_TRUE(wait_for_pause(pid, err, point)) << read_file(err);
       EXPECT_EQ(which_set(out, old_set), std::string(point) == "swapped" ? "new" : "old");  // while paused
       kill(pid, sig);
       int status = 0;

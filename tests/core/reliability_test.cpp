@@ -194,6 +194,12 @@ INSTANTIATE_TEST_SUITE_P(
                   {":13:", "face 0 has 3 values", "call for 4"}},
         BadHeader{"AsciiPlyEndingEarly", "shorter.ply", kPlyHead + "element vertex 3\n" + kPlyProps + "0 0 0\n1 0 0\n",
                   {"ends after 2 of the 3 vertex lines"}},
+        // OpenMesh printed "Unsupported keyword" for ever on these (found by ply_off_fuzz).
+        BadHeader{"PlyHeaderWithUnknownKeyword", "odd.ply", "ply\nformat ascii 1.0\nelement vertex 3\npr3\n",
+                  {":4:", "unknown PLY header keyword 'pr3'"}},
+        BadHeader{"PlyHeaderWithoutEnd", "open.ply", "ply\nformat ascii 1.0\nelement vertex 0\n", {"no end_header"}},
+        BadHeader{"PlyUnknownPropertyType", "type.ply", kPlyHead + "element vertex 1\nproperty quad x\nend_header\n0\n",
+                  {":4:", "property must"}},
         BadHeader{"OffHugeVertexCount", "big.off", "OFF\n3000000000 1 0\n0 0 0\n", {":2:", "3000000000", "bytes"}},
         BadHeader{"OffNegativeVertexCount", "neg.off", "OFF\n-5 1 0\n", {":2:", "'-5' is not a whole number >= 0"}},
         BadHeader{"OffTruncatedFace", "short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n",
