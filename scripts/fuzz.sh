@@ -9,6 +9,7 @@
 #   bash scripts/fuzz.sh            # 60 s each (what CI can run)
 #   bash scripts/fuzz.sh 600        # the longer run of docs/reliability.md
 #   bash scripts/fuzz.sh 60 config  # one harness
+#   FUZZ_PARALLEL=1 bash scripts/fuzz.sh 600   # every harness at once
 #
 # Needs clang (Debian package clang), installed when missing and the script runs as
 # root; it is not a requirement of the main build.
@@ -40,26 +41,35 @@ cmake --build build-fuzz -j"$(nproc)" --target "${harnesses[@]}"
 
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-status=0
-for name in "${harnesses[@]}"; do
-  corpus_name="${name%_fuzz}"
-  work="build-fuzz/corpus/$corpus_name"
-  findings="build-fuzz/findings/$corpus_name"
+# One harness: fuzz for $seconds, then print its figures; returns non-zero on a finding.
+run_one() {
+  local name="$1" corpus_name="${1%_fuzz}"
+  local work="build-fuzz/corpus/$corpus_name" findings="build-fuzz/findings/$corpus_name" log="build-fuzz/$1.log"
   mkdir -p "$work" "$findings"
   [ -d "fuzz/corpus/$corpus_name" ] && cp -n fuzz/corpus/"$corpus_name"/* "$work"/ 2>/dev/null || true
-  dict=()
+  local dict=()
   [ -f "fuzz/$corpus_name.dict" ] && dict=(-dict="fuzz/$corpus_name.dict")
-  log="build-fuzz/$name.log"
   echo "fuzz: $name for $seconds s (log $log)"
-  if build-fuzz/fuzz/"$name" "$work" "${dict[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  if nice build-fuzz/fuzz/"$name" "$work" "${dict[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
        -malloc_limit_mb=2048 -max_len=65536 -print_final_stats=1 -artifact_prefix="$findings/" > "$log" 2>&1; then
+    local runs cov
     runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
     cov=$(grep -Eo 'cov: [0-9]+ ft: [0-9]+' "$log" | tail -1 || echo "")
-    echo "fuzz: $name passed: $runs executions, $cov, corpus $(ls "$work" | wc -l) inputs"
+    echo "fuzz: $name passed: $runs executions in $seconds s, $cov, corpus $(ls "$work" | wc -l) inputs"
   else
     echo "fuzz: $name FAILED (finding in $findings/):" >&2
     grep -E "ERROR|runtime error|SUMMARY|Test unit written" "$log" | head -20 >&2
-    status=1
+    return 1
   fi
-done
+}
+
+# FUZZ_PARALLEL=1 runs the harnesses at once (one core each), else one after another.
+status=0
+if [ "${FUZZ_PARALLEL:-0}" = 1 ]; then
+  pids=()
+  for name in "${harnesses[@]}"; do run_one "$name" & pids+=($!); done
+  for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+else
+  for name in "${harnesses[@]}"; do run_one "$name" || status=1; done
+fi
 exit $status
