@@ -146,15 +146,18 @@ int run_accuracy(const AccuracyArgs& args) {
     throw ConfigError(args.config + ": goal " + e.what());
   }
 
-  std::filesystem::create_directories(args.out_dir);
+  OutputSet set(args.out_dir, {"accuracy.csv", "accuracy.svg"});  // one set: the folder never mixes two studies
   const AccuracyStudy study = run_accuracy_study(scene, goals, options, make_progress(args.quiet));
-  const std::string csv = (std::filesystem::path(args.out_dir) / "accuracy.csv").string();
-  const std::string svg = (std::filesystem::path(args.out_dir) / "accuracy.svg").string();
-  write_csv(csv, study);
+  write_csv(set.staging_path("accuracy.csv"), study);
+  set.staged("accuracy.csv");
   const auto summary = summarise(study);
   const double reference_seconds = study.reference.bvh_seconds + study.reference.form_factor_seconds +
                                    study.reference.direct_light_seconds + study.reference.solve_seconds;
-  write_plot(svg, summary, std::filesystem::path(args.config).filename().string(), reference_seconds);
+  write_plot(set.staging_path("accuracy.svg"), summary, std::filesystem::path(args.config).filename().string(),
+             reference_seconds);
+  set.staged("accuracy.svg");
+  const std::vector<std::string> written = set.commit();
+  const std::string csv = written[0], svg = written[1];
 
   std::cout << "Accuracy of the sample-based operator: " << study.patches << " patches, " << study.population
             << " reflecting, " << study.goal_patches << " goal patches\n"

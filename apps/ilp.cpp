@@ -6,6 +6,10 @@
 
 #include "apps/commands.h"
 
+namespace {
+constexpr int kMaxThreads = 1024;  // as solver.threads of a job
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"ilp: inverse lighting through a sample-based radiosity inverse"};
   app.require_subcommand(1);
@@ -21,7 +25,7 @@ int main(int argc, char** argv) {
   solve->add_option("--method", solve_args.method, "sample or exact (default: solver.method of the job, else sample)")
       ->check(CLI::IsMember({"sample", "exact"}));
   solve->add_option("--threads", solve_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, kMaxThreads));
   solve->add_flag("-q,--quiet", solve_args.quiet, "no progress lines");
 
   ilp::cli::AccuracyArgs acc;
@@ -49,7 +53,7 @@ int main(int argc, char** argv) {
   accuracy->add_option("--pilot-fraction", acc.pilot_fraction, "pilot sample size, of the reflecting patches")
       ->check(CLI::Range(1e-9, 1.0))->capture_default_str();
   accuracy->add_option("--threads", acc.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, kMaxThreads));
   accuracy->add_flag("-q,--quiet", acc.quiet, "no progress lines");
 
   ilp::cli::RunArgs run_args;
@@ -64,7 +68,7 @@ int main(int argc, char** argv) {
                   "scene and solver settings skips the build");
   run->add_flag("--no-cache", run_args.no_cache, "build the operator without reading or writing the cache");
   run->add_option("--threads", run_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, kMaxThreads));
   run->add_flag("-q,--quiet", run_args.quiet, "no progress lines");
 
   ilp::cli::SweepArgs sweep_args;
@@ -79,7 +83,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--cache", sweep_args.cache_dir, "operator cache folder (default: $XDG_CACHE_HOME/ilp or ~/.cache/ilp)");
   sweep->add_flag("--no-cache", sweep_args.no_cache, "build the operator without reading or writing the cache");
   sweep->add_option("--threads", sweep_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, kMaxThreads));
   sweep->add_flag("-q,--quiet", sweep_args.quiet, "no progress lines");
 
   ilp::cli::PrintArgs print_args;
@@ -100,10 +104,16 @@ int main(int argc, char** argv) {
   bench->add_flag("--skip-full-solve", bench_args.skip_full_solve, "do not run the full radiosity solve");
   bench->add_option("--csv", bench_args.csv, "append one row of figures to this CSV");
   bench->add_option("--threads", bench_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, kMaxThreads));
   bench->add_flag("-q,--quiet", bench_args.quiet, "no progress lines");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version exit 0; every bad argument exits 1, as every other error does
+    // (CLI11's own codes, 105 and up, would mean something else to a caller).
+    return app.exit(e) == 0 ? 0 : 1;
+  }
   try {
     if (*solve) return ilp::cli::run_solve(solve_args);
     if (*accuracy) return ilp::cli::run_accuracy(acc);
@@ -111,8 +121,14 @@ int main(int argc, char** argv) {
     if (*sweep) return ilp::cli::run_sweep(sweep_args);
     if (*print) return ilp::cli::run_print(print_args);
     if (*bench) return ilp::cli::run_bench(bench_args);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "error: out of memory (a smaller job: larger scene.max_patch_edge_m, fewer rays or candidates)\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  } catch (...) {
+    std::cerr << "error: an unexpected failure (please report it with the job file)\n";
     return 1;
   }
   return 0;

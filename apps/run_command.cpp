@@ -218,19 +218,18 @@ void write_illuminance_csv(const std::string& path, const PreparedJob& prepared,
 }
 
 // result.json, illuminance.csv, plan.svg and scene.ply as the job's output.formats asks.
-std::vector<std::string> write_outputs(const std::string& dir, const PreparedJob& prepared, const JobConfig& job,
+// Written as one set (OutputSet): the folder holds the previous run's files or these,
+// never a mix; a format left out removes the previous run's file of that format.
+std::vector<std::string> write_outputs(OutputSet& set, const PreparedJob& prepared, const JobConfig& job,
                                        const JobOutcome& outcome, const ResultRecord& record) {
-  std::filesystem::create_directories(dir);
-  const std::filesystem::path folder(dir);
   const Scene& scene = prepared.loaded.scene;
-  std::vector<std::string> written;
   if (job.output.json) {
-    write_result_json((folder / "result.json").string(), record);
-    written.push_back((folder / "result.json").string());
+    write_result_json(set.staging_path("result.json"), record);
+    set.staged("result.json");
   }
   if (job.output.csv) {
-    write_illuminance_csv((folder / "illuminance.csv").string(), prepared, outcome);
-    written.push_back((folder / "illuminance.csv").string());
+    write_illuminance_csv(set.staging_path("illuminance.csv"), prepared, outcome);
+    set.staged("illuminance.csv");
   }
   // Pictures show the verified illuminance where there is one, else the predicted.
   const bool verified = outcome.verification.method != "none";
@@ -259,18 +258,17 @@ std::vector<std::string> write_outputs(const std::string& dir, const PreparedJob
       view.luminaires.push_back(std::move(l));
     }
     const std::string svg = render_plan_svg(scene, view);
-    write_file_atomically((folder / "plan.svg").string(), [&](std::ostream& out) { out << svg; });
-    written.push_back((folder / "plan.svg").string());
+    set.write("plan.svg", [&](std::ostream& out) { out << svg; });
   }
   if (job.output.ply) {
     Eigen::VectorXd lux = verified_lux_per_patch(scene, outcome);
     if (!verified)
       for (std::size_t r = 0; r < prepared.model.goal_patches.size(); ++r)
         lux[prepared.model.goal_patches[r]] = outcome.predicted_lux[static_cast<Eigen::Index>(r)];
-    write_illuminance_ply((folder / "scene.ply").string(), scene, lux, scale);
-    written.push_back((folder / "scene.ply").string());
+    write_illuminance_ply(set.staging_path("scene.ply"), scene, lux, scale);
+    set.staged("scene.ply");
   }
-  return written;
+  return set.commit();
 }
 
 // Parses "KEY=V1,V2,..." into a sweep.
@@ -309,7 +307,8 @@ int run_job(const RunArgs& args) {
   const auto start = Clock::now();
   const JobConfig loaded = load_for_run(args.config, args.threads);
   const ProgressCallback progress = make_progress(args.quiet);
-  const std::string dir = output_directory(loaded, args.out_dir);
+  // Staged from the start, so a folder that cannot take the outputs fails before the work.
+  OutputSet set(output_directory(loaded, args.out_dir), {"result.json", "illuminance.csv", "plan.svg", "scene.ply"});
   const std::vector<JobVariant> variants = job_variants(loaded);
   const std::vector<PreparedJob> all = prepare_variants(variants, progress, cache_folder(args.cache_dir, args.no_cache));
   const Chosen chosen = solve_variants(all, variants, [](JobConfig&) {}, progress);
@@ -328,7 +327,7 @@ int run_job(const RunArgs& args) {
   record.bill_of_materials = bill_of_materials(variants[chosen.variant], outcome);
   record.variants = chosen.tried;
   print_result(std::cout, record);
-  for (const std::string& file : write_outputs(dir, prepared, job, outcome, record)) std::cout << "wrote " << file << "\n";
+  for (const std::string& file : write_outputs(set, prepared, job, outcome, record)) std::cout << "wrote " << file << "\n";
   return outcome.all_met ? 0 : 2;
 }
 
@@ -347,7 +346,7 @@ int run_sweep(const SweepArgs& args) {
                                  "[...]}) or pass --set KEY=V1,V2,...");
   }
   const ProgressCallback progress = make_progress(args.quiet);
-  const std::string dir = output_directory(job, args.out_dir);
+  OutputSet set(output_directory(job, args.out_dir), {"sweep.csv", "sweep.svg"});
   const std::vector<JobVariant> variants = job_variants(job);
   const std::vector<PreparedJob> prepared = prepare_variants(variants, progress, cache_folder(args.cache_dir, args.no_cache));
 
@@ -388,16 +387,15 @@ int run_sweep(const SweepArgs& args) {
       powers.push_back(outcome.power_w);
     }
   }
-  std::filesystem::create_directories(dir);
-  const std::filesystem::path folder(dir);
-  write_file_atomically((folder / "sweep.csv").string(), [&](std::ostream& out) { out << csv.str(); });
+  set.write("sweep.csv", [&](std::ostream& out) { out << csv.str(); });
   const std::string plot = render_svg_plot(
       {.title = "Power against " + sweep.key, .x_label = sweep.key, .y_label = "electric power (W)"},
       {PlotSeries{"layouts meeting every goal", xs, powers}});
-  write_file_atomically((folder / "sweep.svg").string(), [&](std::ostream& out) { out << plot; });
+  set.write("sweep.svg", [&](std::ostream& out) { out << plot; });
+  const std::vector<std::string> written = set.commit();
   std::cout << "operator built once for " << sweep.values.size() << " points; total " << std::fixed
             << std::setprecision(2) << seconds_since(start) << " s\n";
-  std::cout << "wrote " << (folder / "sweep.csv").string() << "\nwrote " << (folder / "sweep.svg").string() << "\n";
+  for (const std::string& file : written) std::cout << "wrote " << file << "\n";
   return 0;
 }
 

@@ -15,6 +15,18 @@
 namespace ilp {
 namespace {
 
+// Bounds on the numbers a user types, so that no later arithmetic overflows or
+// loses the job (docs/reliability.md). Generous for real rooms and products.
+constexpr double kMaxFlux_lm = 1e9;              // a stadium floodlight is ~2e5 lm
+constexpr double kMaxExitance_lm_per_m2 = 1e9;   // the sun's disc ~1e5 lx on a surface
+constexpr double kMaxLux = 1e7;                  // goal targets
+constexpr double kMinLuminaireSize_m = 1e-3, kMaxLuminaireSize_m = 100.0;
+constexpr double kMinPatchEdge_m = 1e-4, kMaxLength_m = 1e5;
+constexpr double kMinSpacing_m = 1e-3;
+constexpr double kMinScale = 1e-6, kMaxScale = 1e6;
+constexpr double kMaxEfficacy_lm_per_w = 1000.0;  // 683 lm/W is the theoretical limit
+constexpr double kMaxSeconds = 1e7;
+
 // A YAML node with the dotted key that led to it, for messages that say where.
 class Value {
  public:
@@ -53,6 +65,21 @@ class Value {
     const double v = number();
     if (!(v > 0.0)) fail("must be > 0");
     return v;
+  }
+  // A number in [low, high] (docs/reliability.md: what ilp can hold), else an error
+  // naming the range and its unit.
+  double bounded(double low, double high, const std::string& unit) const {
+    const double v = number();
+    if (low > 0.0 && !(v > 0.0)) fail("must be > 0");
+    if (low == 0.0 && v < 0.0) fail("must be >= 0");
+    if (v < low) fail("must be at least " + shown(low) + unit);
+    if (v > high) fail("must be at most " + shown(high) + unit);
+    return v;
+  }
+  static std::string shown(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
   }
   long long integer(long long low, long long high) const {
     const double v = number();
@@ -167,9 +194,9 @@ void read_scene(const Map& scene, JobConfig& job) {
     else if (axis == "z") job.scene.up_axis = UpAxis::z;
     else v->fail("must be y or z");
   }
-  if (auto v = scene.get("scale_to_m")) job.scene.scale_to_m = v->positive();
+  if (auto v = scene.get("scale_to_m")) job.scene.scale_to_m = v->bounded(kMinScale, kMaxScale, " (metres per file unit)");
   if (auto v = scene.get("max_patch_edge_m")) {
-    job.scene.max_patch_edge_m = v->positive();
+    job.scene.max_patch_edge_m = v->bounded(kMinPatchEdge_m, kMaxLength_m, " m");
     job.max_patch_edge_loc = v->loc();
   }
   if (auto v = scene.get("surfaces_from")) {
@@ -210,8 +237,7 @@ void read_scene(const Map& scene, JobConfig& job) {
       const Map emitter(item, {"surface", "exitance_lm_per_m2"});
       const Value surface = emitter.require("surface");
       const Value exitance = emitter.require("exitance_lm_per_m2");
-      const double e = exitance.number();
-      if (e < 0.0) exitance.fail("must be >= 0");
+      const double e = exitance.bounded(0.0, kMaxExitance_lm_per_m2, " lm/m²");
       job.emitting_surfaces.push_back({surface.text(), e, surface.loc()});
     }
   }
@@ -235,14 +261,17 @@ void read_panel_flux(const Map& luminaires, const Value& mounting, LuminaireSear
   if (!flux) mounting.fail("needs luminaires.flux_lm: [min, max] or one number (or luminaires.products)");
   search.flux_loc = flux->loc();
   if (flux->node().IsScalar()) {
-    search.flux_min_lm = search.flux_max_lm = flux->number_in(1e-6, 1e9, false, "[1e-6, 1e9] lm");
+    search.flux_min_lm = search.flux_max_lm = flux->bounded(1e-6, kMaxFlux_lm, " lm");
   } else {
     if (!flux->node().IsSequence() || flux->node().size() != 2) flux->fail("must be a list [min, max] or one number");
-    search.flux_min_lm = flux->element(0).number_in(0.0, 1e9, false, "[0, 1e9] lm");
-    search.flux_max_lm = flux->element(1).number_in(1e-6, 1e9, false, "[1e-6, 1e9] lm");
+    search.flux_min_lm = flux->element(0).bounded(0.0, kMaxFlux_lm, " lm");
+    search.flux_max_lm = flux->element(1).bounded(1e-6, kMaxFlux_lm, " lm");
     if (search.flux_max_lm < search.flux_min_lm) flux->element(1).fail("must be at least the minimum flux_lm[0]");
   }
-  if (auto v = luminaires.get("efficacy_lm_per_w")) search.efficacy_lm_per_w = v->number_in(1e-3, 1e4, false, "[0.001, 10000] lm/W");
+  if (auto v = luminaires.get("efficacy_lm_per_w")) {
+    search.efficacy_lm_per_w = v->positive();
+    if (search.efficacy_lm_per_w > kMaxEfficacy_lm_per_w) v->fail("must be at most 1000 lm/W");
+  }
 }
 
 void read_products(const Value& section, const JobConfig& job, LuminaireSearch& search) {
@@ -314,9 +343,10 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
   if (auto v = luminaires.get("mount_offset_m")) {
     search.mount_offset_m = v->number_in(0.0, 10.0, true, "(0, 10)");
     if (search.mount_offset_m <= 0.0) v->fail("must be in (0, 10)");
+    search.offset_loc = v->loc();
   }
   if (auto v = luminaires.get("candidate_spacing_m")) {
-    search.candidate_spacing_m = v->positive();
+    search.candidate_spacing_m = v->bounded(kMinSpacing_m, kMaxLength_m, " m");
     search.spacing_loc = v->loc();
   }
   const auto layout = luminaires.get("layout"), array = luminaires.get("array"), count = luminaires.get("count");
@@ -334,12 +364,14 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
     search.array_rows = static_cast<int>(block.require("rows").integer(1, 32));
     search.array_columns = static_cast<int>(block.require("columns").integer(1, 32));
     if (auto v = block.get("spacing_m"))
-      search.array_spacing_m = pair_of(*v, [](const Value& e) { return e.positive(); });
+      search.array_spacing_m = pair_of(*v, [](const Value& e) {
+        const double x = e.positive();
+        if (x > kMaxLength_m) e.fail("must be at most 1e+05 m");
+        return x;
+      });
     if (auto v = block.get("offset_m"))
       search.array_offset_m = pair_of(*v, [](const Value& e) {
-        const double x = e.number();
-        if (x < 0.0) e.fail("must be >= 0");
-        return x;
+        return e.bounded(0.0, kMaxLength_m, " m");
       });
   } else {
     if (array) array->fail("needs luminaires.layout: array");
@@ -359,7 +391,7 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
 }
 
 void read_luminaires(const Map& luminaires, JobConfig& job) {
-  if (auto v = luminaires.get("size_m")) job.luminaire_size_m = v->positive();
+  if (auto v = luminaires.get("size_m")) job.luminaire_size_m = v->bounded(kMinLuminaireSize_m, kMaxLuminaireSize_m, " m");
   if (auto v = luminaires.get("placed")) {
     std::set<std::string> names;
     for (const Value& item : v->list()) {
@@ -374,8 +406,7 @@ void read_luminaires(const Map& luminaires, JobConfig& job) {
       if (!names.insert(setting.name).second) item.fail("luminaire name '" + setting.name + "' is used twice");
       setting.position_m = lum.require("position_m").vector3();
       const Value flux = lum.require("flux_lm");
-      setting.flux_lm = flux.number();
-      if (setting.flux_lm < 0.0) flux.fail("must be >= 0");
+      setting.flux_lm = flux.bounded(0.0, kMaxFlux_lm, " lm");
       setting.loc = item.loc();
       job.luminaires.push_back(setting);
     }
@@ -416,8 +447,8 @@ std::string format_number(double v) {
 std::string goal_value_rule(GoalMetric metric, double v) {
   switch (metric) {
     case GoalMetric::average:
-    case GoalMetric::maximum: return v > 0.0 ? "" : "must be > 0";
-    case GoalMetric::minimum: return v >= 0.0 ? "" : "must be >= 0";
+    case GoalMetric::maximum: return v > 0.0 ? (v <= kMaxLux ? "" : "must be at most 1e+07 lx") : "must be > 0";
+    case GoalMetric::minimum: return v >= 0.0 ? (v <= kMaxLux ? "" : "must be at most 1e+07 lx") : "must be >= 0";
     case GoalMetric::uniformity: return v > 0.0 && v <= 1.0 ? "" : "must be in (0, 1]";
   }
   return "";
@@ -542,8 +573,7 @@ void read_constraints(const Map& constraints, JobConfig& job) {
     job.constraints.max_luminaires_loc = v->loc();
   }
   if (auto v = constraints.get("min_distance_m")) {
-    job.constraints.min_distance_m = v->number();
-    if (job.constraints.min_distance_m < 0.0) v->fail("must be >= 0");
+    job.constraints.min_distance_m = v->bounded(0.0, kMaxLength_m, " m");
   }
 }
 
@@ -581,7 +611,10 @@ void read_optimizer(const Map& optimizer, JobConfig& job) {
   if (auto v = optimizer.get("max_evaluations")) o.max_evaluations = static_cast<int>(v->integer(1, 100'000'000));
   if (auto v = optimizer.get("local_max_evaluations"))
     o.local_max_evaluations = static_cast<int>(v->integer(1, 100'000'000));
-  if (auto v = optimizer.get("max_seconds")) o.max_seconds = v->positive();
+  if (auto v = optimizer.get("max_seconds")) {
+    o.max_seconds = v->positive();
+    if (o.max_seconds > kMaxSeconds) v->fail("must be at most 1e+07 s");
+  }
   if (auto v = optimizer.get("seed")) o.seed = static_cast<std::uint64_t>(v->integer(0, (1ll << 53)));
 }
 
@@ -741,12 +774,20 @@ JobConfig load_job_config(const std::string& path) {
   JobConfig job;
   job.path = path;
   {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw ConfigError(path + ": is a folder, not a config file");
     std::ifstream probe(path);
     if (!probe) throw ConfigError(path + ": cannot open the config file");
   }
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
+    std::vector<YAML::Node> documents = YAML::LoadAllFromFile(path);
+    if (documents.size() > 1) {
+      const YAML::Mark mark = documents[1].Mark();
+      throw ConfigError(located({path, mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0},
+                                "a second YAML document (after '---'): a config file holds one job"));
+    }
+    if (!documents.empty()) root = documents.front();
   } catch (const YAML::ParserException& e) {
     throw ConfigError(located({path, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg));
   } catch (const YAML::Exception& e) {

@@ -97,6 +97,7 @@ struct LuminaireSearch {
   std::string mounting_surface;             // a surface of the scene facing down (a ceiling)
   FileLoc mounting_loc;
   double mount_offset_m = 0.02;             // the emitting face hangs this far below the mounting surface, > 0
+  FileLoc offset_loc;  // where mount_offset_m was set (if it was)
   double candidate_spacing_m = 0.5;         // grid of precomputed positions; T is interpolated between them
   FileLoc spacing_loc;
   int count_min = 1;                        // count: N or [min, max]: how many luminaires (free layout)

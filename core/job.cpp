@@ -160,13 +160,27 @@ JobScene load_job_scene(const JobConfig& job) {
       throw ConfigError(located(l.loc, "luminaires.placed: name '" + l.name + "' is already a surface of the mesh"));
     add_square_luminaire(scene, l.name, l.position_m, job.luminaire_size_m, l.flux_lm);
   }
-  for (std::size_t k = 0; k < job.report_surfaces.size(); ++k)
-    if (scene.find_surface(job.report_surfaces[k]) < 0)
+  // A surface to report or light must keep a patch (not all excluded or degenerate).
+  std::vector<std::size_t> patches_of(scene.surfaces.size(), 0);
+  for (const Patch& p : scene.patches) ++patches_of[static_cast<std::size_t>(p.surface)];
+  auto require_patches = [&](int surface, const FileLoc& loc, const std::string& key) {
+    if (patches_of[static_cast<std::size_t>(surface)] == 0)
+      throw ConfigError(located(loc, key + ": surface '" + scene.surfaces[static_cast<std::size_t>(surface)].name +
+                                         "' has no patch left (left out by scene.exclude_surfaces, or every face "
+                                         "degenerate)"));
+  };
+  for (std::size_t k = 0; k < job.report_surfaces.size(); ++k) {
+    const int s = scene.find_surface(job.report_surfaces[k]);
+    if (s < 0)
       throw ConfigError(located(job.report_surface_locs[k], "report.surfaces: unknown surface '" +
                                                                job.report_surfaces[k] + "'"));
+    require_patches(s, job.report_surface_locs[k], "report.surfaces");
+  }
   // The inverse problem's surfaces: those of the mesh (a placed luminaire is no goal).
   for (const GoalSetting& g : job.goals)
-    for (const std::string& s : g.surfaces) require_surface(s, g.surfaces_loc, "goals." + g.name + ".surface");
+    for (const std::string& s : g.surfaces)
+      require_patches(require_surface(s, g.surfaces_loc, "goals." + g.name + ".surface"), g.surfaces_loc,
+                      "goals." + g.name + ".surface");
   if (job.search)
     require_surface(job.search->mounting_surface, job.search->mounting_loc, "luminaires.mounting_surface");
 

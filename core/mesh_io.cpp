@@ -57,7 +57,15 @@ double parse_finite(std::string_view token, const FileLoc& loc, const char* what
   return value;
 }
 
+// A UTF-8 byte order mark (some Windows exporters write one) is not part of the first line.
+void strip_bom(std::string& line, int line_no) {
+  if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
+}
+
 std::vector<MeshMaterial> load_mtl(const fs::path& path, const FileLoc& referenced_from) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec))
+    throw SceneError(located(referenced_from, "mtllib: '" + path.string() + "' is a folder, not a material file"));
   std::ifstream in(path);
   if (!in) throw SceneError(located(referenced_from, "mtllib: cannot open material file '" + path.string() + "'"));
   std::vector<MeshMaterial> materials;
@@ -65,6 +73,7 @@ std::vector<MeshMaterial> load_mtl(const fs::path& path, const FileLoc& referenc
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
+    strip_bom(line, line_no);
     auto tokens = split_ws(line);
     if (tokens.empty()) continue;
     const FileLoc loc{path.string(), line_no};
@@ -126,6 +135,7 @@ TriangleMesh load_obj(const fs::path& path, const MeshReadOptions& options) {
 
   while (std::getline(in, line)) {
     ++line_no;
+    strip_bom(line, line_no);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     auto tokens = split_ws(line);
     if (tokens.empty()) continue;
@@ -173,58 +183,203 @@ TriangleMesh load_obj(const fs::path& path, const MeshReadOptions& options) {
 }
 
 struct DeclaredCounts {
-  long vertices = -1, faces = -1;  // -1: not known (binary OFF, unusual header)
-  long data_lines = -1;            // ASCII OFF: non-empty, non-comment lines after the header
+  long long vertices = -1, faces = -1;  // -1: not known (unusual header)
 };
 
-// What the OFF or PLY header says the file holds, to catch the faces OpenMesh's
-// readers skip or invent without a word (bad indices, truncated files).
-DeclaredCounts declared_counts(const fs::path& path, const std::string& ext) {
+// A count from a header: a whole number >= 0 and at most the file's size in bytes
+// (every element takes at least a byte), checked before anything is allocated.
+long long header_count(std::string_view token, const std::string& what, const fs::path& path, int line,
+                       std::uintmax_t file_bytes) {
+  long long count = -1;
+  auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), count);
+  if (ec != std::errc() || end != token.data() + token.size() || count < 0)
+    throw SceneError(located({path.string(), line}, "the header's " + what + " count '" + std::string(token) +
+                                                        "' is not a whole number >= 0"));
+  if (static_cast<std::uintmax_t>(count) > file_bytes)
+    throw SceneError(located({path.string(), line}, "the header declares " + std::string(token) + " " + what +
+                                                        "s but the file holds only " + std::to_string(file_bytes) +
+                                                        " bytes (a damaged or truncated file)"));
+  return count;
+}
+
+std::size_t ply_type_bytes(std::string_view type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" || type == "float32")
+    return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+// PLY: the header's element counts against the file's size (binary: the least bytes
+// they need; ASCII: one line per element with the tokens its properties call for).
+// OpenMesh would allocate whatever a header declares, and it makes up the rest of a
+// truncated ASCII file.
+DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
+  struct Element {
+    std::string name;
+    long long count = 0;
+    int line = 0;
+    std::vector<std::pair<bool, std::size_t>> properties;  // (is a list, bytes of a value or of the list count)
+  };
   DeclaredCounts out;
-  std::ifstream in(path);
-  std::string line;
-  if (ext == ".ply") {
-    while (std::getline(in, line)) {
-      auto tokens = split_ws(line);
-      if (tokens.size() == 3 && tokens[0] == "element") {
-        long count = -1;
-        std::from_chars(tokens[2].data(), tokens[2].data() + tokens[2].size(), count);
-        if (tokens[1] == "vertex") out.vertices = count;
-        if (tokens[1] == "face") out.faces = count;
-      }
-      if (line.rfind("end_header", 0) == 0) break;
+  std::ifstream in(path, std::ios::binary);
+  std::string line, format;
+  std::vector<Element> elements;
+  int line_no = 0;
+  bool ended = false;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    auto tokens = split_ws(line);
+    if (tokens.empty()) continue;
+    // OpenMesh loops for ever on a header it cannot finish: refuse what it would not know.
+    const FileLoc loc{path.string(), line_no};
+    if (line_no == 1 && tokens[0] != "ply")
+      throw SceneError(path.string() + ": could not read the mesh: not a PLY file (no 'ply' on the first line)");
+    if (tokens[0] == "format") {
+      if (tokens.size() != 3 || (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" &&
+                                 tokens[1] != "binary_big_endian"))
+        throw SceneError(located(loc, "format must be ascii, binary_little_endian or binary_big_endian, then a version"));
+      format = std::string(tokens[1]);
+    } else if (tokens[0] != "ply" && tokens[0] != "comment" && tokens[0] != "obj_info" && tokens[0] != "element" &&
+               tokens[0] != "property" && tokens[0] != "end_header") {
+      throw SceneError(located(loc, "unknown PLY header keyword '" + std::string(tokens[0]) + "'"));
     }
+    if (tokens[0] == "element") {
+      if (tokens.size() != 3) throw SceneError(located({path.string(), line_no}, "element needs a name and a count"));
+      elements.push_back({std::string(tokens[1]), header_count(tokens[2], std::string(tokens[1]), path, line_no, file_bytes),
+                          line_no, {}});
+      if (tokens[1] == "vertex") out.vertices = elements.back().count;
+      if (tokens[1] == "face") out.faces = elements.back().count;
+    }
+    if (tokens[0] == "property") {
+      const bool list = tokens.size() >= 2 && tokens[1] == "list";
+      if (elements.empty() || tokens.size() != (list ? 5u : 3u) || ply_type_bytes(tokens[list ? 2 : 1]) == 0 ||
+          (list && ply_type_bytes(tokens[3]) == 0))
+        throw SceneError(located(loc, "property must follow an element and be 'property TYPE NAME' or 'property list "
+                                      "COUNT_TYPE TYPE NAME' with PLY types (char, uchar, short, ..., float, double)"));
+      elements.back().properties.push_back({list, ply_type_bytes(tokens[list ? 2 : 1])});
+    }
+    if (tokens[0] == "end_header") {
+      ended = true;
+      break;
+    }
+  }
+  if (!ended) throw SceneError(path.string() + ": the PLY header has no end_header (a truncated or damaged file)");
+  if (format.empty()) throw SceneError(path.string() + ": the PLY header has no format line");
+  long double need = 0;
+  for (const Element& e : elements) {
+    std::size_t bytes = 0;
+    for (const auto& [list, size] : e.properties) bytes += size;
+    need += static_cast<long double>(e.count) * static_cast<long double>(bytes);
+  }
+  const auto header_end = static_cast<std::uintmax_t>(std::max<std::streamoff>(0, in.tellg()));
+  const std::uintmax_t body = file_bytes > header_end ? file_bytes - header_end : 0;
+  if (format != "ascii") {
+    if (need > static_cast<long double>(body))
+      throw SceneError(path.string() + ": the header declares elements needing at least " +
+                       std::to_string(static_cast<unsigned long long>(need)) + " bytes but only " +
+                       std::to_string(body) + " follow it (truncated?)");
     return out;
   }
+  for (const Element& e : elements)
+    for (long long k = 0; k < e.count; ++k) {
+      std::vector<std::string_view> tokens;
+      while (tokens.empty()) {
+        if (!std::getline(in, line))
+          throw SceneError(located({path.string(), line_no}, "the file ends after " + std::to_string(k) + " of the " +
+                                                                 std::to_string(e.count) + " " + e.name +
+                                                                 " lines its header declares (truncated?)"));
+        ++line_no;
+        tokens = split_ws(line);
+      }
+      std::size_t at = 0;
+      for (const auto& [list, size] : e.properties) {
+        if (!list) {
+          ++at;
+          continue;
+        }
+        long long n = -1;
+        if (at < tokens.size()) std::from_chars(tokens[at].data(), tokens[at].data() + tokens[at].size(), n);
+        if (n < 0 || n > static_cast<long long>(tokens.size()))
+          throw SceneError(located({path.string(), line_no}, e.name + " " + std::to_string(k) +
+                                                                 ": the list count is missing or not a whole number"));
+        at += 1 + static_cast<std::size_t>(n);
+      }
+      if (tokens.size() != at)
+        throw SceneError(located({path.string(), line_no}, e.name + " " + std::to_string(k) + " has " +
+                                                               std::to_string(tokens.size()) + " values, its header's properties call for " +
+                                                               std::to_string(at) + " (truncated or damaged line)"));
+    }
+  return out;
+}
+
+// OFF: the counts of the header against the file's size, and for ASCII files the
+// data lines against the counts (OpenMesh makes up faces a truncated file lacks).
+DeclaredCounts check_off(const fs::path& path, std::uintmax_t file_bytes) {
+  DeclaredCounts out;
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
   std::vector<std::string> header;  // "OFF", vertex count, face count, edge count
+  int line_no = 0, counts_line = 0;
   while (header.size() < 4 && std::getline(in, line)) {
-    for (auto t : split_ws(line)) header.emplace_back(t);
+    ++line_no;
+    for (auto t : split_ws(line)) {
+      header.emplace_back(t);
+      if (header.size() == 2) counts_line = line_no;
+    }
     if (!header.empty() && header[0].find("OFF") == std::string::npos) return out;
     if (header.size() >= 2 && header[1] == "BINARY") return out;
   }
   if (header.size() < 3) return out;
-  std::from_chars(header[1].data(), header[1].data() + header[1].size(), out.vertices);
-  std::from_chars(header[2].data(), header[2].data() + header[2].size(), out.faces);
-  out.data_lines = 0;
-  while (std::getline(in, line))
-    if (!split_ws(line).empty()) ++out.data_lines;
+  out.vertices = header_count(header[1], "vertex", path, counts_line, file_bytes);
+  out.faces = header_count(header[2], "face", path, counts_line, file_bytes);
+  if (out.vertices + out.faces > static_cast<long long>(file_bytes))
+    throw SceneError(located({path.string(), counts_line}, "the header declares " + std::to_string(out.vertices) +
+                                                               " vertices and " + std::to_string(out.faces) +
+                                                               " faces but the file holds only " +
+                                                               std::to_string(file_bytes) + " bytes"));
+  long long data_lines = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    auto tokens = split_ws(line);
+    if (tokens.empty()) continue;
+    ++data_lines;
+    if (data_lines > out.vertices && data_lines <= out.vertices + out.faces) {
+      long long n = -1;
+      std::from_chars(tokens[0].data(), tokens[0].data() + tokens[0].size(), n);
+      if (n < 0 || static_cast<long long>(tokens.size()) < 1 + n)
+        throw SceneError(located({path.string(), line_no}, "face " + std::to_string(data_lines - out.vertices - 1) +
+                                                               " lists fewer vertex indices than its count (truncated?)"));
+    }
+  }
+  if (data_lines < out.vertices + out.faces)
+    throw SceneError(path.string() + ": the file ends after " + std::to_string(data_lines) +
+                     " data lines, but its header declares " + std::to_string(out.vertices) + " vertices and " +
+                     std::to_string(out.faces) + " faces (truncated?)");
   return out;
 }
 
 TriangleMesh load_with_openmesh(const fs::path& path, const std::string& ext) {
-  if (!fs::exists(path)) throw SceneError(path.string() + ": cannot open mesh file");
+  std::error_code ec;
+  const std::uintmax_t file_bytes = fs::file_size(path, ec);
+  if (ec) throw SceneError(path.string() + ": cannot open mesh file");
+  const DeclaredCounts declared = ext == ".ply" ? check_ply(path, file_bytes) : check_off(path, file_bytes);
   omerr().disable();  // OpenMesh prints to the console otherwise; we report ourselves
   omlog().disable();
   OpenMesh::PolyMesh_ArrayKernelT<> poly;
-  if (!OpenMesh::IO::read_mesh(poly, path.string()))
-    throw SceneError(path.string() + ": OpenMesh could not read the mesh");
-  const DeclaredCounts declared = declared_counts(path, ext);
-  if (declared.data_lines >= 0 && declared.vertices >= 0 && declared.faces >= 0 &&
-      declared.data_lines < declared.vertices + declared.faces)
-    throw SceneError(path.string() + ": the file ends after " + std::to_string(declared.data_lines) +
-                     " data lines, but its header declares " + std::to_string(declared.vertices) + " vertices and " +
-                     std::to_string(declared.faces) + " faces (truncated?)");
-  if (declared.faces >= 0 && static_cast<long>(poly.n_faces()) != declared.faces)
+  try {
+    if (!OpenMesh::IO::read_mesh(poly, path.string()))
+      throw SceneError(path.string() + ": OpenMesh could not read the mesh");
+  } catch (const std::bad_alloc&) {
+    throw SceneError(path.string() + ": out of memory reading the mesh");
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw SceneError(path.string() + ": OpenMesh could not read the mesh (" + e.what() + ")");
+  }
+  if (declared.faces >= 0 && static_cast<long long>(poly.n_faces()) != declared.faces)
     throw SceneError(path.string() + ": OpenMesh read " + std::to_string(poly.n_faces()) + " of the " +
                      std::to_string(declared.faces) +
                      " faces its header declares (a face with an invalid or repeated vertex index, or a "
@@ -259,6 +414,8 @@ TriangleMesh load_mesh(const std::string& path_string, const MeshReadOptions& op
   const fs::path path(path_string);
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw SceneError(path_string + ": is a folder, not a mesh file");
   TriangleMesh mesh;
   if (ext == ".obj") mesh = load_obj(path, options);
   else if (ext == ".ply" || ext == ".off") mesh = load_with_openmesh(path, ext);

@@ -61,7 +61,9 @@ int ErrorPrediction::recommended_sample_size(double target) const {
   if (eps0 == 0.0) return std::clamp(pilot_size, 1, census);
   const double c = eps0 * eps0 / (1.0 / pilot_size - 1.0 / n);
   const double k = 1.0 / (target * target / c + 1.0 / n);
-  return std::clamp(static_cast<int>(std::ceil(k - 1e-9)), 1, census);
+  const double rounded = std::ceil(k - 1e-9);  // in double: clamp before the cast (k <= n, but NaN-safe)
+  if (!(rounded >= 1.0)) return 1;
+  return rounded >= census ? census : static_cast<int>(rounded);
 }
 
 ErrorPrediction predict_sample_error(const Scene& scene, const RayCaster& caster, const GoalRows& goals,

@@ -213,7 +213,7 @@ void require_valid_materials(const Scene& scene) {
 // values a few ulps below 0, which are set to 0. Anything clearly negative is a bug.
 void clamp_round_off(Eigen::MatrixXd& T, const Scene& scene, std::span<const int> row_patches,
                      std::span<const LightSource> sources) {
-  const double tolerance = 1e-9 * std::max(T.cwiseAbs().maxCoeff(), 1e-300);
+  const double tolerance = 1e-9 * std::max(T.size() > 0 ? T.cwiseAbs().maxCoeff() : 0.0, 1e-300);  // no source: 0 columns
   for (Eigen::Index c = 0; c < T.cols(); ++c)
     for (Eigen::Index r = 0; r < T.rows(); ++r)
       if (T(r, c) < 0.0) {

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <ostream>
 #include <set>
+#include <sstream>
 
 namespace ilp {
 namespace {
@@ -13,6 +14,7 @@ namespace {
 // A triangle whose doubled area is below this fraction of the squared scene
 // diagonal cannot be told from a line in float ray casting.
 constexpr double kDegenerateRelArea = 1e-14;
+constexpr double kMaxCoordinate_m = 1e6;  // |x|, |y|, |z| of any vertex after scale_to_m (1000 km)
 
 Eigen::Vector3d to_z_up_metres(const Eigen::Vector3d& p, const SceneOptions& options) {
   Eigen::Vector3d q = p * options.scale_to_m;
@@ -76,7 +78,16 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
   std::vector<Eigen::Vector3d> positions;
   positions.reserve(mesh.positions.size());
   Eigen::AlignedBox3d bounds;
-  for (const Eigen::Vector3d& p : mesh.positions) positions.push_back(to_z_up_metres(p, options));
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    positions.push_back(to_z_up_metres(mesh.positions[v], options));
+    // Beyond this, float ray origins lose the millimetres and counts overflow.
+    if (!(positions.back().cwiseAbs().maxCoeff() <= kMaxCoordinate_m)) {
+      std::ostringstream os;
+      os << mesh.path << ": vertex " << v + 1 << " lies at [" << positions.back().transpose()
+         << "] m (after scale_to_m), beyond the " << kMaxCoordinate_m << " m from the origin a scene may span";
+      throw SceneError(os.str());
+    }
+  }
   for (const Eigen::Vector3i& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) bounds.extend(positions[t[k]]);
   const double diagonal2 = bounds.isEmpty() ? 0.0 : bounds.diagonal().squaredNorm();
@@ -117,9 +128,14 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
     int m = 1;
     if (options.max_patch_edge_m > 0.0) {
       const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-      m = std::max(1, static_cast<int>(std::ceil(longest / options.max_patch_edge_m - 1e-9)));
+      // In double first: a tiny edge would overflow the int (and the patch count).
+      const double cuts = std::max(1.0, std::ceil(longest / options.max_patch_edge_m - 1e-9));
+      if (!(cuts * cuts <= static_cast<double>(options.max_patches)))
+        throw PatchLimitError(mesh.path + ": meshing with max_patch_edge_m = " + std::to_string(options.max_patch_edge_m) +
+                              " would make more than " + std::to_string(options.max_patches) + " patches");
+      m = static_cast<int>(cuts);
     }
-    patch_count += static_cast<std::size_t>(m) * m;
+    patch_count += static_cast<std::size_t>(m) * static_cast<std::size_t>(m);
     if (patch_count > options.max_patches)
       throw PatchLimitError(mesh.path + ": meshing with max_patch_edge_m = " + std::to_string(options.max_patch_edge_m) +
                        " would make more than " + std::to_string(options.max_patches) + " patches");

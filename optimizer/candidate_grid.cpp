@@ -13,6 +13,7 @@ namespace {
 // A patch counts as facing down when its normal is within about 8 degrees of -z: real
 // models carry ceilings a few degrees off level (Sponza's arcades).
 constexpr double kFacingDownCos = 0.99;
+constexpr double kMaxGridNodes = 4e6;  // nodes of the candidate grid (each candidate is a column of T)
 
 // Height of the mounting surface above (x, y): the patch whose top-view triangle
 // holds the point, if any.
@@ -71,9 +72,18 @@ CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const Can
   if ((upper_.array() < lower_.array()).any())
     throw std::invalid_argument("mounting surface '" + name + "' is smaller than one luminaire");
   const Eigen::Vector2d extent = upper_ - lower_;
+  // The node count in double before any int: a tiny spacing would overflow it.
   const double spacing = options.module_m > 0.0 ? options.module_m : options.spacing_m;
-  nx_ = std::max(1, static_cast<int>(std::ceil(extent.x() / spacing - 1e-9)));
-  ny_ = std::max(1, static_cast<int>(std::ceil(extent.y() / spacing - 1e-9)));
+  const double nx = std::max(1.0, std::ceil(extent.x() / spacing - 1e-9)),
+               ny = std::max(1.0, std::ceil(extent.y() / spacing - 1e-9));
+  if (!((nx + 1) * (ny + 1) <= kMaxGridNodes))
+    throw std::length_error((std::ostringstream() << spacing << " m over the " << extent.x() << " x "
+                                                  << extent.y() << " m of mounting surface '" << name << "' makes "
+                                                  << (nx + 1) * (ny + 1) << " grid nodes, more than "
+                                                  << kMaxGridNodes << "; use a larger spacing")
+                                .str());
+  nx_ = static_cast<int>(nx);
+  ny_ = static_cast<int>(ny);
   step_ = Eigen::Vector2d(extent.x() / nx_, extent.y() / ny_);
   if (options.module_m > 0.0 && extent.minCoeff() <= 0.0)
     step_ = Eigen::Vector2d::Constant(options.module_m);  // a single row or column of modules
@@ -92,6 +102,12 @@ CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const Can
         fits = fits && surface_height(scene, mounting_patches_, xy + d).has_value();
       if (!fits) continue;
       candidate_of_node_[static_cast<std::size_t>(j * (nx_ + 1) + i)] = static_cast<int>(positions_.size());
+      if (scene.bounds_m.min().z() < *z && *z - options.mount_offset_m <= scene.bounds_m.min().z())
+        throw std::out_of_range((std::ostringstream() << options.mount_offset_m << " m below mounting surface '"
+                                                      << name << "' (at z = " << *z << " m) is at or below the "
+                                                      << "scene's lowest point (z = " << scene.bounds_m.min().z()
+                                                      << " m): luminaires would hang under the floor")
+                                    .str());
       positions_.emplace_back(xy.x(), xy.y(), *z - options.mount_offset_m);
     }
   if (positions_.empty())
@@ -113,7 +129,7 @@ std::array<double, 4> catmull_rom(double t) {
 }  // namespace
 
 GridPoint CandidateGrid::locate(const Eigen::Vector2d& xy_m) const {
-  const Eigen::Vector2d xy = xy_m.cwiseMax(lower_).cwiseMin(upper_);
+  const Eigen::Vector2d xy = xy_m.allFinite() ? xy_m.cwiseMax(lower_).cwiseMin(upper_) : lower_;  // NaN: no int cast of it
   const Eigen::Vector2d cell = ((xy - lower_).array() / step_.array().max(1e-300)).matrix();
   const int i = std::clamp(static_cast<int>(std::floor(cell.x())), 0, nx_ - 1);
   const int j = std::clamp(static_cast<int>(std::floor(cell.y())), 0, ny_ - 1);

@@ -33,6 +33,12 @@ CandidateGrid make_grid(const Scene& scene, const LuminaireSearch& search) {
                           .mount_offset_m = search.mount_offset_m});
   } catch (const std::invalid_argument& e) {
     throw ConfigError(located(search.mounting_loc, std::string("luminaires.mounting_surface: ") + e.what()));
+  } catch (const std::length_error& e) {
+    const FileLoc& at = search.spacing_loc.file.empty() ? search.mounting_loc : search.spacing_loc;
+    throw ConfigError(located(at, std::string("luminaires.candidate_spacing_m: ") + e.what()));
+  } catch (const std::out_of_range& e) {
+    const FileLoc& at = search.offset_loc.file.empty() ? search.mounting_loc : search.offset_loc;
+    throw ConfigError(located(at, std::string("luminaires.mount_offset_m: ") + e.what()));
   }
 }
 

@@ -10,6 +10,7 @@
 //   16 bytes: XXH3-128 of every byte before it, in xxHash's canonical (big-endian) form
 #include "optimizer/model_cache.h"
 
+#include <signal.h>
 #include <unistd.h>
 #include <xxhash.h>
 
@@ -18,6 +19,8 @@
 #include <atomic>
 #include <bit>
 #include <cctype>
+#include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -456,7 +459,30 @@ std::string lighting_model_key(const JobConfig& job) {
   return hex(canonical(XXH3_128bits(text.data(), text.size())));
 }
 
+namespace {
+
+// Temporaries "KEY.ilpmodel.tmp.PID.N" of processes that no longer run (killed while
+// writing) are removed; a running process's are left alone.
+void remove_stale_temporaries(const fs::path& folder) {
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::size_t at = name.find(".ilpmodel.tmp.");
+    if (at == std::string::npos) continue;
+    const std::string rest = name.substr(at + 14);
+    char* stop = nullptr;
+    const long pid = std::strtol(rest.c_str(), &stop, 10);
+    if (stop == rest.c_str() || *stop != '.' || pid <= 0 || pid == ::getpid()) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    std::error_code ignored;
+    fs::remove(it->path(), ignored);
+  }
+}
+
+}  // namespace
+
 void save_lighting_model(const std::string& path, const LightingModel& model, const std::string& key) {
+  remove_stale_temporaries(fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path());
   const Eigen::Index G = static_cast<Eigen::Index>(model.goal_patches.size()),
                      C = static_cast<Eigen::Index>(model.grid.size());
   if (model.fixed_lux.size() != G || model.fixed_direct_lux.size() != G || model.candidate_lux_per_lm.rows() != G ||
@@ -500,6 +526,7 @@ void save_lighting_model(const std::string& path, const LightingModel& model, co
 }
 
 std::optional<std::string> load_lighting_model(const std::string& path, const std::string& key, LightingModel& model) {
+  remove_stale_temporaries(fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path());
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (!fs::exists(status)) return "no cache file";

@@ -1,5 +1,6 @@
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <ostream>
@@ -153,6 +154,8 @@ void write_result_json(const std::string& path, const ResultRecord& result) {
 }
 
 ResultRecord read_result_json(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(path + ": is a folder, not a result file");
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open the result file");
   try {

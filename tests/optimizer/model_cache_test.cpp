@@ -4,6 +4,9 @@
 // folder does not fail the job.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -275,6 +278,25 @@ void expect_rebuilt(const TempDir& dir, const JobConfig& job, const std::string&
   const PreparedJob third = prepare_job(job, {}, cache);
   EXPECT_TRUE(third.loaded_from_cache) << third.cache_status;
   expect_same_operator(second.model, third.model, true);
+}
+
+// A run killed while writing the cache left "KEY.ilpmodel.tmp.PID.N" for ever. The
+// next read or write of the folder removes those of processes that have gone, and
+// leaves a running process's alone.
+TEST(ModelCache, TemporariesOfKilledRunsAreRemoved) {
+  TempDir dir;
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  int status = 0;
+  waitpid(child, &status, 0);  // a process id that no longer runs
+  const std::string stale = dir.write("abc.ilpmodel.tmp." + std::to_string(child) + ".0", "half a model");
+  const std::string mine = dir.write("abc.ilpmodel.tmp." + std::to_string(::getpid()) + ".7", "being written");
+  const std::string other = dir.write("notes.tmp.1.2", "not the cache's");
+  LightingModel model;
+  EXPECT_TRUE(load_lighting_model(dir.file("abc.ilpmodel"), "abc", model).has_value());  // no cache file
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  EXPECT_TRUE(std::filesystem::exists(mine));
+  EXPECT_TRUE(std::filesystem::exists(other));
 }
 
 TEST(ModelCache, FlippedByteIsCorrupt) {

@@ -1,0 +1,253 @@
+// Bad input that once crashed ilp, changed the job silently or gave a misleading
+// message (issue 13, docs/reliability.md): each is now an error naming the file, the
+// line and the key, or the file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/config.h"
+#include "core/error.h"
+#include "core/job.h"
+#include "core/mesh.h"
+#include "core/scene.h"
+#include "tests/test_support.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ilp::test::Contains;
+using ilp::test::error_of;
+using ilp::test::TempDir;
+
+const char* kRoomObj =
+    "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nv 0 0 2.5\nv 4 0 2.5\nv 4 4 2.5\nv 0 4 2.5\n"
+    "g floor\nf 1 2 3 4\ng ceiling\nf 5 8 7 6\ng walls\nf 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\n";
+
+const std::string kScene = "scene:\n  mesh: room.obj\n  default_reflectance: 0.5\n";
+
+std::string config_error(const TempDir& dir, const std::string& yaml) {
+  dir.write("room.obj", kRoomObj);
+  const std::string path = dir.write("job.yaml", yaml);
+  return error_of<ilp::ConfigError>([&] { (void)ilp::load_job_config(path); }, "load_job_config");
+}
+
+// The message names the file, the line and the key (file:line:column: key = value: rule).
+void expect_located(const std::string& message, const TempDir& dir, int line, const std::string& key,
+                    const std::string& rule) {
+  EXPECT_TRUE(Contains(message, dir.file("job.yaml") + ":" + std::to_string(line) + ":"));
+  EXPECT_TRUE(Contains(message, key));
+  EXPECT_TRUE(Contains(message, rule));
+}
+
+struct Bound {
+  const char* name;
+  std::string yaml;  // the config after kScene
+  int line;          // of the bad value
+  const char* key;
+  const char* rule;
+};
+
+void PrintTo(const Bound& b, std::ostream* os) { *os << b.name; }
+
+class ReliabilityConfigBound : public ::testing::TestWithParam<Bound> {};
+
+// Each was accepted before and overflowed later: an Embree assertion (size 1e200), an
+// infinite exitance reported at a patch without a line (flux 1e308, size 1e-200),
+// "non-finite value -nan" (scale 1e37), a silent 14-patch room (edge 1e-12), a
+// 4-candidate grid (spacing 1e-12), a float-to-int overflow in the search's deadline
+// (max_seconds 1e300).
+TEST_P(ReliabilityConfigBound, IsRefusedWithFileLineAndKey) {
+  const Bound& b = GetParam();
+  TempDir dir;
+  expect_located(config_error(dir, kScene + b.yaml), dir, b.line, b.key, b.rule);
+}
+
+const std::string kPlaced = "luminaires:\n  size_m: 0.3\n  placed:\n    - {name: L1, position_m: [2, 2, 2.4], flux_lm: 100}\n";
+const std::string kGoals = "goals:\n  - surface: floor\n    average_lux: 100\n";
+const std::string kSearch =
+    "luminaires:\n  size_m: 0.3\n  mounting_surface: ceiling\n  flux_lm: [10, 1000]\n" + kGoals;
+
+INSTANTIATE_TEST_SUITE_P(
+    Reliability, ReliabilityConfigBound,
+    ::testing::Values(
+        Bound{"HugeLuminaireSize", "luminaires:\n  size_m: 1e200\n", 5, "luminaires.size_m = 1e200", "at most 100 m"},
+        Bound{"TinyLuminaireSize", "luminaires:\n  size_m: 1e-200\n", 5, "luminaires.size_m = 1e-200",
+              "at least 0.001 m"},
+        Bound{"HugePlacedFlux", "luminaires:\n  placed:\n    - {name: L1, position_m: [2, 2, 2.4], flux_lm: 1e308}\n", 6,
+              "luminaires.placed[0].flux_lm = 1e308", "at most 1e+09 lm"},
+        Bound{"HugeSearchFlux", "luminaires:\n  mounting_surface: ceiling\n  flux_lm: [10, 1e308]\n", 6,
+              "luminaires.flux_lm[1] = 1e308", "at most 1e+09 lm"},
+        Bound{"HugeExitance", "  emitting_surfaces:\n    - {surface: ceiling, exitance_lm_per_m2: 1e300}\n", 5,
+              "exitance_lm_per_m2 = 1e300", "at most 1e+09 lm/m²"},
+        Bound{"HugeScale", "  scale_to_m: 1e37\n", 4, "scene.scale_to_m = 1e37", "at most 1e+06"},
+        Bound{"TinyScale", "  scale_to_m: 1e-300\n", 4, "scene.scale_to_m = 1e-300", "at least 1e-06"},
+        Bound{"TinyPatchEdge", "  max_patch_edge_m: 1e-12\n", 4, "scene.max_patch_edge_m = 1e-12", "at least 0.0001 m"},
+        Bound{"TinyCandidateSpacing",
+              "luminaires:\n  mounting_surface: ceiling\n  flux_lm: [10, 1000]\n  candidate_spacing_m: 1e-12\n" + kGoals, 7,
+              "luminaires.candidate_spacing_m = 1e-12", "at least 0.001 m"},
+        Bound{"HugeMinDistance", kSearch + "constraints:\n  min_distance_m: 1e300\n", 12,
+              "constraints.min_distance_m = 1e300", "at most 100000 m"},
+        Bound{"HugeEfficacy",
+              "luminaires:\n  mounting_surface: ceiling\n  flux_lm: [10, 1000]\n  efficacy_lm_per_w: 1e9\n" + kGoals, 7, "luminaires.efficacy_lm_per_w", "at most 1000"},
+        Bound{"HugeMaxSeconds", kSearch + "optimizer:\n  max_seconds: 1e300\n", 12, "optimizer.max_seconds = 1e300",
+              "at most 1e+07 s"},
+        Bound{"HugeGoalTarget",
+              "luminaires:\n  size_m: 0.3\n  mounting_surface: ceiling\n  flux_lm: [10, 1000]\n"
+              "goals:\n  - surface: floor\n    average_lux: 1e300\n",
+              10, "average_lux = 1e300", "at most 1e+07 lx"},
+        Bound{"HugeArraySpacing",
+              "luminaires:\n  mounting_surface: ceiling\n  flux_lm: [10, 1000]\n  layout: array\n"
+              "  array: {rows: 2, columns: 2, spacing_m: [1e300, 1]}\n",
+              8, "spacing_m[0] = 1e300", "at most 1e+05 m"}),
+    [](const ::testing::TestParamInfo<Bound>& info) { return std::string(info.param.name); });
+
+TEST(ReliabilityConfig, SecondYamlDocumentIsRefused) {
+  TempDir dir;
+  const std::string message = config_error(dir, kScene + kPlaced + "---\nscene:\n  mesh: other.obj\n");
+  EXPECT_TRUE(Contains(message, dir.file("job.yaml") + ":9:"));
+  EXPECT_TRUE(Contains(message, "second YAML document"));
+}
+
+TEST(ReliabilityConfig, FolderAsConfigIsNamed) {
+  TempDir dir;
+  fs::create_directories(dir.file("job.yaml"));
+  const std::string message =
+      error_of<ilp::ConfigError>([&] { (void)ilp::load_job_config(dir.file("job.yaml")); }, "load_job_config");
+  EXPECT_TRUE(Contains(message, dir.file("job.yaml") + ": is a folder, not a config file"));
+}
+
+// ---------------------------------------------------------------------------------
+// Meshes
+
+std::string mesh_error(const std::string& path) {
+  return error_of<ilp::SceneError>([&] { (void)ilp::load_mesh(path, {}); }, "load_mesh(" + path + ")");
+}
+
+TEST(ReliabilityMesh, FolderAsMeshIsNamed) {
+  TempDir dir;
+  for (const char* name : {"room.obj", "room.ply", "room.off"}) {
+    fs::create_directories(dir.file(name));
+    EXPECT_TRUE(Contains(mesh_error(dir.file(name)), dir.file(name) + ": is a folder, not a mesh file")) << name;
+  }
+}
+
+TEST(ReliabilityMesh, FolderAsMtllibIsNamedWithTheObjLine) {
+  TempDir dir;
+  fs::create_directories(dir.file("room.mtl"));
+  const std::string obj = dir.write("room.obj", std::string("# exported\nmtllib room.mtl\n") + kRoomObj);
+  const std::string message = mesh_error(obj);
+  EXPECT_TRUE(Contains(message, obj + ":2:"));
+  EXPECT_TRUE(Contains(message, "is a folder, not a material file"));
+}
+
+TEST(ReliabilityMesh, ByteOrderMarkBeforeMtllibStillReadsTheMaterials) {
+  TempDir dir;
+  dir.write("room.mtl", "\xEF\xBB\xBFnewmtl white\nKd 0.8 0.8 0.8\n");
+  const std::string obj = dir.write("room.obj", std::string("\xEF\xBB\xBFmtllib room.mtl\nusemtl white\n") + kRoomObj);
+  const ilp::TriangleMesh mesh = ilp::load_mesh(obj, {});
+  ASSERT_EQ(mesh.materials.size(), 1u);
+  EXPECT_EQ(mesh.materials[0].name, "white");
+  ASSERT_TRUE(mesh.materials[0].kd.has_value());
+  EXPECT_DOUBLE_EQ((*mesh.materials[0].kd)[0], 0.8);
+}
+
+struct BadHeader {
+  const char* name;
+  const char* file;
+  std::string text;
+  std::vector<std::string> says;
+};
+
+void PrintTo(const BadHeader& b, std::ostream* os) { *os << b.name; }
+
+class ReliabilityMeshHeader : public ::testing::TestWithParam<BadHeader> {};
+
+// Each once ended in std::bad_alloc (no file named) or was read with a made-up face.
+TEST_P(ReliabilityMeshHeader, IsAnErrorNamingTheFile) {
+  const BadHeader& b = GetParam();
+  TempDir dir;
+  const std::string path = dir.write(b.file, b.text);
+  const std::string message = mesh_error(path);
+  EXPECT_TRUE(Contains(message, path));
+  for (const std::string& part : b.says) EXPECT_TRUE(Contains(message, part));
+}
+
+const std::string kPlyHead = "ply\nformat ascii 1.0\n";
+const std::string kPlyProps =
+    "property float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+    "end_header\n";
+
+INSTANTIATE_TEST_SUITE_P(
+    Reliability, ReliabilityMeshHeader,
+    ::testing::Values(
+        BadHeader{"PlyHugeVertexCount", "big.ply", kPlyHead + "element vertex 3000000000\n" + kPlyProps + "0 0 0\n",
+                  {":3:", "3000000000 vertexs", "bytes"}},
+        BadHeader{"PlyNegativeVertexCount", "neg.ply", kPlyHead + "element vertex -5\n" + kPlyProps,
+                  {":3:", "'-5' is not a whole number >= 0"}},
+        BadHeader{"BinaryPlyHugeVertexCount", "big_bin.ply",
+                  "ply\nformat binary_little_endian 1.0\nelement vertex 100000\n" + kPlyProps + "abcdefgh",
+                  {"bytes", "truncated"}},
+        BadHeader{"TruncatedAsciiPly", "short.ply",
+                  kPlyHead + "element vertex 3\n" + kPlyProps + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n",
+                  {":13:", "face 0 has 3 values", "call for 4"}},
+        BadHeader{"AsciiPlyEndingEarly", "shorter.ply", kPlyHead + "element vertex 3\n" + kPlyProps + "0 0 0\n1 0 0\n",
+                  {"ends after 2 of the 3 vertex lines"}},
+        // OpenMesh printed "Unsupported keyword" for ever on these (found by ply_off_fuzz).
+        BadHeader{"PlyHeaderWithUnknownKeyword", "odd.ply", "ply\nformat ascii 1.0\nelement vertex 3\npr3\n",
+                  {":4:", "unknown PLY header keyword 'pr3'"}},
+        BadHeader{"PlyHeaderWithoutEnd", "open.ply", "ply\nformat ascii 1.0\nelement vertex 0\n", {"no end_header"}},
+        BadHeader{"PlyUnknownPropertyType", "type.ply", kPlyHead + "element vertex 1\nproperty quad x\nend_header\n0\n",
+                  {":4:", "property must"}},
+        BadHeader{"OffHugeVertexCount", "big.off", "OFF\n3000000000 1 0\n0 0 0\n", {":2:", "3000000000", "bytes"}},
+        BadHeader{"OffNegativeVertexCount", "neg.off", "OFF\n-5 1 0\n", {":2:", "'-5' is not a whole number >= 0"}},
+        BadHeader{"OffTruncatedFace", "short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n",
+                  {":6:", "fewer vertex indices"}}),
+    [](const ::testing::TestParamInfo<BadHeader>& info) { return std::string(info.param.name); });
+
+// A vertex at 5e11 made float ray origins and patch counts overflow without a word.
+TEST(ReliabilityMesh, VertexFarFromTheOriginIsRefused) {
+  TempDir dir;
+  dir.write("room.obj", std::string(kRoomObj) + "v 5e11 0 0\nv 5e11 1 0\nv 5e11 0 1\ng far\nf 9 10 11\n");
+  const std::string path = dir.write("job.yaml", kScene + "  max_patch_edge_m: 0.5\n");
+  const ilp::JobConfig job = ilp::load_job_config(path);
+  const std::string message = error_of<ilp::SceneError>([&] { (void)ilp::load_job_scene(job); }, "load_job_scene");
+  EXPECT_TRUE(Contains(message, path + ":2:"));  // scene.mesh
+  EXPECT_TRUE(Contains(message, "vertex 9 lies at"));
+  EXPECT_TRUE(Contains(message, "beyond the 1e+06 m"));
+}
+
+// The cast of ceil(edge / 1e-12) to int overflowed and meshed the room as 14 patches.
+TEST(ReliabilityMesh, TinyPatchEdgeIsAPatchLimitNotAnOverflow) {
+  TempDir dir;
+  const ilp::TriangleMesh mesh = ilp::load_mesh(dir.write("room.obj", kRoomObj), {});
+  ilp::SceneOptions options;
+  options.max_patch_edge_m = 1e-12;
+  const ilp::TriangleReflectance rho(mesh.triangles.size(), Eigen::Vector3d::Constant(0.5));
+  const std::string message = error_of<ilp::PatchLimitError>([&] { (void)ilp::make_scene(mesh, rho, options); });
+  EXPECT_TRUE(Contains(message, "would make more than 5000000 patches"));
+}
+
+TEST(ReliabilityJob, ReportSurfaceLeftOutIsAnError) {
+  TempDir dir;
+  dir.write("room.obj", kRoomObj);
+  const std::string path = dir.write(
+      "job.yaml", kScene + "  exclude_surfaces: [floor]\n" + kPlaced + "report:\n  surfaces: [walls, floor]\n");
+  const ilp::JobConfig job = ilp::load_job_config(path);
+  const std::string message = error_of<ilp::ConfigError>([&] { (void)ilp::load_job_scene(job); }, "load_job_scene");
+  EXPECT_TRUE(Contains(message, path + ":10:"));
+  EXPECT_TRUE(Contains(message, "report.surfaces: surface 'floor' has no patch left"));
+}
+
+TEST(ReliabilityJob, GoalSurfaceLeftOutIsAnError) {
+  TempDir dir;
+  dir.write("room.obj", kRoomObj);
+  const std::string path = dir.write("job.yaml", kScene + "  exclude_surfaces: [floor]\n" + kSearch);
+  const ilp::JobConfig job = ilp::load_job_config(path);
+  const std::string message = error_of<ilp::ConfigError>([&] { (void)ilp::load_job_scene(job); }, "load_job_scene");
+  EXPECT_TRUE(Contains(message, "goals."));
+  EXPECT_TRUE(Contains(message, "surface 'floor' has no patch left"));
+}
+
+}  // namespace
