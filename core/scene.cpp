@@ -10,15 +10,8 @@
 namespace ilp {
 namespace {
 
-// A triangle whose doubled area is below this fraction of the squared scene
-// diagonal cannot be told from a line in float ray casting.
-constexpr double kDegenerateRelArea = 1e-14;
-
-Eigen::Vector3d to_z_up_metres(const Eigen::Vector3d& p, const SceneOptions& options) {
-  Eigen::Vector3d q = p * options.scale_to_m;
-  if (options.up_axis == UpAxis::y) return {q.x(), -q.z(), q.y()};  // rotate +90 deg about x
-  return q;
-}
+// kDegenerateRelArea (scene.h): below it a triangle cannot be told from a line in
+// float ray casting.
 
 Patch make_patch(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                  int surface, const Eigen::Vector3d& reflectance) {
@@ -34,6 +27,12 @@ Patch make_patch(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen
 }
 
 }  // namespace
+
+Eigen::Vector3d to_scene_frame(const Eigen::Vector3d& p, const SceneOptions& options) {
+  Eigen::Vector3d q = p * options.scale_to_m;
+  if (options.up_axis == UpAxis::y) return {q.x(), -q.z(), q.y()};  // rotate +90 deg about x
+  return q;
+}
 
 int Scene::find_surface(const std::string& name) const {
   for (std::size_t s = 0; s < surfaces.size(); ++s)
@@ -76,7 +75,7 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
   std::vector<Eigen::Vector3d> positions;
   positions.reserve(mesh.positions.size());
   Eigen::AlignedBox3d bounds;
-  for (const Eigen::Vector3d& p : mesh.positions) positions.push_back(to_z_up_metres(p, options));
+  for (const Eigen::Vector3d& p : mesh.positions) positions.push_back(to_scene_frame(p, options));
   for (const Eigen::Vector3i& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) bounds.extend(positions[t[k]]);
   const double diagonal2 = bounds.isEmpty() ? 0.0 : bounds.diagonal().squaredNorm();
