@@ -35,6 +35,7 @@ JobConfig job_for(const InspectArgs& args) {
     job.mesh_path = args.target;
     job.mesh_loc = {args.target, 0, 0};
     job.default_reflectance = Eigen::Vector3d::Constant(0.5);  // reflectances do not matter here
+    job.ignore_material_kd = true;
   }
   // Command-line options override the file.
   if (args.scale > 0.0) job.scene.scale_to_m = args.scale;

@@ -91,7 +91,7 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
     const int m = mesh.triangle_material[t];
     if (surface_rho[s]) {
       rho[t] = *surface_rho[s];
-    } else if (m >= 0 && mesh.materials[m].kd) {
+    } else if (m >= 0 && mesh.materials[m].kd && !job.ignore_material_kd) {
       rho[t] = *mesh.materials[m].kd;
       if (((rho[t].array() < 0.0) || (rho[t].array() >= 1.0)).any() && bad_kd_surface[m] < 0) {
         bad_kd_surface[m] = s;
