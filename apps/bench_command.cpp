@@ -15,6 +15,7 @@
 #include "apps/cli_support.h"
 #include "apps/commands.h"
 #include "core/config.h"
+#include "core/cost_model.h"
 #include "core/exact_solver.h"
 #include "core/operator_setup.h"
 #include "optimizer/job_runner.h"
@@ -58,6 +59,7 @@ void random_layout(const LightingModel& model, int count, std::mt19937_64& rng, 
 int run_bench(const BenchArgs& args) {
   const auto start = Clock::now();
   JobConfig job = load_job_config(args.config);
+  if (!args.max_memory.empty()) job.max_memory_bytes = parse_bytes(args.max_memory);
   if (args.threads >= 0) job.form_factors.threads = job.direct_light.threads = args.threads;
   if (args.patch_edge_m > 0.0) job.scene.max_patch_edge_m = args.patch_edge_m;
   if (args.sample_fraction > 0.0) {

@@ -1,6 +1,9 @@
 #include "apps/cli_support.h"
 
+#include <chrono>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <memory>
 #include <mutex>
 
@@ -14,22 +17,34 @@ ProgressCallback make_progress(bool quiet) {
     std::mutex mutex;
     std::string phase;
     int shown = -1;
+    std::chrono::steady_clock::time_point start;
   };
   auto state = std::make_shared<State>();
   const bool tty = isatty(STDERR_FILENO);
   return [state, tty](std::string_view phase, std::size_t done, std::size_t total) {
     const int percent = total ? static_cast<int>(100 * done / total) : 100;
     std::lock_guard lock(state->mutex);
+    const auto now = std::chrono::steady_clock::now();
     if (phase != state->phase) {
       state->phase = phase;
       state->shown = -1;
+      state->start = now;
     }
     const int step = tty ? 1 : 25;
     if (percent / step == state->shown / step && percent != 100) return;
     if (percent == state->shown) return;
     state->shown = percent;
-    if (tty) std::cerr << "\r  " << phase << ": " << percent << " %" << (percent == 100 ? "\n" : "") << std::flush;
-    else std::cerr << "  " << phase << ": " << percent << " %\n";
+    // Elapsed time, and the rest estimated from the rate so far.
+    const double elapsed = std::chrono::duration<double>(now - state->start).count();
+    std::ostringstream timing;
+    timing << std::fixed << std::setprecision(1) << " (" << elapsed << " s";
+    if (done > 0 && done < total)
+      timing << ", about " << elapsed * static_cast<double>(total - done) / static_cast<double>(done) << " s left";
+    timing << ")";
+    if (tty)
+      std::cerr << "\r  " << phase << ": " << percent << " %" << timing.str() << "   " << (percent == 100 ? "\n" : "")
+                << std::flush;
+    else std::cerr << "  " << phase << ": " << percent << " %" << timing.str() << "\n";
   };
 }
 

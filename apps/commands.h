@@ -12,6 +12,7 @@ struct SolveArgs {
   std::string csv;            // per-patch results; asks for the full-scene solution
   std::string method;         // "", "sample" or "exact": overrides solver.method
   int threads = -1;           // -1: the job's solver.threads
+  std::string max_memory;     // --max-memory: a memory budget (e.g. 4G) below the machine's available memory
   bool quiet = false;
 };
 int run_solve(const SolveArgs& args);
@@ -39,6 +40,7 @@ struct RunArgs {
   std::string cache_dir;      // operator cache folder; empty: the default (see default_cache_dir)
   bool no_cache = false;
   int threads = -1;
+  std::string max_memory;     // --max-memory: a memory budget (e.g. 4G) below the machine's available memory
   bool quiet = false;
 };
 // Exit code 0 when every goal is met, 2 when the closest layout found misses one.
@@ -51,6 +53,7 @@ struct SweepArgs {
   std::string cache_dir;
   bool no_cache = false;
   int threads = -1;
+  std::string max_memory;     // --max-memory: a memory budget (e.g. 4G) below the machine's available memory
   bool quiet = false;
 };
 int run_sweep(const SweepArgs& args);
@@ -63,9 +66,23 @@ struct BenchArgs {
   bool skip_full_solve = false;
   std::string csv;              // append one row of figures
   int threads = -1;
+  std::string max_memory;     // --max-memory: a memory budget (e.g. 4G) below the machine's available memory
   bool quiet = false;
 };
 int run_bench(const BenchArgs& args);
+
+struct InspectArgs {
+  std::string target;         // a job file (.yaml) or a mesh
+  double scale = 0.0;         // > 0: overrides scene.scale_to_m
+  std::string up;             // "y" or "z": overrides scene.up_axis
+  double patch_edge_m = 0.0;  // > 0: overrides scene.max_patch_edge_m
+  bool connected = false;     // scene.surfaces_from: connected
+  double weld_m = 0.0;        // > 0: overrides scene.weld_tolerance_m
+  std::string max_memory;     // the budget the cost estimate is judged against
+  bool all = false;           // every surface, not the 40 largest
+  int threads = -1;
+};
+int run_inspect(const InspectArgs& args);
 
 // $XDG_CACHE_HOME/ilp, else $HOME/.cache/ilp, else .ilp-cache in the working directory.
 std::string default_cache_dir();

@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"sample", "exact"}));
   solve->add_option("--threads", solve_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
       ->check(CLI::Range(0, kMaxThreads));
+  solve->add_option("--max-memory", solve_args.max_memory,
+                  "memory budget, e.g. 4G or 512M (default: the machine's available memory); a job whose "
+                  "estimate exceeds it is refused before any work");
   solve->add_flag("-q,--quiet", solve_args.quiet, "no progress lines");
 
   ilp::cli::AccuracyArgs acc;
@@ -69,6 +72,9 @@ int main(int argc, char** argv) {
   run->add_flag("--no-cache", run_args.no_cache, "build the operator without reading or writing the cache");
   run->add_option("--threads", run_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
       ->check(CLI::Range(0, kMaxThreads));
+  run->add_option("--max-memory", run_args.max_memory,
+                  "memory budget, e.g. 4G or 512M (default: the machine's available memory); a job whose "
+                  "estimate exceeds it is refused before any work");
   run->add_flag("-q,--quiet", run_args.quiet, "no progress lines");
 
   ilp::cli::SweepArgs sweep_args;
@@ -84,6 +90,9 @@ int main(int argc, char** argv) {
   sweep->add_flag("--no-cache", sweep_args.no_cache, "build the operator without reading or writing the cache");
   sweep->add_option("--threads", sweep_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
       ->check(CLI::Range(0, kMaxThreads));
+  sweep->add_option("--max-memory", sweep_args.max_memory,
+                  "memory budget, e.g. 4G or 512M (default: the machine's available memory); a job whose "
+                  "estimate exceeds it is refused before any work");
   sweep->add_flag("-q,--quiet", sweep_args.quiet, "no progress lines");
 
   ilp::cli::PrintArgs print_args;
@@ -105,7 +114,33 @@ int main(int argc, char** argv) {
   bench->add_option("--csv", bench_args.csv, "append one row of figures to this CSV");
   bench->add_option("--threads", bench_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
       ->check(CLI::Range(0, kMaxThreads));
+  bench->add_option("--max-memory", bench_args.max_memory,
+                  "memory budget, e.g. 4G or 512M (default: the machine's available memory); a job whose "
+                  "estimate exceeds it is refused before any work");
   bench->add_flag("-q,--quiet", bench_args.quiet, "no progress lines");
+
+  ilp::cli::InspectArgs inspect_args;
+  CLI::App* inspect = app.add_subcommand(
+      "inspect", "Show the scene as ilp sees it (metres, z up, after exclusions and surface splitting): each surface "
+                 "with triangles, patches, area, facing, heights and bounds; a suggested mounting surface and floor; "
+                 "warnings (one surface for everything, wrong winding, openings, degenerate triangles); and for an "
+                 "inverse job the cost estimate of running it");
+  inspect->add_option("target", inspect_args.target, "job file (YAML) or mesh (.obj, .ply, .off)")->required();
+  inspect->add_option("--scale", inspect_args.scale, "metres per file unit (overrides scene.scale_to_m)")
+      ->check(CLI::PositiveNumber);
+  inspect->add_option("--up", inspect_args.up, "the file's up axis (overrides scene.up_axis)")
+      ->check(CLI::IsMember({"y", "z"}));
+  inspect->add_option("--patch-edge", inspect_args.patch_edge_m, "override scene.max_patch_edge_m (m)")
+      ->check(CLI::PositiveNumber);
+  inspect->add_flag("--connected", inspect_args.connected,
+                    "split surfaces into connected pieces by facing (scene.surfaces_from: connected)");
+  inspect->add_option("--weld", inspect_args.weld_m, "weld tolerance for connectivity and edges (m)")
+      ->check(CLI::PositiveNumber);
+  inspect->add_option("--max-memory", inspect_args.max_memory,
+                      "memory budget for the cost estimate, e.g. 4G (default: the machine's available memory)");
+  inspect->add_flag("--all", inspect_args.all, "list every surface (default: the 40 largest)");
+  inspect->add_option("--threads", inspect_args.threads, "worker threads (default: solver.threads, 0 = all cores)")
+      ->check(CLI::Range(0, kMaxThreads));
 
   try {
     app.parse(argc, argv);
@@ -121,6 +156,7 @@ int main(int argc, char** argv) {
     if (*sweep) return ilp::cli::run_sweep(sweep_args);
     if (*print) return ilp::cli::run_print(print_args);
     if (*bench) return ilp::cli::run_bench(bench_args);
+    if (*inspect) return ilp::cli::run_inspect(inspect_args);
   } catch (const std::bad_alloc&) {
     std::cerr << "error: out of memory (a smaller job: larger scene.max_patch_edge_m, fewer rays or candidates)\n";
     return 1;

@@ -11,6 +11,7 @@
 #include "apps/cli_support.h"
 #include "apps/commands.h"
 #include "core/config.h"
+#include "core/cost_model.h"
 #include "optimizer/job_runner.h"
 #include "output/atomic_file.h"
 #include "output/colour_map.h"
@@ -27,8 +28,9 @@ constexpr const char* kVersion = "ilp 0.1.0";
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-JobConfig load_for_run(const std::string& path, int threads) {
+JobConfig load_for_run(const std::string& path, int threads, const std::string& max_memory) {
   JobConfig job = load_job_config(path);
+  if (!max_memory.empty()) job.max_memory_bytes = parse_bytes(max_memory);
   if (threads >= 0) job.form_factors.threads = job.direct_light.threads = threads;
   return job;
 }
@@ -305,7 +307,7 @@ std::string default_cache_dir() {
 
 int run_job(const RunArgs& args) {
   const auto start = Clock::now();
-  const JobConfig loaded = load_for_run(args.config, args.threads);
+  const JobConfig loaded = load_for_run(args.config, args.threads, args.max_memory);
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.
   OutputSet set(output_directory(loaded, args.out_dir), {"result.json", "illuminance.csv", "plan.svg", "scene.ply"});
@@ -333,7 +335,7 @@ int run_job(const RunArgs& args) {
 
 int run_sweep(const SweepArgs& args) {
   const auto start = Clock::now();
-  const JobConfig job = load_for_run(args.config, args.threads);
+  const JobConfig job = load_for_run(args.config, args.threads, args.max_memory);
   SweepSetting sweep;
   if (!args.set.empty()) {
     sweep = parse_set(args.set);

@@ -8,6 +8,7 @@
 #include "apps/cli_support.h"
 #include "apps/commands.h"
 #include "core/config.h"
+#include "core/cost_model.h"
 #include "core/exact_solver.h"
 #include "core/job.h"
 #include "core/operator_setup.h"
@@ -112,11 +113,39 @@ int solve_exactly(const JobConfig& job, const JobScene& loaded, const std::strin
 int run_solve(const SolveArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   JobConfig job = load_job_config(args.config);
+  if (!args.max_memory.empty()) job.max_memory_bytes = parse_bytes(args.max_memory);
   if (args.threads >= 0) job.form_factors.threads = job.direct_light.threads = args.threads;
   if (args.method == "exact") job.method = SolveMethod::exact;
   if (args.method == "sample") job.method = SolveMethod::sample;
   const JobScene loaded = load_job_scene(job);
   for (const std::string& line : loaded.log) std::cerr << line << "\n";
+  {
+    // The cost model: the exact solve as a verification of every patch, or one operator build.
+    const Scene& scene = loaded.scene;
+    CostCounts c;
+    c.patches = scene.patches.size();
+    c.population = reflecting_patches(scene).size();
+    c.channels = scene.channels;
+    c.sources = scene_light_sources(scene).size();
+    c.luminaires = static_cast<int>(c.sources);
+    c.rays_per_patch = job.form_factors.rays_per_patch;
+    c.direct_rays = job.direct_light.receiver_points * job.direct_light.shadow_rays;
+    c.exact_second_bounce = job.sample.indirect == IndirectMethod::exact_second_bounce;
+    if (job.method == SolveMethod::exact) {
+      c.verify = CostCounts::Verify::exact;
+      c.verify_rays = job.form_factors.rays_per_patch;
+      c.goal_patches = c.patches;
+    } else {
+      c.goal_patches = !args.csv.empty() ? c.patches : scene.patches_of(job.report_surfaces).size();
+      c.sample_size = c.population ? static_cast<std::size_t>(std::min<double>(
+                                         static_cast<double>(c.population), job.sample.size_for(c.population)))
+                                   : 0;
+    }
+    const std::optional<double> budget = memory_budget_bytes(job.max_memory_bytes);
+    const CostEstimate estimate = estimate_job_cost(c);
+    for (const std::string& line : format_estimate(estimate)) std::cerr << line << "\n";
+    require_fits(estimate, budget, job.path);
+  }
   if (job.method == SolveMethod::exact) solve_exactly(job, loaded, args.csv, args.quiet);
   else solve_with_sample(job, loaded, !args.csv.empty(), args.csv, args.quiet);
   std::cout << "total time " << std::fixed << std::setprecision(2)

@@ -183,6 +183,38 @@ class Map {
   Value value_;
 };
 
+// scene.regions: [{name, facing, height_m: [low, high], min_area_m2}, ...]
+void read_regions(const Value& list, JobConfig& job) {
+  std::set<std::string> names;
+  for (const Value& item : list.list()) {
+    const Map rule(item, {"name", "facing", "height_m", "min_area_m2"});
+    RegionRule r;
+    const Value name = rule.require("name");
+    r.name = name.text();
+    if (r.name.empty()) name.fail("must not be empty");
+    if (!names.insert(r.name).second) name.fail("is used by another region");
+    if (auto v = rule.get("facing")) {
+      const std::string f = v->text();
+      if (f == "up") r.facing = Facing::up;
+      else if (f == "down") r.facing = Facing::down;
+      else if (f == "vertical") r.facing = Facing::vertical;
+      else if (f != "any") v->fail("must be up, down, vertical or any");
+    }
+    if (auto v = rule.get("height_m")) {
+      if (!v->node().IsSequence() || v->node().size() != 2) v->fail("must be a list [low, high] in metres");
+      r.height_m = {v->element(0).number(), v->element(1).number()};
+      if (!(r.height_m->second >= r.height_m->first)) v->element(1).fail("must be >= height_m[0]");
+    }
+    if (auto v = rule.get("min_area_m2")) {
+      r.min_area_m2 = v->number();
+      if (r.min_area_m2 < 0.0) v->fail("must be >= 0");
+    }
+    r.loc = item.loc();
+    job.surface_split.regions.push_back(r);
+  }
+  if (job.surface_split.regions.empty()) list.fail("must list at least one region");
+}
+
 void read_scene(const Map& scene, JobConfig& job) {
   const Value mesh = scene.require("mesh");
   const std::filesystem::path base = std::filesystem::path(job.path).parent_path();
@@ -204,8 +236,11 @@ void read_scene(const Map& scene, JobConfig& job) {
     if (from == "group") job.mesh_read.surface_naming = SurfaceNaming::group;
     else if (from == "object") job.mesh_read.surface_naming = SurfaceNaming::object;
     else if (from == "material") job.mesh_read.surface_naming = SurfaceNaming::material;
-    else v->fail("must be group, object or material");
+    else if (from == "connected") job.surface_split.connected = true;  // groups, split into connected pieces
+    else v->fail("must be group, object, material or connected");
   }
+  if (auto v = scene.get("weld_tolerance_m")) job.surface_split.weld_tolerance_m = v->positive();
+  if (auto v = scene.get("regions")) read_regions(*v, job);
   if (auto v = scene.get("reflectance")) {
     if (!v->node().IsMap()) v->fail("must map surface names to reflectances");
     reject_duplicate_keys(*v);
@@ -736,6 +771,10 @@ void read_solver(const Map& solver, JobConfig& job) {
     if (!method) v->fail("must be sample_gather or exact_second_bounce");
     sample.indirect = *method;
   }
+  if (auto v = solver.get("max_sample_size")) {
+    sample.max_size_for_target = static_cast<int>(v->integer(1, 100'000'000));
+    sample.max_size_loc = v->loc();
+  }
   if (auto v = solver.get("error_samples")) sample.error_samples = static_cast<int>(v->integer(2, 64));
   if (auto v = solver.get("pilot_fraction")) {
     sample.pilot_fraction = v->number_in(0.0, 1.0, false, "(0, 1]");
@@ -802,7 +841,7 @@ JobConfig load_job_config(const std::string& path) {
                                               "optimizer", "verification", "output", "sweep", "report"});
     read_scene(Map(top.require("scene"), {"mesh", "up_axis", "scale_to_m", "max_patch_edge_m", "surfaces_from",
                                           "reflectance", "default_reflectance", "emitting_surfaces",
-                                          "exclude_surfaces", "two_sided"}),
+                                          "exclude_surfaces", "two_sided", "weld_tolerance_m", "regions"}),
                job);
     if (auto v = top.get("luminaires"))
       read_luminaires(Map(*v, {"size_m", "placed", "model", "flux_lm", "efficacy_lm_per_w", "mounting_surface",
@@ -816,7 +855,7 @@ JobConfig load_job_config(const std::string& path) {
       read_solver(Map(*v, {"method", "rays_per_patch", "seed", "threads", "relative_residual", "max_iterations",
                            "direct_receiver_points", "direct_shadow_rays", "sample_size", "sample_fraction",
                            "sampling", "sample_seed", "indirect", "target_error", "error_samples",
-                           "pilot_fraction"}),
+                           "pilot_fraction", "max_sample_size"}),
                   job);
     if (auto v = top.get("optimizer"))
       read_optimizer(Map(*v, {"global_algorithm", "local_algorithm", "max_evaluations", "local_max_evaluations",

@@ -19,6 +19,7 @@
 #include "core/radiosity.h"
 #include "core/sample_operator.h"
 #include "core/scene.h"
+#include "core/surface_split.h"
 
 namespace ilp {
 
@@ -57,6 +58,8 @@ struct SampleSettings {
   FileLoc target_error_loc;
   int error_samples = 4;           // eta pilot samples behind the prediction
   double pilot_fraction = 0.02;    // their size, of the reflecting patches
+  int max_size_for_target = 4000;  // solver.max_sample_size: the largest k target_error may choose
+  FileLoc max_size_loc;
 
   // k for a population of reflecting patches (at least 1).
   int size_for(std::size_t population) const;
@@ -204,6 +207,7 @@ struct JobConfig {
   FileLoc mesh_loc;
   MeshReadOptions mesh_read;
   SceneOptions scene;
+  SurfaceSplitOptions surface_split;    // surfaces_from: connected, weld_tolerance_m, regions
   FileLoc max_patch_edge_loc;           // where max_patch_edge_m was set (if it was)
   std::vector<ReflectanceSetting> reflectance;
   std::optional<Eigen::Vector3d> default_reflectance;
@@ -237,6 +241,12 @@ struct JobConfig {
   VerificationSettings verification;
   OutputSettings output;
   std::optional<SweepSetting> sweep;
+  // Not from the file: a memory budget set on the command line (--max-memory); the
+  // cost model refuses a job whose estimate exceeds it or the machine's available memory.
+  std::optional<double> max_memory_bytes;
+  // Not from the file: every triangle takes default_reflectance, whatever its MTL Kd
+  // (`ilp inspect MESH`, where reflectances do not matter).
+  bool ignore_material_kd = false;
 };
 
 // Sets the goal parameter `key` ("goals.NAME.average_lux", ".min_lux", ".max_lux" or

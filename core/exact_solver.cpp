@@ -81,7 +81,9 @@ ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, 
   if (progress) progress("direct light", 1, 1);
   s.direct_light_seconds = seconds_since(start);
 
+  if (progress) progress("radiosity solve (Gauss-Seidel)", 0, 1);
   out.radiosity = solve_radiosity(scene, rows.F, options.radiosity);
+  if (progress) progress("radiosity solve (Gauss-Seidel)", 1, 1);
   s.solve_seconds = out.radiosity.seconds;
   s.iterations = out.radiosity.iterations;
   s.relative_residual = out.radiosity.relative_residual;

@@ -16,7 +16,7 @@ std::string fmt_rgb(const Eigen::Vector3d& v) {
 
 }  // namespace
 
-JobScene load_job_scene(const JobConfig& job) {
+JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   JobScene out;
   TriangleMesh mesh;
   try {
@@ -24,6 +24,7 @@ JobScene load_job_scene(const JobConfig& job) {
   } catch (const SceneError& e) {
     throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
   }
+  const SurfaceSplitReport split = split_surfaces(mesh, job.scene, job.surface_split);
 
   std::map<std::string, int> surface_of;
   for (std::size_t s = 0; s < mesh.surface_names.size(); ++s) surface_of[mesh.surface_names[s]] = static_cast<int>(s);
@@ -90,7 +91,7 @@ JobScene load_job_scene(const JobConfig& job) {
     const int m = mesh.triangle_material[t];
     if (surface_rho[s]) {
       rho[t] = *surface_rho[s];
-    } else if (m >= 0 && mesh.materials[m].kd) {
+    } else if (m >= 0 && mesh.materials[m].kd && !job.ignore_material_kd) {
       rho[t] = *mesh.materials[m].kd;
       if (((rho[t].array() < 0.0) || (rho[t].array() >= 1.0)).any() && bad_kd_surface[m] < 0) {
         bad_kd_surface[m] = s;
@@ -134,6 +135,7 @@ JobScene load_job_scene(const JobConfig& job) {
        << " polygons fan-triangulated), " << mesh.surface_names.size() << " surfaces";
     out.log.push_back(os.str());
   }
+  out.log.insert(out.log.end(), split.log.begin(), split.log.end());
   if (excluded_triangles > 0 || !job.exclude_surfaces.empty())
     out.log.push_back("scene.exclude_surfaces: " + std::to_string(excluded_triangles) + " triangles of " +
                       std::to_string(job.exclude_surfaces.size()) + " surfaces left out");
@@ -200,6 +202,7 @@ JobScene load_job_scene(const JobConfig& job) {
      << luminaire_flux_lm << " lm from luminaires, "
      << surface_flux_lm << " lm from emitting surfaces";
   out.log.push_back(os.str());
+  if (mesh_out) *mesh_out = std::move(mesh);
   return out;
 }
 

@@ -17,6 +17,8 @@ struct JobScene {
   std::vector<std::string> log;  // what was done to the input, for the run log
 };
 
-JobScene load_job_scene(const JobConfig& job);
+// `mesh_out`, when given, receives the mesh the scene was made from (file units, after
+// surface splitting, exclusions and two-sided doubling), for `ilp inspect`.
+JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out = nullptr);
 
 }  // namespace ilp

@@ -36,12 +36,16 @@ SampleSizeChoice choose_sample_size(const JobConfig& job, const Scene& scene, co
                              std::max(2, static_cast<int>(std::lround(job.sample.pilot_fraction * population))));
   const ErrorPrediction prediction =
       predict_sample_error(scene, caster, goals, flux_lm, options, pilot, job.sample.error_samples, progress);
-  const int k = prediction.recommended_sample_size(*job.sample.target_error);
+  const int wanted = prediction.recommended_sample_size(*job.sample.target_error);
+  const int k = std::min(wanted, job.sample.max_size_for_target);
   std::ostringstream log;
   log << std::fixed << std::setprecision(2) << "sample size: " << prediction.samples << " pilot samples of " << pilot
       << " patches spread by " << 100.0 * prediction.rms_relative_spread_total << " % (RMS, total illuminance) in "
       << prediction.seconds << " s; target " << 100.0 * *job.sample.target_error << " % needs k = " << k << " of "
       << population << " (" << std::setprecision(1) << 100.0 * k / population << " %)";
+  if (k < wanted)
+    log << std::setprecision(2) << "; capped from " << wanted << " by solver.max_sample_size (predicted error "
+        << 100.0 * prediction.predicted_rms_error(k) << " %)";
   return {k, log.str()};
 }
 

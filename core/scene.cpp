@@ -11,16 +11,9 @@
 namespace ilp {
 namespace {
 
-// A triangle whose doubled area is below this fraction of the squared scene
-// diagonal cannot be told from a line in float ray casting.
-constexpr double kDegenerateRelArea = 1e-14;
+// kDegenerateRelArea (scene.h): below it a triangle cannot be told from a line in
+// float ray casting.
 constexpr double kMaxCoordinate_m = 1e6;  // |x|, |y|, |z| of any vertex after scale_to_m (1000 km)
-
-Eigen::Vector3d to_z_up_metres(const Eigen::Vector3d& p, const SceneOptions& options) {
-  Eigen::Vector3d q = p * options.scale_to_m;
-  if (options.up_axis == UpAxis::y) return {q.x(), -q.z(), q.y()};  // rotate +90 deg about x
-  return q;
-}
 
 Patch make_patch(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                  int surface, const Eigen::Vector3d& reflectance) {
@@ -36,6 +29,12 @@ Patch make_patch(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen
 }
 
 }  // namespace
+
+Eigen::Vector3d to_scene_frame(const Eigen::Vector3d& p, const SceneOptions& options) {
+  Eigen::Vector3d q = p * options.scale_to_m;
+  if (options.up_axis == UpAxis::y) return {q.x(), -q.z(), q.y()};  // rotate +90 deg about x
+  return q;
+}
 
 int Scene::find_surface(const std::string& name) const {
   for (std::size_t s = 0; s < surfaces.size(); ++s)
@@ -79,7 +78,7 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
   positions.reserve(mesh.positions.size());
   Eigen::AlignedBox3d bounds;
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    positions.push_back(to_z_up_metres(mesh.positions[v], options));
+    positions.push_back(to_scene_frame(mesh.positions[v], options));
     // Beyond this, float ray origins lose the millimetres and counts overflow.
     if (!(positions.back().cwiseAbs().maxCoeff() <= kMaxCoordinate_m)) {
       std::ostringstream os;

@@ -88,6 +88,13 @@ struct SceneOptions {
   std::size_t max_patches = 5'000'000;  // refuse meshing that would exceed this
 };
 
+// A file position in metres, z up (scale_to_m, then up_axis), as make_scene places it.
+Eigen::Vector3d to_scene_frame(const Eigen::Vector3d& file_position, const SceneOptions& options);
+
+// A triangle whose doubled area is at most this fraction of the squared diagonal of the
+// mesh's bounds is degenerate (dropped by make_scene).
+inline constexpr double kDegenerateRelArea = 1e-14;
+
 // Meshing would make more patches than SceneOptions::max_patches allows.
 class PatchLimitError : public SceneError {
  public:

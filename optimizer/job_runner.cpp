@@ -12,6 +12,7 @@
 #include "core/exact_solver.h"
 #include "core/operator_setup.h"
 #include "core/sample_operator.h"
+#include "optimizer/job_cost.h"
 #include "optimizer/model_cache.h"
 
 namespace ilp {
@@ -34,8 +35,11 @@ Verification verify_layout(const PreparedJob& prepared, const JobConfig& job, co
   const auto start = Clock::now();
   Scene scene = prepared.loaded.scene;
   add_layout(scene, *job.search, layout);
-  const bool exact = settings.method == VerificationMethod::exact ||
-                     (settings.method == VerificationMethod::automatic && scene.patches.size() <= settings.max_exact_patches);
+  // auto resolves by the cost model: exact while its sparse rows fit, else a sample that fits.
+  const VerificationPlan plan =
+      plan_verification(job, scene.patches.size(), reflecting_patches(scene).size(), prepared.model.goal_patches.size(),
+                        static_cast<int>(layout.size()), memory_budget_bytes(job.max_memory_bytes));
+  const bool exact = plan.method == VerificationMethod::exact;
   out.rays_per_patch = settings.rays_per_patch;
   if (exact) {
     ExactSolveOptions options = exact_solve_options(job);
@@ -56,8 +60,7 @@ Verification verify_layout(const PreparedJob& prepared, const JobConfig& job, co
     options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
     options.direct_light.seed = options.form_factors.seed;
     options.sample_seed = job.sample.seed ^ kVerificationSeedSalt;
-    const std::size_t population = reflecting_patches(scene).size();
-    options.sample_size = std::max(1, static_cast<int>(std::lround(settings.sample_fraction * static_cast<double>(population))));
+    options.sample_size = std::max(1, plan.sample_size);
     const GoalRows rows = compute_goal_rows(scene, caster, prepared.model.goal_patches, sources, options, progress);
     const SampleOperator op = build_sample_operator(scene, caster, rows, options, progress);
     const Eigen::VectorXd flux = source_flux_lm(scene, sources);
@@ -157,14 +160,32 @@ PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, 
   PreparedJob out;
   out.job = job;
   auto start = Clock::now();
-  out.loaded = load_job_scene(job);
+  // Meshing stops before it makes more patches than the memory could ever hold
+  // (a scene, its BVH and the least build take about 1 kB a patch).
+  const std::optional<double> budget = memory_budget_bytes(job.max_memory_bytes);
+  JobConfig scene_job = job;
+  if (budget) scene_job.scene.max_patches = std::min(job.scene.max_patches, static_cast<std::size_t>(*budget / 1024.0));
+  try {
+    out.loaded = load_job_scene(scene_job);
+  } catch (const ConfigError& e) {
+    if (scene_job.scene.max_patches == job.scene.max_patches) throw;
+    throw ConfigError(std::string(e.what()) + " (about 1 kB a patch within the " + format_bytes(*budget) +
+                      " of memory the job may use: the machine's available memory or --max-memory)");
+  }
   out.scene_seconds = seconds_since(start);
   emit(out.loaded.log, 0);
   start = Clock::now();
   out.caster = std::make_unique<RayCaster>(out.loaded.scene, job.form_factors.threads);
   out.bvh_seconds = seconds_since(start);
   out.model = lighting_model_geometry(out.loaded.scene, job);
-  emit(out.model.log, 0);
+  {
+    // The cost model: printed, and a job that cannot fit is refused now, not minutes later.
+    const CostEstimate estimate = estimate_job_cost(job_cost_counts(job, out.loaded.scene, out.model, budget));
+    for (const std::string& line : format_estimate(estimate)) out.model.log.push_back(line);
+    if (budget) out.model.log.push_back("memory available to the job: " + format_bytes(*budget));
+    emit(out.model.log, 0);
+    require_fits(estimate, budget, job.path);
+  }
   const std::size_t geometry_lines = out.model.log.size();
   if (cache_dir.empty()) {
     compute_lighting_operator(out.model, out.loaded.scene, *out.caster, job, progress);

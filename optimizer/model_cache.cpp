@@ -156,6 +156,16 @@ std::string key_text(const JobConfig& job) {
 
   // The scene.
   t << "surface naming " << static_cast<int>(job.mesh_read.surface_naming) << "\n";
+  if (job.surface_split.active()) {  // (absent otherwise, so older keys stay valid)
+    t << "split connected " << job.surface_split.connected << " weld " << job.surface_split.weld_tolerance_m << "\n";
+    for (const RegionRule& r : job.surface_split.regions) {
+      t << "region ";
+      put(t, r.name);
+      t << " facing " << (r.facing ? static_cast<int>(*r.facing) : -1);
+      if (r.height_m) t << " height " << r.height_m->first << ' ' << r.height_m->second;
+      t << " min area " << r.min_area_m2 << "\n";
+    }
+  }
   t << "up axis " << static_cast<int>(job.scene.up_axis) << "\nscale_to_m " << job.scene.scale_to_m
     << "\nmax_patch_edge_m " << job.scene.max_patch_edge_m << "\nmax_patches " << job.scene.max_patches << "\n";
   for (const ReflectanceSetting& r : job.reflectance) {  // in file order: a later one wins

@@ -6,6 +6,7 @@
 
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -209,6 +210,58 @@ TEST(IlpRun, EveryNewCommandHasHelp) {
     EXPECT_EQ(r.exit_code, 0) << args[0];
     EXPECT_TRUE(OutputContains(r.out, args[0] == "print" ? "result.json" : "--out")) << args[0];
   }
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 12: a job whose dense solve (or exact verification) would need more memory
+// than allowed is refused at once, naming the setting, and writes nothing.
+TEST(IlpRun, AJobBeyondTheMemoryBudgetIsRefusedAtOnceNamingTheSetting) {
+  TempDir dir;
+  const auto start = std::chrono::steady_clock::now();
+  const RunResult r = run_ilp(dir, {"run", std::string(ILP_SOURCE_DIR) + "/configs/office.yaml", "--max-memory", "60M",
+                                    "--no-cache", "--out", dir.file("out"), "-q"});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_LT(seconds, 5.0);
+  EXPECT_TRUE(OutputContains(r.err, "configs/office.yaml: the job would need about"));
+  EXPECT_TRUE(OutputContains(r.err, "refused before any work: change verification.rays_per_patch or verification.method"));
+  EXPECT_TRUE(OutputContains(r.err, "estimate: in all about"));  // the estimate is printed first
+  EXPECT_FALSE(fs::exists(dir.file("out")));
+  // A dense sample verification that does not fit names its own setting.
+  const std::string yaml = read_file(std::string(ILP_SOURCE_DIR) + "/configs/office.yaml");
+  std::string sample = yaml;
+  sample.replace(sample.find("method: auto"), 12, "method: sample\n  sample_fraction: 1.0");
+  sample.replace(sample.find("../data/office.obj"), 18, std::string(ILP_SOURCE_DIR) + "/data/office.obj");
+  const RunResult s = run_ilp(dir, {"run", dir.write("sample.yaml", sample), "--max-memory", "1G", "--no-cache",
+                                    "--out", dir.file("out"), "-q"});
+  EXPECT_EQ(s.exit_code, 1) << s.err;
+  EXPECT_TRUE(OutputContains(s.err, "change verification.sample_fraction or verification.method"));
+}
+
+TEST(IlpRun, BadMaxMemoryIsAnError) {
+  TempDir dir;
+  const RunResult r = run_ilp(dir, {"run", std::string(ILP_SOURCE_DIR) + "/configs/office.yaml", "--max-memory", "lots"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(OutputContains(r.err, "--max-memory lots: must be a positive size"));
+}
+
+TEST(IlpInspect, ShowsSurfacesSuggestionsWarningsAndTheCostEstimate) {
+  TempDir dir;
+  const RunResult r = run_ilp(dir, {"inspect", std::string(ILP_SOURCE_DIR) + "/configs/office.yaml"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(OutputContains(r.out, "surfaces, largest first"));
+  EXPECT_TRUE(OutputContains(r.out, "suggested mounting surface: ceiling"));
+  EXPECT_TRUE(OutputContains(r.out, "suggested floor: floor"));
+  EXPECT_TRUE(OutputContains(r.out, "cost estimate of `ilp run`"));
+  EXPECT_TRUE(OutputContains(r.out, "verification: auto: exact"));
+  // A bare mesh (no job): its surfaces, but no estimate.
+  dir.write("box.obj", ilp::test::room_obj({}));
+  const RunResult one = run_ilp(dir, {"inspect", dir.file("box.obj")});
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_TRUE(OutputContains(one.out, "cost estimate: not an inverse job"));
 }
 
 }  // namespace

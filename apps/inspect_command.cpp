@@ -1,0 +1,170 @@
+// ilp inspect: the scene as ilp sees it (metres, z up, after exclusions and surface
+// splitting), surface by surface, with suggestions, warnings and, for an inverse job,
+// the cost estimate of running it. Takes a job file or a bare mesh.
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <numeric>
+#include <sstream>
+
+#include "apps/commands.h"
+#include "core/config.h"
+#include "core/cost_model.h"
+#include "core/job.h"
+#include "core/ray_caster.h"
+#include "core/scene_inspect.h"
+#include "optimizer/job_cost.h"
+#include "optimizer/lighting_model.h"
+
+namespace ilp::cli {
+namespace {
+
+bool is_config(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return ext == ".yaml" || ext == ".yml";
+}
+
+JobConfig job_for(const InspectArgs& args) {
+  JobConfig job;
+  if (is_config(args.target)) {
+    job = load_job_config(args.target);
+  } else {
+    job.path = args.target;
+    job.mesh_path = args.target;
+    job.mesh_loc = {args.target, 0, 0};
+    job.default_reflectance = Eigen::Vector3d::Constant(0.5);  // reflectances do not matter here
+    job.ignore_material_kd = true;
+  }
+  // Command-line options override the file.
+  if (args.scale > 0.0) job.scene.scale_to_m = args.scale;
+  if (args.up == "y") job.scene.up_axis = UpAxis::y;
+  else if (args.up == "z") job.scene.up_axis = UpAxis::z;
+  if (args.patch_edge_m > 0.0) job.scene.max_patch_edge_m = args.patch_edge_m;
+  if (args.connected) job.surface_split.connected = true;
+  if (args.weld_m > 0.0) job.surface_split.weld_tolerance_m = args.weld_m;
+  if (args.threads >= 0) job.form_factors.threads = job.direct_light.threads = args.threads;
+  if (!args.max_memory.empty()) job.max_memory_bytes = parse_bytes(args.max_memory);
+  return job;
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(digits) << v;
+  return os.str();
+}
+
+void print_surfaces(const SceneInspection& in, std::size_t limit) {
+  std::vector<std::size_t> order(in.surfaces.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return in.surfaces[a].area_m2 > in.surfaces[b].area_m2; });
+  const std::size_t shown = std::min(limit, order.size());
+  std::cout << "surfaces, largest first (" << shown << " of " << in.surfaces.size() << " shown"
+            << (shown < order.size() ? "; --all for every one" : "") << "):\n";
+  std::cout << std::left << std::setw(24) << "surface" << std::right << std::setw(10) << "triangles" << std::setw(9)
+            << "patches" << std::setw(11) << "area m²" << std::setw(6) << "up%" << std::setw(6) << "down%"
+            << std::setw(6) << "vert%" << std::setw(18) << "height m" << std::setw(28) << "x, y range m" << std::setw(7)
+            << "open" << std::setw(8) << "flipped" << std::setw(8) << "escape%" << std::setw(7) << "back%" << "\n";
+  for (std::size_t r = 0; r < shown; ++r) {
+    const SurfaceInspection& s = in.surfaces[order[r]];
+    const auto& b = s.bounds_m;
+    const bool empty = b.isEmpty();
+    std::string name = s.name + (s.is_luminaire ? " (luminaire)" : "");
+    if (name.size() > 23) name = name.substr(0, 22) + "~";
+    std::cout << std::left << std::setw(24) << name << std::right << std::setw(10) << s.triangles << std::setw(9)
+              << s.patches << std::setw(11) << fixed(s.area_m2, 2) << std::setw(6) << fixed(100 * s.up_share, 0)
+              << std::setw(6) << fixed(100 * s.down_share, 0) << std::setw(6) << fixed(100 * s.vertical_share, 0)
+              << std::setw(18)
+              << (empty ? std::string("-") : fixed(b.min().z(), 2) + " .. " + fixed(b.max().z(), 2)) << std::setw(28)
+              << (empty ? std::string("-")
+                        : fixed(b.min().x(), 1) + ".." + fixed(b.max().x(), 1) + ", " + fixed(b.min().y(), 1) + ".." +
+                              fixed(b.max().y(), 1))
+              << std::setw(7) << s.open_edges << std::setw(8) << s.flipped_edges << std::setw(8)
+              << fixed(100 * s.escape_share, 0) << std::setw(7) << fixed(100 * s.back_struck_share, 0) << "\n";
+  }
+  if (shown < order.size()) {
+    double rest = 0.0;
+    for (std::size_t r = shown; r < order.size(); ++r) rest += in.surfaces[order[r]].area_m2;
+    std::cout << "  ... " << order.size() - shown << " more surfaces, " << fixed(rest, 2) << " m² in all\n";
+  }
+}
+
+void print_suggestion(const char* what, const SceneInspection& in, int index, bool down) {
+  if (index < 0) return;
+  const SurfaceInspection& s = in.surfaces[static_cast<std::size_t>(index)];
+  std::cout << what << s.name << " (" << fixed((down ? s.down_share : s.up_share) * s.area_m2, 1) << " m² facing "
+            << (down ? "down" : "up") << " at z ≈ " << fixed(down ? s.down_mean_z_m : s.up_mean_z_m, 2) << " m)\n";
+}
+
+}  // namespace
+
+int run_inspect(const InspectArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+  const JobConfig job = job_for(args);
+  TriangleMesh mesh;
+  const JobScene loaded = load_job_scene(job, &mesh);
+  const Scene& scene = loaded.scene;
+  const RayCaster caster(scene, job.form_factors.threads);
+  InspectOptions options;
+  options.weld_tolerance_m = job.surface_split.weld_tolerance_m;
+  options.threads = job.form_factors.threads;
+  const SceneInspection in = inspect_scene(scene, mesh, job.scene, caster, options);
+
+  std::cout << "scene: " << job.mesh_path << " as ilp sees it (metres, z up; scale_to_m " << job.scene.scale_to_m
+            << ", up_axis " << (job.scene.up_axis == UpAxis::y ? "y" : "z") << ")\n";
+  for (const std::string& line : loaded.log)
+    if (line.rfind("warning: nothing emits", 0) != 0) std::cout << "  " << line << "\n";  // inspect places none
+  std::cout << "  " << in.triangles << " triangles, " << in.welded_vertices << " vertices welded at "
+            << options.weld_tolerance_m << " m; " << in.patches << " patches"
+            << (job.scene.max_patch_edge_m > 0.0 ? " (max_patch_edge_m " + fixed(job.scene.max_patch_edge_m, 3) + ")"
+                                                 : std::string(" (no subdivision)"))
+            << ", " << fixed(in.area_m2, 2) << " m²\n";
+  std::cout << "  probe rays: " << in.probe_rays << "; " << fixed(100 * in.escape_share, 1)
+            << " % leave the model, " << fixed(100 * in.back_hit_share, 1) << " % strike a back face\n";
+  print_surfaces(in, args.all ? in.surfaces.size() : 40);
+  print_suggestion("suggested mounting surface: ", in, in.mounting, true);
+  print_suggestion("suggested floor: ", in, in.floor, false);
+  if (!in.warnings.empty()) {
+    std::cout << "warnings:\n";
+    for (const std::string& w : in.warnings) std::cout << "  - " << w << "\n";
+  }
+
+  // The cost of running the job, for an inverse job.
+  if (job.search && !job.goals.empty()) {
+    try {
+      const LightingModel geometry = lighting_model_geometry(scene, job);
+      const std::optional<double> budget = memory_budget_bytes(job.max_memory_bytes);
+      const CostCounts counts = job_cost_counts(job, scene, geometry, budget);
+      const CostEstimate estimate = estimate_job_cost(counts);
+      std::cout << "cost estimate of `ilp run` (" << geometry.goal_patches.size() << " goal patches, "
+                << geometry.grid.size() << " candidates, k = " << counts.sample_size << ", " << counts.channels
+                << (counts.channels == 1 ? " channel" : " channels") << ", "
+                << job.form_factors.rays_per_patch << " rays per row; memory available "
+                << (budget ? format_bytes(*budget) : std::string("unknown")) << "):\n";
+      for (const std::string& line : format_estimate(estimate)) std::cout << "  " << line << "\n";
+      const VerificationPlan plan = plan_verification(job, scene.patches.size(), counts.population,
+                                                      counts.goal_patches, counts.luminaires, budget);
+      if (!plan.reason.empty()) std::cout << "  verification: " << plan.reason << "\n";
+      if (budget && estimate.peak_bytes() > *budget) {
+        try {
+          require_fits(estimate, budget, job.path);
+        } catch (const IlpError& e) {
+          std::cout << "  would be refused: " << e.what() << "\n";
+        }
+      }
+    } catch (const IlpError& e) {
+      std::cout << "cost estimate: not available: " << e.what() << "\n";
+    } catch (const std::invalid_argument& e) {
+      std::cout << "cost estimate: not available: " << e.what() << "\n";
+    }
+  } else {
+    std::cout << "cost estimate: not an inverse job (no luminaires.mounting_surface or goals)\n";
+  }
+  std::cout << "inspect took " << fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2)
+            << " s\n";
+  return 0;
+}
+
+}  // namespace ilp::cli

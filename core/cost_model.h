@@ -1,0 +1,95 @@
+// What a job will cost before it is run: memory and time of each phase of the
+// operator build (goal rows, direct light, sample rows, the k x k solve, T), the
+// search and the verification, from counts alone (patches, goal patches, k,
+// sources, rays, channels) and per-unit constants measured on the reference machine
+// (docs/benchmarks.md, "Cost model"). Used to print the estimate in the run log, to
+// refuse a job that would not fit in memory before any work is done (naming the
+// setting to change), and to choose the automatic verification method.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ilp {
+
+// Per-unit costs, 2 threads of the reference machine (fitted on the classroom bench).
+struct MachineCosts {
+  double gather_ray_s = 1.0 / 5.3e6;        // one form-factor ray (closest hit, row assembly)
+  double precise_pair_ray_s = 7.8e-8;       // direct light: per shadow ray of a precise receiver-source pair
+  double cheap_pair_s = 6.4e-8;             // direct light: one cheap (1 point, 2 rays) receiver-source pair
+  double dense_flop_s = 1.0 / 13.3e9;       // LU and triangular solves in double
+  double blend_mac_s = 1.44e-10;            // search: one multiply-add of a candidate column, single precision
+  double gauss_seidel_nnz_s = 2.0e-9;       // one non-zero of F per Gauss-Seidel sweep
+  int gauss_seidel_sweeps = 24;             // sweeps a typical solve needs (relative residual 1e-6)
+  double hit_coverage = 0.06;               // distinct patches hit ~ pop (1 - exp(-coverage rows rays / pop))
+};
+
+// The counts a job's cost follows.
+struct CostCounts {
+  std::size_t patches = 0;           // n, in the job scene
+  std::size_t population = 0;        // reflecting patches
+  std::size_t goal_patches = 0;      // G
+  std::size_t sources = 0;           // L: fixed sources + candidates
+  std::size_t sample_size = 0;       // k (0: direct light only)
+  int channels = 1;
+  int rays_per_patch = 128;
+  bool exact_second_bounce = true;
+  int direct_rays = 64;              // receiver points x shadow rays of precise direct light
+  int pilot_builds = 0;              // target_error: pilot operators built before the real one
+  std::size_t pilot_size = 0;
+  // search
+  int luminaires = 1;                // largest count searched
+  long long evaluations = 0;         // budget (global + local) per count, times the counts tried
+  double search_max_seconds = 0.0;   // optimizer.max_seconds (0: no cap), per search round
+  // verification
+  enum class Verify { none, exact, sample } verify = Verify::none;
+  int verify_rays = 1024;
+  std::size_t verify_sample_size = 0;  // sample verification: k
+  int verify_rounds = 1;
+};
+
+struct PhaseEstimate {
+  std::string name;
+  double seconds = 0.0;
+  double bytes = 0.0;      // peak memory while the phase runs (on top of the scene)
+  std::string setting;     // the setting that governs it, for a refusal message
+};
+
+struct CostEstimate {
+  double scene_bytes = 0.0;            // scene copies and BVH, held throughout
+  std::vector<PhaseEstimate> phases;   // in run order
+  double peak_bytes() const;           // scene + the largest phase
+  double total_seconds() const;
+  const PhaseEstimate* largest_phase() const;  // by memory
+};
+
+CostEstimate estimate_job_cost(const CostCounts& counts, const MachineCosts& costs = {});
+
+// Memory of the verification alone (peak), for choosing its method.
+double exact_verification_bytes(std::size_t patches, int rays_per_patch);
+double dense_verification_bytes(std::size_t k, std::size_t goal_patches, std::size_t sources, int rays_per_patch);
+// Distinct patches hit by `rows` rows of `rays` rays each, of `population` (a fit).
+double expected_hit_patches(double rows, double rays, double population, const MachineCosts& costs = {});
+
+// Lines for the run log: one per phase (s, GB) and a total.
+std::vector<std::string> format_estimate(const CostEstimate& estimate);
+
+// MemAvailable of /proc/meminfo in bytes; nullopt where it cannot be read.
+std::optional<double> available_memory_bytes();
+
+// The memory a job may use: the smaller of MemAvailable and `max_memory_bytes`.
+std::optional<double> memory_budget_bytes(std::optional<double> max_memory_bytes);
+
+// Throws ConfigError when the estimate's peak exceeds the budget, naming the phase,
+// both figures and the setting to change; `where` prefixes the message (the config file).
+void require_fits(const CostEstimate& estimate, std::optional<double> budget_bytes, const std::string& where);
+
+// "2.5 GB" / "512 MB", for messages.
+std::string format_bytes(double bytes);
+// "4 GB", "512M", "1.5G", "800 MB": a size with an optional unit (K, M, G, T; B and i
+// ignored; none means bytes). Throws ConfigError on anything else.
+double parse_bytes(const std::string& text);
+
+}  // namespace ilp

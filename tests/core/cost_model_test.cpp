@@ -1,0 +1,109 @@
+// The cost model: its phase estimates against the classroom bench measured on this
+// machine (docs/benchmarks.md), the refusal message, the byte parser, and the
+// automatic verification never choosing a dense system that does not fit.
+#include "core/cost_model.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "tests/test_support.h"
+
+namespace ilp {
+namespace {
+
+using test::Contains;
+
+// The classroom job of docs/benchmarks.md: 165,977 patches, 4,518 goal patches, 185
+// candidates, k = 3,320, 3 channels, 128 rays, 8 luminaires.
+CostCounts classroom() {
+  CostCounts c;
+  c.patches = c.population = 165977;
+  c.goal_patches = 4518;
+  c.sources = 185;
+  c.sample_size = 3320;
+  c.channels = 3;
+  c.rays_per_patch = 128;
+  c.luminaires = 8;
+  c.evaluations = 6000;
+  c.verify = CostCounts::Verify::exact;
+  c.verify_rays = 128;
+  c.verify_rounds = 1;
+  return c;
+}
+
+double phase_seconds(const CostEstimate& e, const std::string& prefix) {
+  for (const PhaseEstimate& p : e.phases)
+    if (p.name.rfind(prefix, 0) == 0) return p.seconds;
+  ADD_FAILURE() << "no phase " << prefix;
+  return 0.0;
+}
+
+TEST(CostModel, ReproducesTheClassroomBenchWithinAThird) {
+  // Measured (ilp bench configs/classroom.yaml): goal rows 4.28 s, direct light 4.93 s,
+  // k x k solve 6.42 s, search 0.50 s, verification 4.71 s; peak 0.40 GB.
+  const CostEstimate e = estimate_job_cost(classroom());
+  EXPECT_NEAR(phase_seconds(e, "goal rows"), 4.28, 0.33 * 4.28);
+  EXPECT_NEAR(phase_seconds(e, "direct light"), 4.93, 0.33 * 4.93);
+  EXPECT_NEAR(phase_seconds(e, "k x k solve"), 6.42, 0.33 * 6.42);
+  EXPECT_NEAR(phase_seconds(e, "search"), 0.50, 0.33 * 0.50);
+  EXPECT_NEAR(phase_seconds(e, "verification"), 4.71, 0.33 * 4.71);
+  // Memory errs on the safe side here (rows are counted at one entry per ray; many rays
+  // of a row strike the same patch): 0.62 GB against 0.40-0.42 GB measured.
+  EXPECT_GT(e.peak_bytes(), 0.40e9);
+  EXPECT_LT(e.peak_bytes(), 1.6 * 0.42e9);
+}
+
+TEST(CostModel, TheLuGrowsAsKCubedAndItsMemoryAsKSquared) {
+  CostCounts a = classroom(), b = classroom();
+  b.sample_size = 2 * a.sample_size;
+  const CostEstimate ea = estimate_job_cost(a), eb = estimate_job_cost(b);
+  const double ratio = phase_seconds(eb, "k x k solve") / phase_seconds(ea, "k x k solve");
+  EXPECT_GT(ratio, 6.0);  // 8 for the LU alone, less with the k^2 L solves
+  EXPECT_LT(ratio, 8.0);
+}
+
+TEST(CostModel, ADenseSystemBeyondTheBudgetIsRefusedNamingTheSetting) {
+  // Issue 12: a 25 % sample of 398K patches, 79,000 x 79,000 in double.
+  CostCounts c = classroom();
+  c.patches = c.population = 398000;
+  c.sample_size = 79000;
+  const CostEstimate e = estimate_job_cost(c);
+  EXPECT_GT(e.peak_bytes(), 16.0 * 79000.0 * 79000.0);
+  const std::string msg = test::error_of<ConfigError>([&] { require_fits(e, 24e9, "conference.yaml"); });
+  EXPECT_TRUE(Contains(msg, "conference.yaml: the job would need about"));
+  EXPECT_TRUE(Contains(msg, "k x k solve"));
+  EXPECT_TRUE(Contains(msg, "change solver.sample_fraction"));
+  EXPECT_NO_THROW(require_fits(e, std::nullopt, "x"));
+  EXPECT_NO_THROW(require_fits(e, 2.0 * e.peak_bytes(), "x"));
+}
+
+TEST(CostModel, ExactVerificationMemoryGrowsWithRaysAndIsNamed) {
+  CostCounts c = classroom();
+  c.verify_rays = 1024;
+  const CostEstimate e = estimate_job_cost(c);
+  // 165,977 rows x 1024 rays x 20 bytes at assembly: about 3.4 GB.
+  EXPECT_GT(e.peak_bytes(), 3.0e9);
+  const std::string msg = test::error_of<ConfigError>([&] { require_fits(e, 1e9, "job.yaml"); });
+  EXPECT_TRUE(Contains(msg, "change verification.rays_per_patch or verification.method"));
+}
+
+TEST(CostModel, ParsesSizesAndRejectsNonsense) {
+  EXPECT_DOUBLE_EQ(parse_bytes("4G"), 4.0 * 1024 * 1024 * 1024);
+  EXPECT_DOUBLE_EQ(parse_bytes("512 MB"), 512.0 * 1024 * 1024);
+  EXPECT_DOUBLE_EQ(parse_bytes("1.5GiB"), 1.5 * 1024 * 1024 * 1024);
+  EXPECT_DOUBLE_EQ(parse_bytes("1000"), 1000.0);
+  EXPECT_THROW(parse_bytes("lots"), ConfigError);
+  EXPECT_THROW(parse_bytes("4X"), ConfigError);
+  EXPECT_THROW(parse_bytes("-1G"), ConfigError);
+  EXPECT_THROW(parse_bytes(""), ConfigError);
+}
+
+TEST(CostModel, MachineMemoryIsReadFromProcMeminfo) {
+  const auto available = available_memory_bytes();
+  ASSERT_TRUE(available.has_value());
+  EXPECT_GT(*available, 1e7);
+  EXPECT_DOUBLE_EQ(*memory_budget_bytes(1e6), 1e6);  // the smaller of the two
+}
+
+}  // namespace
+}  // namespace ilp
