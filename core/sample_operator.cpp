@@ -343,7 +343,11 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
   RowSums point_sums{Eigen::VectorXd::Zero(Q), Eigen::MatrixXd::Zero(Q, static_cast<Eigen::Index>(table.gathered.size())),
                      Eigen::VectorXd::Zero(Q), Eigen::VectorXd::Zero(Q)};
   if (Q > 0 && (any_reflecting || !table.gathered.empty())) {
-    goals.point_rows = compute_point_rows(scene, caster, goal_points, options.form_factors, progress);
+    // Points are few (a grid has hundreds, a mesh tens of thousands of patches) and each
+    // stands alone (no area to average over): their rows get kPointRayFactor x the rays.
+    FormFactorOptions point_options = options.form_factors;
+    point_options.rays_per_patch = options.form_factors.rays_per_patch * kPointRayFactor;
+    goals.point_rows = compute_point_rows(scene, caster, goal_points, point_options, progress);
     point_sums = row_sums_from_rows(scene, goals.point_rows->F, table);
     goals.rays_cast += goals.point_rows->rays_cast;
   }

@@ -77,6 +77,9 @@ struct SampleOperatorOptions {
   DirectLightOptions hit_direct_light{.receiver_points = 1, .shadow_rays = 2};
 };
 
+// Goal points' gather rows cast this many times form_factors.rays_per_patch rays.
+inline constexpr int kPointRayFactor = 4;
+
 // What the goal patches need whatever the sample: their direct light and row sums.
 // Built once, it serves every sample drawn for the same goals (sample-size studies).
 struct GoalRows {
@@ -103,7 +106,8 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
                            std::span<const LightSource> sources, const SampleOperatorOptions& options,
                            const ProgressCallback& progress = {});
 // The same with goal points (rows after the patches' in T). Point rows use
-// options.form_factors (rays_per_patch rays each) and options.direct_light.shadow_rays.
+// options.form_factors with kPointRayFactor x rays_per_patch rays, and
+// options.direct_light.shadow_rays shadow rays per luminaire.
 GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::span<const int> goal_patches,
                            std::span<const ReceiverPoint> goal_points, std::span<const LightSource> sources,
                            const SampleOperatorOptions& options, const ProgressCallback& progress = {});

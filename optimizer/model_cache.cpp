@@ -176,6 +176,13 @@ std::string key_text(const JobConfig& job) {
     put(t, name);
     t << "\n";
   }
+  for (const FloorSetting& f : job.add_floors) {  // scene.add_floor: geometry the mesh file lacks
+    t << "added floor ";
+    put(t, f.name);
+    t << ' ' << f.lo.x() << ' ' << f.lo.y() << ' ' << f.hi.x() << ' ' << f.hi.y() << ' ' << f.z_m << ' ';
+    put(t, f.rgb);
+    t << "\n";
+  }
   t << "two-sided " << (job.two_sided_all ? "all" : "listed") << "\n";
   for (const std::string& name : job.two_sided_surfaces) {
     t << "two-sided ";

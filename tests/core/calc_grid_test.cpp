@@ -7,12 +7,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <numbers>
 
 #include "core/config.h"
 #include "core/error.h"
 #include "core/exact_solver.h"
 #include "core/job.h"
+#include "core/operator_setup.h"
 #include "core/point_direct_light.h"
 #include "core/point_gather.h"
 #include "core/reference_scenes.h"
@@ -318,7 +320,9 @@ TEST(PointIlluminance, CensusOperatorAtPointsEqualsTheExactSolve) {
     ExactSolveOptions exact;
     exact.radiosity.relative_residual = 1e-12;
     const ExactSolution solution = solve_exact(scene, exact);
-    const PointIlluminance at = exact_point_illuminance(scene, caster, solution.radiosity, points, o.form_factors, o.direct_light);
+    FormFactorOptions point_rows = o.form_factors;
+    point_rows.rays_per_patch *= kPointRayFactor;  // as compute_goal_rows casts them
+    const PointIlluminance at = exact_point_illuminance(scene, caster, solution.radiosity, points, point_rows, o.direct_light);
     const Eigen::Index G = static_cast<Eigen::Index>(goals.size());
     for (std::size_t q = 0; q < points.size(); ++q) {
       const Eigen::Index r = G + static_cast<Eigen::Index>(q);
@@ -332,6 +336,46 @@ TEST(PointIlluminance, CensusOperatorAtPointsEqualsTheExactSolve) {
     const SampleOperator plain = build_sample_operator(scene, caster, plain_rows, o);
     EXPECT_EQ((plain.total_lux_per_lm - op.total_lux_per_lm.topRows(G)).cwiseAbs().maxCoeff(), 0.0);
   }
+}
+
+// Issue 11's accuracy target: on the office (configs/office_fixed.yaml, 0.25 m patches,
+// four placed panels) the operator at its default k (5 %) agrees with the exact
+// point-wise solve (every row at 1024 rays, each point's gather at 1024 rays, rays
+// independent of the operator's) within 2 % RMS and 5 % at worst over a 0.8 m work plane.
+// docs/accuracy.md quotes the figures this prints.
+TEST(PointIlluminance, OfficeWorkPlaneAtDefaultKAgreesWithTheExactPointwiseSolve) {
+  const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
+  const Scene scene = load_job_scene(job).scene;
+  const RayCaster caster(scene);
+  CalcGridSetting plane;
+  plane.name = "work_plane";
+  plane.over_surface = "floor";
+  plane.height_m = 0.8;
+  plane.spacing_m = 0.25;
+  const CalcGrid grid = make_calc_grid(scene, caster, plane);
+  SampleOperatorOptions o = sample_operator_options(job);
+  o.sample_size = job.sample.size_for(reflecting_patches(scene).size());
+  const GoalRows rows = compute_goal_rows(scene, caster, {}, grid.points, scene_light_sources(scene), o);
+  const SampleOperator op = build_sample_operator(scene, caster, rows, o);
+  const Eigen::VectorXd H = op.illuminance_lux(source_flux_lm(scene, op.sources));
+  ExactSolveOptions exact = exact_solve_options(job);
+  exact.form_factors.rays_per_patch = 1024;
+  exact.form_factors.seed = exact.direct_light.seed = 77;
+  const ExactSolution solution = solve_exact(scene, exact);
+  const PointIlluminance at =
+      exact_point_illuminance(scene, caster, solution.radiosity, grid.points, exact.form_factors, exact.direct_light);
+  double sum = 0.0, worst = 0.0;
+  for (Eigen::Index q = 0; q < H.size(); ++q) {
+    const double e = (H[q] - at.total_lux[q]) / at.total_lux[q];
+    sum += e * e;
+    worst = std::max(worst, std::abs(e));
+  }
+  const double rms = std::sqrt(sum / static_cast<double>(H.size()));
+  std::cout << "office work plane: " << H.size() << " points, k = " << op.stats.sample_patches << ", operator "
+            << op.stats.build_seconds() << " s; RMS relative error " << 100 * rms << " %, max " << 100 * worst
+            << " %; mean exact " << at.total_lux.mean() << " lx (direct " << at.direct_lux.mean() << " lx)\n";
+  EXPECT_LT(rms, 0.02);
+  EXPECT_LT(worst, 0.05);
 }
 
 }  // namespace
