@@ -190,7 +190,10 @@ std::vector<std::string> write_outputs(const std::string& dir, const PreparedJob
   }
   // Pictures show the verified illuminance where there is one, else the predicted.
   const bool verified = outcome.verification.method != "none";
-  // The plan and the PLY show the goal patches (grids: isolux plans, see the report).
+  // The plan and the PLY show the goal patches. TODO(isolux branch): per grid, grid.csv and
+  // the isolux plan (output/grid_csv.*, output/isolux_plan.*) from prepared.model.grids,
+  // outcome.predicted_lux / verified_goal_lux rows model.grid_first_row[g] onwards, and
+  // outcome.verification.point_direct_lux for the direct column.
   Eigen::VectorXd goal_lux = outcome.predicted_lux.head(static_cast<Eigen::Index>(prepared.model.goal_patches.size()));
   if (verified) {
     const Eigen::VectorXd per_patch = verified_lux_per_patch(scene, outcome);

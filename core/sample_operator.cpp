@@ -682,8 +682,9 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   line.str("");
   line << "rows cast: " << P.size() << " sample + " << goals.patches.size() << " goal of " << scene.patches.size()
        << " patches";
-  if (Q > 0) line << " + " << Q << " goal points";
-  line << ", " << options.form_factors.rays_per_patch << " rays each; direct light at " << st.direct_rows
+  line << ", " << options.form_factors.rays_per_patch << " rays each";
+  if (Q > 0) line << " + " << Q << " goal points, " << options.form_factors.rays_per_patch * kPointRayFactor << " rays each";
+  line << "; direct light at " << st.direct_rows
        << " goal and sample patches";
   if (refine) line << " (+ " << st.cheap_direct_rows << " cheap estimates at patches the rows hit)";
   line << "; indirect: " << to_string(options.indirect);
