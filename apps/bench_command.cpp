@@ -124,7 +124,7 @@ int run_bench(const BenchArgs& args) {
   table << std::fixed << std::setprecision(3);
   table << "# ilp bench " << job.path << "\n";
   table << "patches " << prepared.loaded.scene.patches.size() << ", goal patches " << model.goal_patches.size()
-        << ", candidates " << model.grid.size() << ", k = " << model.sample_size << " of " << st.population
+        << ", goal points " << model.goal_points.size() << ", candidates " << model.grid.size() << ", k = " << model.sample_size << " of " << st.population
         << ", channels " << st.channels << ", rays per row " << job.form_factors.rays_per_patch << ", threads "
         << (job.form_factors.threads == 0 ? std::string("all") : std::to_string(job.form_factors.threads)) << "\n";
   table << "| phase | s |\n|---|---|\n";
@@ -140,7 +140,8 @@ int run_bench(const BenchArgs& args) {
         << search.seconds << " |\n";
   table << "| full radiosity solve of one configuration | " << full_solve_seconds << " |\n";
   table << std::setprecision(0) << "\nevaluations per second (" << args.luminaires << " luminaires, "
-        << model.goal_patches.size() << " goal patches): " << evaluations_per_second << "\n";
+        << model.goal_patches.size() << " goal patches, " << model.goal_points.size()
+        << " goal points): " << evaluations_per_second << "\n";
   table << std::setprecision(2) << "peak memory: " << build_memory_gb << " GB after the build, " << total_memory_gb
         << " GB in all (with the full solve)\n";
   if (!args.skip_full_solve)

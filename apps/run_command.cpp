@@ -1,5 +1,6 @@
 // ilp run, ilp sweep, ilp print: the inverse-lighting job from a YAML file to the
 // layout table and the files of the output folder.
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include "apps/commands.h"
 #include "core/config.h"
 #include "core/cost_model.h"
+#include "optimizer/goal_metrics.h"
 #include "optimizer/job_runner.h"
 #include "output/atomic_file.h"
 #include "output/colour_map.h"
@@ -60,7 +62,12 @@ PreparedJob prepare_and_log(const JobConfig& job, const ProgressCallback& progre
   return prepared;
 }
 
-std::string unit_of(GoalMetric metric) { return metric == GoalMetric::uniformity ? "" : "lx"; }
+std::string unit_of(GoalMetric metric) { return std::string(metric_rule(metric).unit); }
+
+GridValues grid_values(const GoalArea& area, const Eigen::VectorXd& lux, double factor) {
+  const AreaStatistics s = area_statistics(area, lux);
+  return {s.average_lux * factor, s.min_lux * factor, s.max_lux * factor, s.uniformity};
+}
 
 // Every variant of the job (each product at each rotation) prepared, its notes logged.
 std::vector<PreparedJob> prepare_variants(const std::vector<JobVariant>& variants, const ProgressCallback& progress,
@@ -148,11 +155,14 @@ ResultRecord make_record(const PreparedJob& prepared, const JobConfig& job, cons
     GoalRecord rec;
     rec.name = o.predicted.name;
     rec.surfaces = job.goals[g].surfaces;
+    rec.grid = job.goals[g].grid;
     rec.metric = std::string(to_string(o.predicted.metric));
     rec.unit = unit_of(o.predicted.metric);
-    rec.target = o.predicted.target;
-    rec.predicted = o.predicted.value;
-    if (o.verified) rec.verified = o.verified->value;
+    // The report shows maintained values, as the job states its targets.
+    const double mf = metric_rule(o.predicted.metric).lux ? job.maintenance_factor : 1.0;
+    rec.target = job.goals[g].target;
+    rec.predicted = o.predicted.value * mf;
+    if (o.verified) rec.verified = o.verified->value * mf;
     rec.met = o.met;
     rec.fails_only_on_verification = o.fails_only_on_verification;
     rec.tolerance = o.tolerance;
@@ -161,6 +171,24 @@ ResultRecord make_record(const PreparedJob& prepared, const JobConfig& job, cons
   r.power_w = outcome.power_w;
   r.mounting_area_m2 = outcome.mounting_area_m2;
   r.power_density_w_per_m2 = outcome.power_density_w_per_m2;
+  r.floor_area_m2 = outcome.floor_area_m2;
+  r.floor_area_source = outcome.floor_area_source;
+  r.power_density_w_per_m2_per_100_lx = outcome.power_density_w_per_m2_per_100_lx;
+  r.maintenance_factor = job.maintenance_factor;
+  {
+    const LightingModel& model = prepared.model;
+    const bool verified = outcome.verification.method != "none";
+    const Eigen::VectorXd lux = verified ? verified_goal_lux(model, outcome.verification) : outcome.predicted_lux;
+    for (const GoalArea& area : model.areas) {
+      if (area.grid < 0) continue;
+      const CalcGrid& grid = model.grids[static_cast<std::size_t>(area.grid)];
+      if (std::any_of(r.grids.begin(), r.grids.end(), [&](const GridRecord& g) { return g.name == grid.name; })) continue;
+      GridRecord rec{grid.name, static_cast<int>(grid.points.size()), grid.area_m2, grid.spacing_m,
+                     static_cast<int>(grid.inside_solid), verified, grid_values(area, lux, 1.0),
+                     grid_values(area, lux, job.maintenance_factor)};
+      r.grids.push_back(rec);
+    }
+  }
   r.fixed_flux_lm = outcome.fixed_flux_lm;
   r.feasible = outcome.feasible;
   r.all_met = outcome.all_met;
@@ -235,7 +263,11 @@ std::vector<std::string> write_outputs(OutputSet& set, const PreparedJob& prepar
   }
   // Pictures show the verified illuminance where there is one, else the predicted.
   const bool verified = outcome.verification.method != "none";
-  Eigen::VectorXd goal_lux = outcome.predicted_lux;
+  // The plan and the PLY show the goal patches. TODO(isolux branch): per grid, grid.csv and
+  // the isolux plan (output/grid_csv.*, output/isolux_plan.*) from prepared.model.grids,
+  // outcome.predicted_lux / verified_goal_lux rows model.grid_first_row[g] onwards, and
+  // outcome.verification.point_direct_lux for the direct column.
+  Eigen::VectorXd goal_lux = outcome.predicted_lux.head(static_cast<Eigen::Index>(prepared.model.goal_patches.size()));
   if (verified) {
     const Eigen::VectorXd per_patch = verified_lux_per_patch(scene, outcome);
     for (std::size_t r = 0; r < prepared.model.goal_patches.size(); ++r)

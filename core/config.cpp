@@ -215,6 +215,8 @@ void read_regions(const Value& list, JobConfig& job) {
   if (job.surface_split.regions.empty()) list.fail("must list at least one region");
 }
 
+Eigen::Vector2d pair_of(const Value& v, double (*check)(const Value&));
+
 void read_scene(const Map& scene, JobConfig& job) {
   const Value mesh = scene.require("mesh");
   const std::filesystem::path base = std::filesystem::path(job.path).parent_path();
@@ -251,6 +253,27 @@ void read_scene(const Map& scene, JobConfig& job) {
     }
   }
   if (auto v = scene.get("default_reflectance")) job.default_reflectance = v->reflectance();
+  if (auto v = scene.get("add_floor"))
+    for (const Value& item : v->list()) {
+      const Map floor(item, {"name", "rectangle_m", "z_m", "reflectance"});
+      FloorSetting f;
+      f.loc = item.loc();
+      const Value name = floor.require("name");
+      f.name = name.text();
+      if (f.name.empty()) name.fail("must not be empty");
+      for (const FloorSetting& other : job.add_floors)
+        if (other.name == f.name) name.fail("a floor of this name is already added");
+      const Value rect = floor.require("rectangle_m");
+      if (!rect.node().IsSequence() || rect.node().size() != 2) rect.fail("must be two corners [[x0, y0], [x1, y1]]");
+      const Eigen::Vector2d a = pair_of(rect.element(0), [](const Value& x) { return x.number(); });
+      const Eigen::Vector2d b = pair_of(rect.element(1), [](const Value& x) { return x.number(); });
+      f.lo = a.cwiseMin(b);
+      f.hi = a.cwiseMax(b);
+      if (!((f.hi - f.lo).minCoeff() > 0.0)) rect.fail("the corners must differ in x and in y");
+      if (auto z = floor.get("z_m")) f.z_m = z->number();
+      f.rgb = floor.require("reflectance").reflectance();
+      job.add_floors.push_back(f);
+    }
   if (auto v = scene.get("exclude_surfaces"))
     for (const Value& item : v->list()) {
       job.exclude_surfaces.push_back(item.text());
@@ -507,11 +530,109 @@ std::string goal_bound_rule(const std::vector<GoalSetting>& others, const std::s
   return "";
 }
 
+constexpr GoalPreset kPresets[] = {
+    {"office_writing", "Writing, typing, reading, data processing", 500.0, 0.60},
+    {"office_filing", "Filing, copying", 300.0, 0.40},
+    {"classroom", "Classrooms", 300.0, 0.60},
+    {"board", "Black/green board", 500.0, 0.70},
+    {"corridor", "Corridors, circulation", 100.0, 0.40},
+    {"stairs_education", "Stairs (education)", 150.0, 0.40},
+    {"entrance_hall_education", "Entrance halls (education)", 200.0, 0.40},
+    {"toilets", "Toilets, cloakrooms", 200.0, 0.40},
+};
+
+std::vector<Eigen::Vector2d> point_list(const Value& v) {
+  std::vector<Eigen::Vector2d> out;
+  for (const Value& item : v.list()) out.push_back(pair_of(item, [](const Value& x) { return x.number(); }));
+  return out;
+}
+
+void read_grids(const Value& section, JobConfig& job) {
+  const std::vector<Value> entries = section.list();
+  if (entries.empty()) section.fail("must list at least one grid");
+  for (const Value& item : entries) {
+    const Map entry(item, {"name", "over_surface", "rectangle_m", "polygon_m", "vertical", "height_m", "border_m",
+                           "spacing_m", "max_points"});
+    CalcGridSetting g;
+    g.loc = item.loc();
+    const Value name = entry.require("name");
+    g.name = name.text();
+    if (g.name.empty()) name.fail("must not be empty");
+    if (find_grid(job, g.name) >= 0) name.fail("a grid of this name is already defined");
+    const char* shapes[] = {"over_surface", "rectangle_m", "polygon_m", "vertical"};
+    int given = 0;
+    for (const char* k : shapes) given += entry.get(k) ? 1 : 0;
+    if (given != 1) item.fail("needs exactly one of over_surface, rectangle_m, polygon_m, vertical");
+    g.shape_loc = g.loc;
+    if (auto v = entry.get("over_surface")) {
+      g.over_surface = v->text();
+      g.shape_loc = v->loc();
+    }
+    if (auto v = entry.get("rectangle_m")) {
+      g.shape_loc = v->loc();
+      const std::vector<Eigen::Vector2d> corners = point_list(*v);
+      if (corners.size() != 2) v->fail("must be two corners [[x0, y0], [x1, y1]]");
+      const Eigen::Vector2d lo = corners[0].cwiseMin(corners[1]), hi = corners[0].cwiseMax(corners[1]);
+      if (!((hi - lo).minCoeff() > 0.0)) v->fail("the corners must differ in x and in y");
+      g.polygon_m = {lo, Eigen::Vector2d(hi.x(), lo.y()), hi, Eigen::Vector2d(lo.x(), hi.y())};
+    }
+    if (auto v = entry.get("polygon_m")) {
+      g.shape_loc = v->loc();
+      g.polygon_m = point_list(*v);
+      if (g.polygon_m.size() < 3) v->fail("must list at least 3 points [[x, y], ...]");
+      if (!polygon_is_simple(g.polygon_m)) v->fail("the polygon is not simple (its edges cross or overlap)");
+    }
+    if (auto v = entry.get("vertical")) {
+      const Map vertical(*v, {"from_m", "to_m", "bottom_m", "top_m", "facing"});
+      g.kind = GridKind::vertical;
+      g.shape_loc = v->loc();
+      g.border_m = 0.0;
+      g.from_m = pair_of(vertical.require("from_m"), [](const Value& x) { return x.number(); });
+      g.to_m = pair_of(vertical.require("to_m"), [](const Value& x) { return x.number(); });
+      if ((g.from_m - g.to_m).norm() == 0.0) v->fail("from_m and to_m must differ");
+      g.bottom_m = vertical.require("bottom_m").number();
+      const Value top = vertical.require("top_m");
+      g.top_m = top.number();
+      if (!(g.top_m > g.bottom_m)) top.fail("must be above bottom_m");
+      g.height_loc = v->loc();
+      if (auto f = vertical.get("facing")) {
+        const std::string side = f->text();
+        if (side == "left") g.facing_left = true;
+        else if (side == "right") g.facing_left = false;
+        else f->fail("must be left or right (of the direction from from_m to to_m)");
+      }
+    }
+    if (auto v = entry.get("height_m")) {
+      if (g.kind == GridKind::vertical) v->fail("a vertical grid takes vertical.bottom_m and top_m instead");
+      g.height_m = v->number();
+      g.height_loc = v->loc();
+    } else if (g.kind == GridKind::horizontal) {
+      g.height_loc = g.loc;
+    }
+    g.border_loc = g.loc;
+    if (auto v = entry.get("border_m")) {
+      g.border_m = v->number();
+      if (!(g.border_m >= 0.0)) v->fail("must be >= 0");
+      g.border_loc = v->loc();
+    }
+    if (auto v = entry.get("spacing_m")) {
+      g.spacing_m = v->positive();
+      g.spacing_loc = v->loc();
+    }
+    if (auto v = entry.get("max_points")) {
+      g.max_points = static_cast<int>(v->integer(1, 10'000'000));
+      g.max_points_loc = v->loc();
+    }
+    job.grids.push_back(g);
+  }
+}
+
 void read_goals(const Value& section, JobConfig& job) {
   const std::vector<Value> entries = section.list();
   if (entries.empty()) section.fail("must list at least one goal");
   for (const Value& item : entries) {
-    const Map entry(item, {"name", "surface", "facing", "average_lux", "min_lux", "max_lux", "uniformity"});
+    const Map entry(item, {"name", "surface", "grid", "facing", "preset", "average_lux", "min_lux", "max_lux",
+                           "uniformity"});
     GoalSetting base;
     if (auto v = entry.get("facing")) {
       const std::string facing = v->text();
@@ -520,36 +641,66 @@ void read_goals(const Value& section, JobConfig& job) {
       else if (facing == "down") base.facing = GoalFacing::down;
       else v->fail("must be any, up or down");
     }
-    const Value surface = entry.require("surface");
-    if (surface.node().IsSequence()) {
-      for (const Value& s : surface.list()) base.surfaces.push_back(s.text());
-      if (base.surfaces.empty()) surface.fail("must be a surface name or a non-empty list of names");
+    const auto grid = entry.get("grid");
+    if (grid && entry.get("surface")) grid->fail("a goal is on a grid or on surfaces, not both");
+    if (grid) {
+      base.grid = grid->text();
+      base.surfaces_loc = grid->loc();
+      if (find_grid(job, base.grid) < 0)
+        grid->fail(job.grids.empty() ? "no grids are defined (add a grids section before goals)"
+                                     : "no grid of this name in grids");
+      if (auto f = entry.get("facing")) f->fail("facing applies to surfaces; a grid's points face as the grid does");
     } else {
-      base.surfaces.push_back(surface.text());
+      const Value surface = entry.require("surface");
+      if (surface.node().IsSequence()) {
+        for (const Value& s : surface.list()) base.surfaces.push_back(s.text());
+        if (base.surfaces.empty()) surface.fail("must be a surface name or a non-empty list of names");
+      } else {
+        base.surfaces.push_back(surface.text());
+      }
+      base.surfaces_loc = surface.loc();
     }
-    base.surfaces_loc = surface.loc();
     if (auto v = entry.get("name")) {
       base.name = v->text();
       if (base.name.empty()) v->fail("must not be empty");
+    } else if (grid) {
+      base.name = base.grid;
     } else {
       for (const std::string& s : base.surfaces) base.name += (base.name.empty() ? "" : "+") + s;
+    }
+    for (const GoalSetting& g : job.goals)
+      if (g.name == base.name && g.grid != base.grid)
+        item.fail("goal '" + base.name + "' is already defined on " +
+                  (g.grid.empty() ? std::string("surfaces") : "grid '" + g.grid + "'"));
+    const GoalPreset* preset = nullptr;
+    std::optional<Value> preset_value = entry.get("preset");
+    if (preset_value) {
+      const std::string key = preset_value->text();
+      std::string known;
+      for (const GoalPreset& p : kPresets) {
+        if (key == p.key) preset = &p;
+        known += (known.empty() ? "" : ", ") + std::string(p.key);
+      }
+      if (!preset) preset_value->fail("unknown preset (EN 12464-1 rows: " + known + ")");
     }
     // This entry's metrics, each checked alone and against the same goal's earlier
     // entries; a bound conflict inside the entry is reported at max_lux.
     std::vector<std::pair<GoalSetting, Value>> metrics;
     for (const auto& [metric, key] : kGoalKeys) {
       auto v = entry.get(key);
+      const bool from_preset = !v && preset && (metric == GoalMetric::average || metric == GoalMetric::uniformity);
+      if (from_preset) v = preset_value;  // an explicit key overrides the preset's value
       if (!v) continue;
       GoalSetting goal = base;
       goal.metric = metric;
-      goal.target = v->number();
+      goal.target = from_preset ? (metric == GoalMetric::average ? preset->average_lux : preset->uniformity) : v->number();
       if (const std::string rule = goal_value_rule(metric, goal.target); !rule.empty()) v->fail(rule);
       goal.loc = v->loc();
       for (const GoalSetting& g : job.goals)
         if (g.name == goal.name && g.metric == metric) v->fail("goal '" + goal.name + "' already has " + key);
       metrics.emplace_back(goal, *v);
     }
-    if (metrics.empty()) item.fail("needs at least one of average_lux, min_lux, max_lux, uniformity");
+    if (metrics.empty()) item.fail("needs at least one of average_lux, min_lux, max_lux, uniformity (or a preset)");
     std::vector<GoalSetting> here;
     for (const auto& [goal, v] : metrics) here.push_back(goal);
     for (const auto& [goal, v] : metrics) {
@@ -786,6 +937,18 @@ void read_solver(const Map& solver, JobConfig& job) {
 
 std::string_view goal_key(GoalMetric metric) { return key_text(metric); }
 
+std::span<const GoalPreset> goal_presets() { return kPresets; }
+
+double initial_target(const JobConfig& job, const GoalSetting& goal) {
+  return goal.metric == GoalMetric::uniformity ? goal.target : goal.target / job.maintenance_factor;
+}
+
+int find_grid(const JobConfig& job, const std::string& name) {
+  for (std::size_t g = 0; g < job.grids.size(); ++g)
+    if (job.grids[g].name == name) return static_cast<int>(g);
+  return -1;
+}
+
 std::string_view to_string(GoalMetric metric) {
   switch (metric) {
     case GoalMetric::average: return "average";
@@ -837,17 +1000,24 @@ JobConfig load_job_config(const std::string& path) {
                       ": the config must be a YAML map of sections (scene, luminaires, goals, constraints, objective, "
                       "solver, optimizer, verification, output, sweep, report)");
   try {
-    const Map top(Value(root, "", job.path), {"scene", "luminaires", "goals", "constraints", "objective", "solver",
-                                              "optimizer", "verification", "output", "sweep", "report"});
+    const Map top(Value(root, "", job.path), {"scene", "luminaires", "grids", "maintenance_factor", "goals",
+                                              "constraints", "objective", "solver", "optimizer", "verification",
+                                              "output", "sweep", "report"});
     read_scene(Map(top.require("scene"), {"mesh", "up_axis", "scale_to_m", "max_patch_edge_m", "surfaces_from",
                                           "reflectance", "default_reflectance", "emitting_surfaces",
-                                          "exclude_surfaces", "two_sided", "weld_tolerance_m", "regions"}),
+                                          "exclude_surfaces", "two_sided", "weld_tolerance_m", "regions", "add_floor"}),
                job);
     if (auto v = top.get("luminaires"))
       read_luminaires(Map(*v, {"size_m", "placed", "model", "flux_lm", "efficacy_lm_per_w", "mounting_surface",
                                "mount_offset_m", "candidate_spacing_m", "count", "layout", "array", "products",
                                "wall_distance_m", "ceiling_module_m"}),
                       job);
+    if (auto v = top.get("grids")) read_grids(*v, job);
+    if (auto v = top.get("maintenance_factor")) {
+      job.maintenance_factor = v->number();
+      if (!(job.maintenance_factor > 0.0 && job.maintenance_factor <= 1.0)) v->fail("must be in (0, 1]");
+      job.maintenance_loc = v->loc();
+    }
     if (auto v = top.get("goals")) read_goals(*v, job);
     if (auto v = top.get("constraints")) read_constraints(Map(*v, {"max_luminaires", "min_distance_m"}), job);
     if (auto v = top.get("objective")) read_objective(*v, job);

@@ -7,10 +7,12 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/calc_grid.h"
 #include "core/direct_light.h"
 #include "core/error.h"
 #include "core/form_factors.h"
@@ -26,6 +28,16 @@ namespace ilp {
 struct ReflectanceSetting {
   std::string surface;
   Eigen::Vector3d rgb;  // each channel in [0, 1); equal channels when given as one number
+  FileLoc loc;
+};
+
+// scene.add_floor: a horizontal rectangle added to the mesh as its own surface, facing
+// up (a real floor where a model has only a ground plane around it, or none).
+struct FloorSetting {
+  std::string name;
+  Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Zero();  // x, y corners, scene frame (m)
+  double z_m = 0.0;
+  Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.3);
   FileLoc loc;
 };
 
@@ -144,14 +156,25 @@ std::string_view goal_key(GoalMetric metric);
 enum class GoalFacing { any, up, down };
 
 struct GoalSetting {
-  std::string name;                   // `name:`, else the surfaces joined with '+'
-  std::vector<std::string> surfaces;  // surface: NAME or [NAME, ...]
+  std::string name;                   // `name:`, else the surfaces joined with '+' (or the grid's name)
+  std::vector<std::string> surfaces;  // surface: NAME or [NAME, ...]; empty for a grid goal
+  std::string grid;                   // grid: NAME, a calculation grid of `grids` (instead of surface)
   FileLoc surfaces_loc;
   GoalFacing facing = GoalFacing::any;  // facing: any, up or down
   GoalMetric metric = GoalMetric::average;
-  double target = 0.0;                // lux, or the U0 ratio
-  FileLoc loc;                        // of the metric's key
+  double target = 0.0;                // lux, or the U0 ratio: a maintained value (see maintenance_factor)
+  FileLoc loc;                        // of the metric's key (or the preset's)
 };
+
+// EN 12464-1 task areas (../shared/LIGHTING.md): `preset: office_writing` gives the
+// row's Em (average_lux) and U0 (uniformity), maintained values.
+struct GoalPreset {
+  const char* key;       // office_writing, ...
+  const char* standard;  // the row as the standard names it
+  double average_lux;
+  double uniformity;
+};
+std::span<const GoalPreset> goal_presets();
 
 struct SearchConstraints {
   std::optional<int> max_luminaires;    // caps luminaires.count (free) or rows x columns (array: error if more)
@@ -212,6 +235,7 @@ struct JobConfig {
   std::vector<ReflectanceSetting> reflectance;
   std::optional<Eigen::Vector3d> default_reflectance;
   std::vector<EmitterSetting> emitting_surfaces;
+  std::vector<FloorSetting> add_floors;
   // Surfaces left out of the scene (a ground plane around a room, outdoor objects).
   std::vector<std::string> exclude_surfaces;
   std::vector<FileLoc> exclude_surface_locs;
@@ -235,6 +259,11 @@ struct JobConfig {
   // the inverse problem
   std::optional<LuminaireSearch> search;  // luminaires.mounting_surface and its companions
   std::vector<GoalSetting> goals;
+  std::vector<CalcGridSetting> grids;     // calculation grids goals can name
+  // Targets are maintained values; the search and the verification work on initial
+  // values = target / maintenance_factor (lux metrics; U0 is a ratio and unchanged).
+  double maintenance_factor = 1.0;
+  FileLoc maintenance_loc;
   SearchConstraints constraints;
   Objective objective = Objective::min_power;
   OptimizerSettings optimizer;
@@ -253,6 +282,12 @@ struct JobConfig {
 // ".uniformity") to value, checked as the file would be. Throws ConfigError naming
 // the key when no goal has that name and metric or the value breaks the rule.
 void set_goal_parameter(JobConfig& job, const std::string& key, double value);
+
+// The target a goal is searched and verified at: initial = maintained target / maintenance
+// factor for lux metrics, the target itself for uniformity.
+double initial_target(const JobConfig& job, const GoalSetting& goal);
+// Index of the grid with this name in job.grids, or -1.
+int find_grid(const JobConfig& job, const std::string& name);
 
 // Reads and validates a job file. Throws ConfigError "file:line:col: key = value: rule".
 JobConfig load_job_config(const std::string& path);

@@ -79,8 +79,34 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
     }
   }
 
+  // Added floors: a rectangle each, in the file's frame and units (make_scene turns it back).
+  std::vector<std::pair<int, Eigen::Vector3d>> added_rho;
+  for (const FloorSetting& f : job.add_floors) {
+    if (surface_of.count(f.name))
+      throw ConfigError(located(f.loc, "scene.add_floor: name '" + f.name + "' is already a surface of the mesh"));
+    const int s = static_cast<int>(mesh.surface_names.size());
+    mesh.surface_names.push_back(f.name);
+    surface_of[f.name] = s;
+    added_rho.emplace_back(s, f.rgb);
+    auto to_file = [&](double x, double y) {
+      const Eigen::Vector3d p = Eigen::Vector3d(x, y, f.z_m) / job.scene.scale_to_m;
+      return job.scene.up_axis == UpAxis::y ? Eigen::Vector3d(p.x(), p.z(), -p.y()) : p;
+    };
+    const int base = static_cast<int>(mesh.positions.size());
+    for (const Eigen::Vector3d& p : {to_file(f.lo.x(), f.lo.y()), to_file(f.hi.x(), f.lo.y()), to_file(f.hi.x(), f.hi.y()),
+                                     to_file(f.lo.x(), f.hi.y())})
+      mesh.positions.push_back(p);
+    for (const Eigen::Vector3i& t : {Eigen::Vector3i(base, base + 1, base + 2), Eigen::Vector3i(base, base + 2, base + 3)}) {
+      mesh.triangles.push_back(t);
+      mesh.triangle_surface.push_back(s);
+      mesh.triangle_material.push_back(-1);
+    }
+    out.log.push_back("scene.add_floor: '" + f.name + "' added, a rectangle facing up");
+  }
+
   // Reflectance per surface from the config, then per triangle.
   std::vector<std::optional<Eigen::Vector3d>> surface_rho(mesh.surface_names.size());
+  for (const auto& [s, rgb] : added_rho) surface_rho[static_cast<std::size_t>(s)] = rgb;
   for (const ReflectanceSetting& r : job.reflectance)
     surface_rho[require_surface(r.surface, r.loc, "scene.reflectance." + r.surface)] = r.rgb;
   TriangleReflectance rho(mesh.triangles.size());

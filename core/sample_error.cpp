@@ -73,7 +73,13 @@ ErrorPrediction predict_sample_error(const Scene& scene, const RayCaster& caster
                                                std::to_string(samples));
   const auto start = std::chrono::steady_clock::now();
   const Eigen::Index G = static_cast<Eigen::Index>(goals.patches.size());
-  Eigen::VectorXd sum_total = Eigen::VectorXd::Zero(G), sq_total = sum_total, sum_indirect = sum_total,
+  // Goal rows: patches (weighted by area), then points (each weighted by the mean goal
+  // patch area, or 1 without goal patches: a point stands for its cell of a grid).
+  const Eigen::Index rows = G + static_cast<Eigen::Index>(goals.points.size());
+  double patch_area = 0.0;
+  for (int p : goals.patches) patch_area += scene.patches[static_cast<std::size_t>(p)].area_m2;
+  const double point_weight = G > 0 ? patch_area / static_cast<double>(G) : 1.0;
+  Eigen::VectorXd sum_total = Eigen::VectorXd::Zero(rows), sq_total = sum_total, sum_indirect = sum_total,
                   sq_indirect = sum_total;
   ErrorPrediction out;
   out.population = reflecting_patches(scene).size();
@@ -96,11 +102,11 @@ ErrorPrediction predict_sample_error(const Scene& scene, const RayCaster& caster
   auto spread = [&](const Eigen::VectorXd& sum, const Eigen::VectorXd& sq) {
     double acc = 0.0, area = 0.0;
     const double floor = 1e-9 * sum.cwiseAbs().maxCoeff();
-    for (Eigen::Index g = 0; g < G; ++g) {
+    for (Eigen::Index g = 0; g < rows; ++g) {
       const double mean = sum[g] / samples;
       if (!(std::abs(sum[g]) > floor)) continue;
       const double variance = std::max(0.0, (sq[g] - samples * mean * mean) / (samples - 1));
-      const double w = scene.patches[goals.patches[static_cast<std::size_t>(g)]].area_m2;
+      const double w = g < G ? scene.patches[goals.patches[static_cast<std::size_t>(g)]].area_m2 : point_weight;
       acc += w * variance / (mean * mean);
       area += w;
     }

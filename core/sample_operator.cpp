@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/point_gather.h"
 #include "core/radiosity.h"
 
 namespace ilp {
@@ -178,7 +179,39 @@ DirectRows direct_light(const Scene& scene, const RayCaster& caster, std::span<c
   return out;
 }
 
+// D(Q,:) at goal points and their form factors to the absorbing luminaires, as
+// direct_light gives them for patches: luminaires through compute_luminaire_light_at_points,
+// gathered sources from the points' own rows (fraction of rays reaching the source / its area).
+DirectRows point_direct_light(const Scene& scene, const RayCaster& caster, std::span<const ReceiverPoint> points,
+                              std::size_t source_count, const SourceTable& table, const Eigen::MatrixXd& gathered,
+                              const DirectLightOptions& options) {
+  const auto Q = static_cast<Eigen::Index>(points.size()), L = static_cast<Eigen::Index>(source_count);
+  DirectRows out{Eigen::MatrixXd::Zero(Q, L), Eigen::MatrixXd::Zero(Q, L)};
+  if (!table.luminaire_surfaces.empty() && Q > 0) {
+    const LuminaireLight light =
+        compute_luminaire_light_at_points(scene, caster, points, table.luminaire_surfaces, options);
+    for (std::size_t e = 0; e < table.luminaire_surfaces.size(); ++e) {
+      const int l = table.luminaire_source[e];
+      out.D.col(l) = light.lux_per_lm.col(static_cast<Eigen::Index>(e));
+      if (table.absorbs[static_cast<std::size_t>(l)]) out.absorbed.col(l) = light.form_factor.col(static_cast<Eigen::Index>(e));
+    }
+  }
+  for (std::size_t e = 0; e < table.gathered.size(); ++e) {
+    const int l = table.gathered[e];
+    if (table.area_m2[l] > 0.0 && gathered.rows() > 0) out.D.col(l) = gathered.col(static_cast<Eigen::Index>(e)) / table.area_m2[l];
+  }
+  return out;
+}
+
+// Row labels for messages: goal patches, then points as -1 - index.
+std::vector<int> goal_row_labels(std::span<const int> patches, std::size_t points) {
+  std::vector<int> out(patches.begin(), patches.end());
+  for (std::size_t q = 0; q < points; ++q) out.push_back(-1 - static_cast<int>(q));
+  return out;
+}
+
 std::string patch_name(const Scene& scene, int patch) {
+  if (patch < 0) return "grid point " + std::to_string(-1 - patch);
   return "patch " + std::to_string(patch) + " (" + scene.surfaces[scene.patches[patch].surface].name + ")";
 }
 
@@ -213,7 +246,8 @@ void require_valid_materials(const Scene& scene) {
 // values a few ulps below 0, which are set to 0. Anything clearly negative is a bug.
 void clamp_round_off(Eigen::MatrixXd& T, const Scene& scene, std::span<const int> row_patches,
                      std::span<const LightSource> sources) {
-  const double tolerance = 1e-9 * std::max(T.size() > 0 ? T.cwiseAbs().maxCoeff() : 0.0, 1e-300);  // no source: 0 columns
+  if (T.size() == 0) return;  // no rows (a job whose goals are all grid points)
+  const double tolerance = 1e-9 * std::max(T.cwiseAbs().maxCoeff(), 1e-300);
   for (Eigen::Index c = 0; c < T.cols(); ++c)
     for (Eigen::Index r = 0; r < T.rows(); ++r)
       if (T(r, c) < 0.0) {
@@ -277,6 +311,12 @@ std::vector<int> reflecting_patches(const Scene& scene) {
 GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::span<const int> goal_patches,
                            std::span<const LightSource> sources, const SampleOperatorOptions& options,
                            const ProgressCallback& progress) {
+  return compute_goal_rows(scene, caster, goal_patches, {}, sources, options, progress);
+}
+
+GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::span<const int> goal_patches,
+                           std::span<const ReceiverPoint> goal_points, std::span<const LightSource> sources,
+                           const SampleOperatorOptions& options, const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   require_valid_materials(scene);
   for (int p : goal_patches)
@@ -307,6 +347,30 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
   goals.kept_scale = apply_closed_form_loss(sums, goals.direct_lux_per_lm, goals.luminaire_form_factor, table);
   goals.reflecting_fraction = sums.reflecting;
   require_finite(goals.direct_lux_per_lm, "direct light", scene, goal_patches, sources);
+
+  // Goal points: their own full rows, then exact direct light at the point.
+  goals.points.assign(goal_points.begin(), goal_points.end());
+  const Eigen::Index Q = static_cast<Eigen::Index>(goal_points.size());
+  RowSums point_sums{Eigen::VectorXd::Zero(Q), Eigen::MatrixXd::Zero(Q, static_cast<Eigen::Index>(table.gathered.size())),
+                     Eigen::VectorXd::Zero(Q), Eigen::VectorXd::Zero(Q)};
+  if (Q > 0 && (any_reflecting || !table.gathered.empty())) {
+    // Points are few (a grid has hundreds, a mesh tens of thousands of patches) and each
+    // stands alone (no area to average over): their rows get kPointRayFactor x the rays.
+    FormFactorOptions point_options = options.form_factors;
+    point_options.rays_per_patch = options.form_factors.rays_per_patch * kPointRayFactor;
+    goals.point_rows = compute_point_rows(scene, caster, goal_points, point_options, progress);
+    point_sums = row_sums_from_rows(scene, goals.point_rows->F, table);
+    goals.rays_cast += goals.point_rows->rays_cast;
+  }
+  DirectRows point_direct = point_direct_light(scene, caster, goal_points, sources.size(), table, point_sums.gathered,
+                                               options.direct_light);
+  goals.point_direct_lux_per_lm = std::move(point_direct.D);
+  goals.point_kept_scale = apply_closed_form_loss(point_sums, goals.point_direct_lux_per_lm, point_direct.absorbed, table);
+  goals.point_reflecting_fraction = point_sums.reflecting;
+  if (Q > 0) {
+    const std::vector<int> labels = goal_row_labels({}, goal_points.size());
+    require_finite(goals.point_direct_lux_per_lm, "direct light", scene, labels, sources);
+  }
   goals.seconds = seconds_since(start);
   return goals;
 }
@@ -329,7 +393,22 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   st.patches = scene.patches.size();
   st.channels = scene.channels;
   st.goal_patches = goals.patches.size();
-  st.goal_seconds = goals.seconds;
+  st.goal_points = goals.points.size();
+  op.goal_points = goals.points;
+  const Eigen::Index Q = static_cast<Eigen::Index>(goals.points.size());
+  // T and D get the points' rows after the patches' (a no-op without points).
+  auto append_points = [&](const Eigen::MatrixXd& point_total) {
+    if (Q == 0) return;
+    Eigen::MatrixXd direct(G + Q, L), total(G + Q, L), reflected = Eigen::MatrixXd::Zero(G + Q, L);
+    direct << op.direct_lux_per_lm, goals.point_direct_lux_per_lm;
+    total << op.total_lux_per_lm, point_total;
+    reflected.topRows(G) = op.reflected_lm_per_m2_per_lm;
+    op.direct_lux_per_lm = std::move(direct);
+    op.total_lux_per_lm = std::move(total);
+    op.reflected_lm_per_m2_per_lm = std::move(reflected);
+  };
+  if (Q > 0 && goals.point_direct_lux_per_lm.rows() != Q)
+    throw std::invalid_argument("build_sample_operator: goal points without their direct light");
   st.rays_cast = goals.rays_cast;
   st.direct_rows = goals.patches.size();
 
@@ -339,6 +418,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     st.direct_only = true;
     op.total_lux_per_lm = op.direct_lux_per_lm;
     op.reflected_lm_per_m2_per_lm = Eigen::MatrixXd::Zero(G, L);
+    append_points(goals.point_direct_lux_per_lm);
     op.log.push_back("every reflectance is 0: direct light only, no sample, no interreflection");
     return op;
   }
@@ -409,6 +489,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     };
     collect(rows.F);
     collect(goals.rows->F);
+    if (goals.point_rows) collect(goals.point_rows->F);
     D_hit.resize(static_cast<Eigen::Index>(hit.size()), L);
     for (std::size_t h = 0; h < hit.size(); ++h) {
       const auto slot = static_cast<Eigen::Index>(h);
@@ -510,6 +591,26 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   Eigen::SparseMatrix<double, Eigen::RowMajor> W_GP(G, k);
   W_GP.setFromTriplets(entries.begin(), entries.end());
 
+  // Goal points: a_ip from the point's own row only (it has no area for reciprocity).
+  std::vector<Eigen::Triplet<double>> point_entries;
+  Eigen::VectorXd point_fallback_scale = Eigen::VectorXd::Zero(Q);
+  for (Eigen::Index q = 0; q < Q && goals.point_rows; ++q) {
+    double den = 0.0;
+    for (SparseRows::InnerIterator it(goals.point_rows->F, q); it; ++it)
+      if (const int b = sample_slot[it.col()]; b >= 0) den += it.value() * w[b];
+    const double s_q = goals.point_reflecting_fraction[q];
+    if (den > 0.0) {
+      for (SparseRows::InnerIterator it(goals.point_rows->F, q); it; ++it)
+        if (const int b = sample_slot[it.col()]; b >= 0) point_entries.emplace_back(q, b, s_q * it.value() * w[b] / den);
+    } else if (s_q > 0.0) {
+      point_fallback_scale[q] = s_q;
+      ++st.point_fallback_rows;
+    }
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> W_QP(Q, k);
+  W_QP.setFromTriplets(point_entries.begin(), point_entries.end());  // duplicates (none: columns distinct) would sum
+  Eigen::MatrixXd point_indirect = Eigen::MatrixXd::Zero(Q, L);
+
   // Per channel: (I - K) Bʳ_P = right-hand side, then the goals gather Bʳ_P.
   op.total_lux_per_lm = op.direct_lux_per_lm;
   op.reflected_lm_per_m2_per_lm = Eigen::MatrixXd::Zero(G, L);
@@ -559,6 +660,16 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
         if (table.emitting_index[l] < 0) channel_indirect.col(l) += first_at_goals.col(l);
     const double weight = scene.channels == 1 ? 1.0 : kLuminanceWeights[c];
     indirect += weight * channel_indirect;
+    if (Q > 0) {
+      Eigen::MatrixXd at_points = W_QP * reflected + point_fallback_scale * (ambient.transpose() * reflected);
+      if (refine && goals.point_rows) {
+        const Eigen::MatrixXd first =
+            goals.point_kept_scale.asDiagonal() * gather_first_reflection(scene, goals.point_rows->F, hit_slot, D_hit, c);
+        for (Eigen::Index l = 0; l < L; ++l)
+          if (table.emitting_index[l] < 0) at_points.col(l) += first.col(l);
+      }
+      point_indirect += weight * at_points;
+    }
     Eigen::VectorXd rho_goal(G);
     for (Eigen::Index g = 0; g < G; ++g) rho_goal[g] = scene.reflectance(goals.patches[g], c);
     op.reflected_lm_per_m2_per_lm += weight * (rho_goal.asDiagonal() * (op.direct_lux_per_lm + channel_indirect));
@@ -570,6 +681,13 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   op.total_lux_per_lm += indirect;
   require_finite(op.total_lux_per_lm, "illuminance at goal patches", scene, goals.patches, sources);
   clamp_round_off(op.total_lux_per_lm, scene, goals.patches, sources);
+  if (Q > 0) {
+    Eigen::MatrixXd point_total = goals.point_direct_lux_per_lm + point_indirect;
+    const std::vector<int> labels = goal_row_labels({}, goals.points.size());
+    require_finite(point_total, "illuminance at goal points", scene, labels, sources);
+    clamp_round_off(point_total, scene, labels, sources);
+    append_points(point_total);
+  }
 
   std::ostringstream line;
   line << (scene.channels == 1 ? "gray materials: 1 colour channel" : "coloured materials: 3 colour channels (RGB)");
@@ -583,7 +701,10 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   op.log.push_back(line.str());
   line.str("");
   line << "rows cast: " << P.size() << " sample + " << goals.patches.size() << " goal of " << scene.patches.size()
-       << " patches, " << options.form_factors.rays_per_patch << " rays each; direct light at " << st.direct_rows
+       << " patches";
+  line << ", " << options.form_factors.rays_per_patch << " rays each";
+  if (Q > 0) line << " + " << Q << " goal points, " << options.form_factors.rays_per_patch * kPointRayFactor << " rays each";
+  line << "; direct light at " << st.direct_rows
        << " goal and sample patches";
   if (refine) line << " (+ " << st.cheap_direct_rows << " cheap estimates at patches the rows hit)";
   line << "; indirect: " << to_string(options.indirect);
@@ -593,6 +714,8 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
        << " (1-norm); largest row sum of K " << st.max_row_sum << ", so the infinity-norm condition is at most "
        << st.condition_bound_inf;
   op.log.push_back(line.str());
+  if (st.point_fallback_rows > 0)
+    op.log.push_back("ambient fallback: " + std::to_string(st.point_fallback_rows) + " goal points see no sample patch");
   if (st.goal_fallback_rows > 0 || st.sample_fallback_rows > 0) {
     line.str("");
     line << "ambient fallback: " << st.goal_fallback_rows << " goal patches (" << std::setprecision(2)

@@ -37,6 +37,7 @@
 #include "core/direct_light.h"
 #include "core/form_factors.h"
 #include "core/patch_sample.h"
+#include "core/direct_light.h"
 #include "core/progress.h"
 #include "core/ray_caster.h"
 #include "core/scene.h"
@@ -76,6 +77,9 @@ struct SampleOperatorOptions {
   DirectLightOptions hit_direct_light{.receiver_points = 1, .shadow_rays = 2};
 };
 
+// Goal points' gather rows cast this many times form_factors.rays_per_patch rays.
+inline constexpr int kPointRayFactor = 4;
+
 // What the goal patches need whatever the sample: their direct light and row sums.
 // Built once, it serves every sample drawn for the same goals (sample-size studies).
 struct GoalRows {
@@ -86,6 +90,15 @@ struct GoalRows {
   Eigen::VectorXd reflecting_fraction;     // s_i: rays reaching the front of a reflecting patch
   Eigen::VectorXd kept_scale;              // factor on the non-luminaire entries of each row (see the .cpp)
   std::optional<FormFactorRows> rows;      // full rows, kept for IndirectMethod::exact_second_bounce
+  // Goal rows without area (calculation-grid points), after the patches: each has its
+  // own full gather row (whatever the indirect method) and exact direct light from
+  // compute_luminaire_light_at_points. Like a goal patch outside the sample, but its a_ip
+  // come from its own row only (no area, so no reciprocity from the sample's columns).
+  std::vector<ReceiverPoint> points;
+  Eigen::MatrixXd point_direct_lux_per_lm;  // #points by #sources
+  Eigen::VectorXd point_reflecting_fraction;
+  Eigen::VectorXd point_kept_scale;
+  std::optional<FormFactorRows> point_rows; // present when there are points and something reflects or is gathered
   std::uint64_t rays_cast = 0;
   double seconds = 0.0;
 };
@@ -93,6 +106,12 @@ struct GoalRows {
 GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::span<const int> goal_patches,
                            std::span<const LightSource> sources, const SampleOperatorOptions& options,
                            const ProgressCallback& progress = {});
+// The same with goal points (rows after the patches' in T). Point rows use
+// options.form_factors with kPointRayFactor x rays_per_patch rays, and
+// options.direct_light.shadow_rays shadow rays per luminaire.
+GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::span<const int> goal_patches,
+                           std::span<const ReceiverPoint> goal_points, std::span<const LightSource> sources,
+                           const SampleOperatorOptions& options, const ProgressCallback& progress = {});
 
 struct SampleOperatorStats {
   std::size_t patches = 0;                // in the scene
@@ -102,6 +121,8 @@ struct SampleOperatorStats {
   bool direct_only = false;               // every reflectance is 0: no sample, T = D
   int channels = 1;
   std::size_t goal_patches = 0;
+  std::size_t goal_points = 0;            // goal rows without area (grid points), after the patches
+  std::size_t point_fallback_rows = 0;    // goal points that see reflecting patches but no sample patch (ambient)
   std::size_t direct_rows = 0;            // goal and sample patches whose direct light was computed
   std::size_t cheap_direct_rows = 0;      // exact_second_bounce: other patches the rows hit (cheap estimate)
   std::size_t goal_fallback_rows = 0;     // goal patches that see reflecting patches but no sample patch (ambient)
@@ -127,10 +148,11 @@ struct SampleOperatorStats {
 
 struct SampleOperator {
   std::vector<int> goal_patches;
+  std::vector<ReceiverPoint> goal_points;  // rows goal_patches.size() and on of T and D
   std::vector<LightSource> sources;
-  Eigen::MatrixXd direct_lux_per_lm;  // D(G,:): #goals by #sources
-  Eigen::MatrixXd total_lux_per_lm;   // T: photometric (luminance-weighted for RGB)
-  Eigen::MatrixXd reflected_lm_per_m2_per_lm;  // rho H at the goal patches, photometric: radiosity minus emission
+  Eigen::MatrixXd direct_lux_per_lm;  // D(G,:): #goal patches + #goal points by #sources
+  Eigen::MatrixXd total_lux_per_lm;   // T: photometric (luminance-weighted for RGB), the same rows
+  Eigen::MatrixXd reflected_lm_per_m2_per_lm;  // rho H at the goal rows (0 at points), photometric: radiosity minus emission
   PatchSample sample;
   SampleOperatorStats stats;
   std::vector<std::string> log;       // what was simulated and why, for the run log

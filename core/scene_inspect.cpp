@@ -108,7 +108,7 @@ SceneInspection inspect_scene(const Scene& scene, const TriangleMesh& mesh, cons
   std::vector<SurfaceInspection> all(scene.surfaces.size());
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
     all[s].name = scene.surfaces[s].name;
-    all[s].is_luminaire = scene.surfaces[s].is_luminaire;
+    all[s].is_luminaire = scene.surfaces[s].is_luminaire();
   }
   count_edges(mesh, frame, options.weld_tolerance_m, out, all);
 

@@ -11,6 +11,8 @@
 #include "core/error.h"
 #include "core/exact_solver.h"
 #include "core/operator_setup.h"
+#include "core/point_gather.h"
+#include "optimizer/goal_metrics.h"
 #include "core/sample_operator.h"
 #include "optimizer/job_cost.h"
 #include "optimizer/model_cache.h"
@@ -52,6 +54,13 @@ Verification verify_layout(const PreparedJob& prepared, const JobConfig& job, co
     out.patches = scene.all_patches();
     out.lux = solution.radiosity.total_lux;
     out.direct_lux = solution.radiosity.direct_lux;
+    if (!prepared.model.goal_points.empty()) {
+      const RayCaster caster(scene, job.form_factors.threads);
+      const PointIlluminance at = exact_point_illuminance(scene, caster, solution.radiosity, prepared.model.goal_points,
+                                                          options.form_factors, options.direct_light, progress);
+      out.point_lux = at.total_lux;
+      out.point_direct_lux = at.direct_lux;
+    }
   } else {
     const RayCaster caster(scene, job.form_factors.threads);
     const std::vector<LightSource> sources = scene_light_sources(scene);
@@ -61,21 +70,29 @@ Verification verify_layout(const PreparedJob& prepared, const JobConfig& job, co
     options.direct_light.seed = options.form_factors.seed;
     options.sample_seed = job.sample.seed ^ kVerificationSeedSalt;
     options.sample_size = std::max(1, plan.sample_size);
-    const GoalRows rows = compute_goal_rows(scene, caster, prepared.model.goal_patches, sources, options, progress);
+    const GoalRows rows = compute_goal_rows(scene, caster, prepared.model.goal_patches, prepared.model.goal_points,
+                                            sources, options, progress);
     const SampleOperator op = build_sample_operator(scene, caster, rows, options, progress);
     const Eigen::VectorXd flux = source_flux_lm(scene, sources);
     out.method = "sample";
     out.sample_size = op.stats.direct_only ? 0 : static_cast<int>(op.stats.sample_patches);
     out.patches = prepared.model.goal_patches;
-    out.lux = op.illuminance_lux(flux);
-    out.direct_lux = op.direct_lux(flux);
+    const Eigen::VectorXd lux = op.illuminance_lux(flux), direct = op.direct_lux(flux);
+    const Eigen::Index G = static_cast<Eigen::Index>(out.patches.size()), Q = lux.size() - G;
+    out.lux = lux.head(G);
+    out.direct_lux = direct.head(G);
+    out.point_lux = lux.tail(Q);
+    out.point_direct_lux = direct.tail(Q);
   }
   out.seconds = seconds_since(start);
   return out;
 }
 
 Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification& v) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(model.goal_patches.size()));
+  Eigen::VectorXd out(model.goal_rows());
+  if (v.point_lux.size() != static_cast<Eigen::Index>(model.goal_points.size()))
+    throw std::logic_error("verification: the goal points were not solved");
+  out.tail(v.point_lux.size()) = v.point_lux;
   std::size_t k = 0;
   for (std::size_t r = 0; r < model.goal_patches.size(); ++r) {
     while (k < v.patches.size() && v.patches[k] < model.goal_patches[r]) ++k;  // both ascending
@@ -99,7 +116,7 @@ double verified_flux_scale(const JobConfig& job, const std::vector<GoalJudgement
     if (g.metric == GoalMetric::average && job.objective == Objective::closest_to_target) {
       num += g.value / g.target;
       den += g.value * g.value / (g.target * g.target);
-    } else if ((g.metric == GoalMetric::average || g.metric == GoalMetric::minimum) && g.target > 0.0) {
+    } else if (metric_rule(g.metric).scale_closed_form && g.target > 0.0) {
       if (!(g.value > 0.0)) return 1.0;
       scale = std::max(scale, g.target / g.value);
     }
@@ -268,6 +285,8 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, 
         out.predicted_direct_lux *= out.flux_correction;
         out.verification.lux *= out.flux_correction;
         out.verification.direct_lux *= out.flux_correction;
+        out.verification.point_lux *= out.flux_correction;
+        out.verification.point_direct_lux *= out.flux_correction;
         predicted = judge_goals(model, job, out.predicted_lux);
         verified = judge_goals(model, job, verified_goal_lux(model, out.verification));
       }
@@ -276,7 +295,23 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, 
   for (const PlacedLuminaire& l : out.luminaires) out.power_w += l.power_w;
   out.fixed_flux_lm = model.fixed_flux_lm;
   out.mounting_area_m2 = model.grid.mounting_area_m2();
-  out.power_density_w_per_m2 = out.mounting_area_m2 > 0.0 ? out.power_w / out.mounting_area_m2 : 0.0;
+  out.maintenance_factor = job.maintenance_factor;
+  out.floor_area_m2 = out.mounting_area_m2;
+  out.floor_area_source = "plan area of the mounting surface '" + job.search->mounting_surface + "'";
+  for (const CalcGridSetting& g : job.grids)
+    if (g.kind == GridKind::horizontal && !g.over_surface.empty()) {
+      const Scene& scene = prepared.loaded.scene;
+      const int surface = scene.find_surface(g.over_surface);
+      double area = 0.0;
+      for (const Patch& p : scene.patches)
+        if (p.surface == surface && p.normal.z() >= 0.9) area += p.area_m2;
+      if (area > 0.0) {
+        out.floor_area_m2 = area;
+        out.floor_area_source = "floor '" + g.over_surface + "' (under grid '" + g.name + "')";
+      }
+      break;
+    }
+  out.power_density_w_per_m2 = out.floor_area_m2 > 0.0 ? out.power_w / out.floor_area_m2 : 0.0;
   // Feasible as predicted: against the real targets, with the distance constraint.
   out.feasible = best.distance_violation <= 1e-4;
   out.all_met = out.feasible;
@@ -298,6 +333,12 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, 
     out.all_met = out.all_met && o.met;
     out.goals.push_back(o);
   }
+  for (const GoalOutcome& o : out.goals)
+    if (o.predicted.metric == GoalMetric::average) {
+      const double maintained = (o.verified ? o.verified->value : o.predicted.value) * job.maintenance_factor;
+      if (maintained > 0.0) out.power_density_w_per_m2_per_100_lx = out.power_density_w_per_m2 / (maintained / 100.0);
+      break;
+    }
   return out;
 }
 

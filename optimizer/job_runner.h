@@ -64,6 +64,9 @@ struct Verification {
   double seconds = 0.0;
   std::vector<int> patches;     // where lux is known: every patch (exact) or the goal patches (sample)
   Eigen::VectorXd lux, direct_lux;
+  // At the model's goal points (LightingModel::goal_points order): exact, each point's
+  // gather of the exact radiosity with rays_per_patch rays; sample, the sample operator's rows.
+  Eigen::VectorXd point_lux, point_direct_lux;
 };
 
 // Places `layout` as real luminaires in the job's scene and solves it as
@@ -72,7 +75,7 @@ struct Verification {
 Verification verify_layout(const PreparedJob& prepared, const JobConfig& job,
                            const std::vector<PlacedLuminaire>& layout, const ProgressCallback& progress = {});
 
-// The verified illuminance at the model's goal patches, in LightingModel::goal_patches order.
+// The verified illuminance at the model's goal rows: goal patches, then goal points.
 Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification& verification);
 
 struct JobOutcome {
@@ -80,8 +83,15 @@ struct JobOutcome {
   std::vector<GoalOutcome> goals;
   double power_w = 0.0;                     // of the luminaires placed
   double fixed_flux_lm = 0.0;               // placed in the config (not counted in power_w)
-  double mounting_area_m2 = 0.0;            // for the power density
-  double power_density_w_per_m2 = 0.0;      // power_w / mounting_area_m2
+  double mounting_area_m2 = 0.0;
+  // The power density's area: the floor under the first horizontal grid laid over a
+  // surface (its patches facing up), else the mounting surface's plan area.
+  double floor_area_m2 = 0.0;
+  std::string floor_area_source;            // what floor_area_m2 is the area of
+  double power_density_w_per_m2 = 0.0;      // power_w / floor_area_m2
+  // W/m² per 100 lx: the power density over the first average goal's (maintained) value / 100.
+  double power_density_w_per_m2_per_100_lx = 0.0;
+  double maintenance_factor = 1.0;          // maintained = initial x this
   bool feasible = false;                    // predicted: every constraint met
   bool all_met = false;                     // judged as `met` is
   double flux_correction = 1.0;             // every flux was scaled by this after verification

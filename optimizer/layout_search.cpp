@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "optimizer/goal_metrics.h"
 
 namespace ilp {
 namespace {
@@ -25,8 +26,6 @@ constexpr double kConstraintTolerance = 1e-4;
 constexpr double kTargetTolerance = 0.05;
 
 using Clock = std::chrono::steady_clock;
-
-bool is_lower_bound(GoalMetric m) { return m != GoalMetric::maximum; }
 
 std::vector<int> goal_areas(const LightingModel& model, const JobConfig& job) {
   std::vector<int> out;
@@ -215,15 +214,8 @@ class Evaluator {
       for (std::size_t g = 0; g < job_.goals.size(); ++g) {
         const GoalSetting& goal = job_.goals[g];
         const GoalArea& area = model_.areas[static_cast<std::size_t>(areas_[g])];
-        if (goal.metric == GoalMetric::average) {
-          const double deficit = goal.target - area_average(area, f), gain = area_average(area, a);
-          if (deficit > 0.0) scale = std::max(scale, gain > 0.0 ? deficit / gain : std::numeric_limits<double>::infinity());
-        } else if (goal.metric == GoalMetric::minimum) {
-          for (Eigen::Index r : area.rows) {
-            const double deficit = goal.target - f[r];
-            if (deficit > 0.0) scale = std::max(scale, a[r] > 0.0 ? deficit / a[r] : std::numeric_limits<double>::infinity());
-          }
-        }
+        if (metric_rule(goal.metric).scale_closed_form)
+          scale = std::max(scale, least_flux_scale(goal.metric, area, f, a, initial_target(job_, goal)));
       }
     } else {
       double num = 0.0, den = 0.0;
@@ -231,8 +223,9 @@ class Evaluator {
         const GoalSetting& goal = job_.goals[g];
         if (goal.metric != GoalMetric::average) continue;
         const GoalArea& area = model_.areas[static_cast<std::size_t>(areas_[g])];
-        const double t2 = goal.target * goal.target, gain = area_average(area, a);
-        num += (goal.target - area_average(area, f)) * gain / t2;
+        const double target = initial_target(job_, goal);
+        const double t2 = target * target, gain = area_average(area, a);
+        num += (target - area_average(area, f)) * gain / t2;
         den += gain * gain / t2;
       }
       scale = den > 0.0 ? std::max(0.0, num / den) : scale_hi;
@@ -333,27 +326,10 @@ std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConf
   for (std::size_t g = 0; g < job.goals.size(); ++g) {
     const GoalSetting& goal = job.goals[g];
     const GoalArea& area = model.areas[static_cast<std::size_t>(areas[g])];
-    double low = std::numeric_limits<double>::infinity(), high = -low;
-    for (Eigen::Index r : area.rows) {
-      low = std::min(low, lux[r]);
-      high = std::max(high, lux[r]);
-    }
-    const double average = area_average(area, lux);
-    GoalJudgement j{goal.name, goal.metric, goal.target, 0.0, 0.0};
-    switch (goal.metric) {
-      case GoalMetric::average: j.value = average; break;
-      case GoalMetric::minimum: j.value = low; break;
-      case GoalMetric::maximum: j.value = high; break;
-      case GoalMetric::uniformity: j.value = average > 0.0 ? low / average : 0.0; break;
-    }
-    if (goal.target > 0.0) {
-      if (job.objective == Objective::closest_to_target && goal.metric == GoalMetric::average)
-        j.violation = std::abs(j.value - goal.target) / goal.target;
-      else if (is_lower_bound(goal.metric))
-        j.violation = std::max(0.0, (goal.target - j.value) / goal.target);
-      else
-        j.violation = std::max(0.0, (j.value - goal.target) / goal.target);
-    }
+    const double target = initial_target(job, goal);  // values are initial; targets maintained / MF
+    GoalJudgement j{goal.name, goal.metric, target, 0.0, 0.0};
+    j.value = metric_value(goal.metric, area_statistics(area, lux));
+    j.violation = relative_violation(goal.metric, j.value, target, job.objective == Objective::closest_to_target);
     out.push_back(j);
   }
   return out;

@@ -33,8 +33,8 @@ struct PlacedLuminaire {
 struct GoalJudgement {
   std::string name;
   GoalMetric metric = GoalMetric::average;
-  double target = 0.0;
-  double value = 0.0;      // lux, or the U0 ratio
+  double target = 0.0;     // initial: the job's (maintained) target / maintenance_factor for lux metrics
+  double value = 0.0;      // lux (initial, as the luminaires are new), or the U0 ratio
   double violation = 0.0;  // relative shortfall (or excess for maximum), >= 0; for closest_to_target
                            // average goals, the relative deviation |value - target| / target
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -44,7 +45,7 @@ CandidateGrid make_grid(const Scene& scene, const LuminaireSearch& search) {
 
 }  // namespace
 
-LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& job) {
+LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& job, const RayCaster* caster) {
   if (!job.search) throw std::invalid_argument("the job has no luminaires.mounting_surface to place luminaires on");
   if (job.goals.empty()) throw std::invalid_argument("the job has no goals");
   const LuminaireSearch& search = *job.search;
@@ -65,15 +66,47 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& j
   }
 
   // Goal areas by name (a name with several metrics is one area).
+  std::vector<int> grid_of_setting(job.grids.size(), -1);
   for (const GoalSetting& goal : job.goals) {
     if (find_goal_area(model, goal.name) >= 0) continue;
     GoalArea area;
     area.name = goal.name;
     area.surfaces = goal.surfaces;
+    if (!goal.grid.empty()) {
+      const int setting = find_grid(job, goal.grid);
+      if (setting < 0) throw std::invalid_argument("goal '" + goal.name + "': no grid '" + goal.grid + "'");
+      area.grid = setting;  // a setting index for now, a model grid index below
+      grid_of_setting[static_cast<std::size_t>(setting)] = 0;
+    }
     model.areas.push_back(area);
+  }
+  // The grids goals name, in the job's order, their points after the goal patches.
+  if (std::any_of(grid_of_setting.begin(), grid_of_setting.end(), [](int g) { return g >= 0; })) {
+    std::unique_ptr<RayCaster> own;
+    if (!caster) {
+      own = std::make_unique<RayCaster>(job_scene, job.form_factors.threads);
+      caster = own.get();
+    }
+    for (std::size_t g = 0; g < job.grids.size(); ++g) {
+      if (grid_of_setting[g] < 0) continue;
+      grid_of_setting[g] = static_cast<int>(model.grids.size());
+      model.grids.push_back(make_calc_grid(job_scene, *caster, job.grids[g]));
+      const CalcGrid& grid = model.grids.back();
+      std::ostringstream line;
+      line << std::fixed << std::setprecision(3) << "grid '" << grid.name << "': " << grid.points.size() << " points ("
+           << grid.cells_u << " x " << grid.cells_v << " cells of " << grid.cell_u_m << " x " << grid.cell_v_m
+           << " m, spacing " << grid.spacing_m << " m" << (job.grids[g].spacing_m ? "" : " from EN 12464-1") << "), "
+           << grid.inside_solid << " inside solid objects dropped, " << grid.outside_outline
+           << " outside the outline less its band";
+      model.log.push_back(line.str());
+    }
   }
   std::vector<std::vector<int>> area_patches;
   for (const GoalArea& area : model.areas) {
+    if (area.grid >= 0) {
+      area_patches.emplace_back();
+      continue;
+    }
     area_patches.push_back(job_scene.patches_of(area.surfaces));
     const GoalFacing facing = std::find_if(job.goals.begin(), job.goals.end(), [&](const GoalSetting& g) {
                                 return g.name == area.name;
@@ -89,8 +122,22 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& j
   }
   std::sort(model.goal_patches.begin(), model.goal_patches.end());
   model.goal_patches.erase(std::unique(model.goal_patches.begin(), model.goal_patches.end()), model.goal_patches.end());
+  for (const CalcGrid& grid : model.grids) {
+    model.grid_first_row.push_back(static_cast<Eigen::Index>(model.goal_patches.size() + model.goal_points.size()));
+    model.goal_points.insert(model.goal_points.end(), grid.points.begin(), grid.points.end());
+  }
   for (std::size_t a = 0; a < model.areas.size(); ++a) {
     GoalArea& area = model.areas[a];
+    if (area.grid >= 0) {
+      area.grid = grid_of_setting[static_cast<std::size_t>(area.grid)];
+      const CalcGrid& grid = model.grids[static_cast<std::size_t>(area.grid)];
+      const Eigen::Index first = model.grid_first_row[static_cast<std::size_t>(area.grid)];
+      for (std::size_t q = 0; q < grid.points.size(); ++q) area.rows.push_back(first + static_cast<Eigen::Index>(q));
+      area.area_weights = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(grid.points.size()),
+                                                    1.0 / static_cast<double>(grid.points.size()));
+      area.area_m2 = grid.area_m2;
+      continue;
+    }
     area.area_weights.resize(static_cast<Eigen::Index>(area_patches[a].size()));
     for (int p : area_patches[a]) {
       const auto row = std::lower_bound(model.goal_patches.begin(), model.goal_patches.end(), p) - model.goal_patches.begin();
@@ -122,7 +169,8 @@ void compute_lighting_operator(LightingModel& model, const Scene& job_scene, con
   const Eigen::VectorXd fixed_flux = source_flux_lm(job_scene, fixed);
   const std::vector<LightSource> sources = scene_light_sources(model.scene);
   SampleOperatorOptions options = sample_operator_options(job);
-  const GoalRows goal_rows = compute_goal_rows(model.scene, caster, model.goal_patches, sources, options, progress);
+  const GoalRows goal_rows =
+      compute_goal_rows(model.scene, caster, model.goal_patches, model.goal_points, sources, options, progress);
   // A sample size chosen for a target error is judged on every candidate at the same flux.
   Eigen::VectorXd probe_flux = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sources.size()));
   probe_flux.head(fixed_flux.size()) = fixed_flux;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/calc_grid.h"
 #include "core/config.h"
 #include "core/progress.h"
 #include "core/ray_caster.h"
@@ -21,20 +22,27 @@
 
 namespace ilp {
 
-// The patches one named goal is measured over (the union of its surfaces).
+// The rows one named goal is measured over: the patches of its surfaces (weighted by
+// area), or the points of its calculation grid (equal weights: each stands for one cell).
 struct GoalArea {
   std::string name;
   std::vector<std::string> surfaces;
-  std::vector<Eigen::Index> rows;  // into LightingModel::goal_patches
-  Eigen::VectorXd area_weights;    // A_i / sum A, per row: the average is their dot product
+  int grid = -1;                   // into LightingModel::grids, or -1 for surfaces
+  std::vector<Eigen::Index> rows;  // goal rows: LightingModel::goal_patches, then goal_points
+  Eigen::VectorXd area_weights;    // A_i / sum A (1 / #points on a grid), per row: the average is their dot product
   double area_m2 = 0.0;
 };
 
 struct LightingModel {
   Scene scene;  // the job's scene plus the candidates (virtual: not in the caster's BVH)
   CandidateGrid grid;
-  std::vector<int> goal_patches;                 // ascending, each once
+  std::vector<int> goal_patches;                 // ascending, each once: goal rows 0 ... #patches - 1
+  std::vector<ReceiverPoint> goal_points;        // the grids' points, grid after grid: the goal rows after the patches
+  std::vector<CalcGrid> grids;                   // the job's grids that goals name, in job.grids order
+  std::vector<Eigen::Index> grid_first_row;      // per grid: its first goal row
   std::vector<GoalArea> areas;                   // one per goal name, in the job's order
+  // Goal rows: T's rows, patches then points (fixed_lux and the candidate columns have this many).
+  Eigen::Index goal_rows() const { return static_cast<Eigen::Index>(goal_patches.size() + goal_points.size()); }
   Eigen::VectorXd fixed_lux;                     // from the fixed sources at their flux
   Eigen::VectorXd fixed_direct_lux;
   double fixed_flux_lm = 0.0;                    // placed luminaires (emitting surfaces are not counted)
@@ -50,9 +58,11 @@ struct LightingModel {
 int find_goal_area(const LightingModel& model, const std::string& name);
 
 // The cheap part of the model: the candidate grid, the scene with the candidates,
-// the goal patches and areas, fixed_flux_lm. Throws ConfigError pointing at the
-// config for a mounting surface that cannot hold luminaires.
-LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& job);
+// the goal patches, the grids' points and the areas, fixed_flux_lm. Throws ConfigError
+// pointing at the config for a mounting surface that cannot hold luminaires or a grid
+// that cannot be laid (core/calc_grid.h). `caster` (the job scene's) finds grid points
+// inside solids; without it a temporary one is built when the job has grids.
+LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& job, const RayCaster* caster = nullptr);
 
 // The expensive part, on a model from lighting_model_geometry: builds the operator
 // and fills fixed_lux, the candidate columns, sample_size, stats, build_seconds and

@@ -189,6 +189,13 @@ std::string key_text(const JobConfig& job) {
     put(t, name);
     t << "\n";
   }
+  for (const FloorSetting& f : job.add_floors) {  // scene.add_floor: geometry the mesh file lacks
+    t << "added floor ";
+    put(t, f.name);
+    t << ' ' << f.lo.x() << ' ' << f.lo.y() << ' ' << f.hi.x() << ' ' << f.hi.y() << ' ' << f.z_m << ' ';
+    put(t, f.rgb);
+    t << "\n";
+  }
   t << "two-sided " << (job.two_sided_all ? "all" : "listed") << "\n";
   for (const std::string& name : job.two_sided_surfaces) {
     t << "two-sided ";
@@ -234,6 +241,19 @@ std::string key_text(const JobConfig& job) {
       put(t, s);
     }
     t << " facing " << static_cast<int>(g.facing) << "\n";
+    // A grid goal: every value that places its points.
+    if (const int k = find_grid(job, g.grid); k >= 0) {
+      const CalcGridSetting& c = job.grids[static_cast<std::size_t>(k)];
+      t << "grid ";
+      put(t, c.name);
+      t << " kind " << static_cast<int>(c.kind) << " over ";
+      put(t, c.over_surface);
+      t << " polygon";
+      for (const Eigen::Vector2d& p : c.polygon_m) t << ' ' << p.x() << ' ' << p.y();
+      t << " height " << c.height_m << " vertical " << c.from_m.x() << ' ' << c.from_m.y() << ' ' << c.to_m.x() << ' '
+        << c.to_m.y() << ' ' << c.bottom_m << ' ' << c.top_m << ' ' << c.facing_left << " border " << c.border_m
+        << " spacing " << (c.spacing_m ? *c.spacing_m : -1.0) << " max " << c.max_points << "\n";
+    }
   }
 
   // The solver (threads left out: the operator is the same for any thread count).
@@ -315,6 +335,8 @@ void write_stats(Writer& w, const SampleOperatorStats& s) {
   w.u8(s.direct_only ? 1 : 0);
   w.i32(s.channels);
   w.u64(s.goal_patches);
+  w.u64(s.goal_points);
+  w.u64(s.point_fallback_rows);
   w.u64(s.direct_rows);
   w.u64(s.cheap_direct_rows);
   w.u64(s.goal_fallback_rows);
@@ -337,7 +359,7 @@ void write_body(Writer& w, const LightingModel& model, const std::string& key, s
   w.u32(kLightingModelCacheVersion);
   w.u64(file_size);
   w.str(key);
-  w.u64(model.goal_patches.size());
+  w.u64(static_cast<std::uint64_t>(model.goal_rows()));
   w.u64(model.grid.size());
   w.f64(model.fixed_flux_lm);
   w.i32(model.sample_size);
@@ -432,6 +454,8 @@ void read_stats(Reader& r, SampleOperatorStats& s) {
   s.direct_only = r.u8() != 0;
   s.channels = r.i32();
   s.goal_patches = r.u64();
+  s.goal_points = r.u64();
+  s.point_fallback_rows = r.u64();
   s.direct_rows = r.u64();
   s.cheap_direct_rows = r.u64();
   s.goal_fallback_rows = r.u64();
@@ -493,8 +517,7 @@ void remove_stale_temporaries(const fs::path& folder) {
 
 void save_lighting_model(const std::string& path, const LightingModel& model, const std::string& key) {
   remove_stale_temporaries(fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path());
-  const Eigen::Index G = static_cast<Eigen::Index>(model.goal_patches.size()),
-                     C = static_cast<Eigen::Index>(model.grid.size());
+  const Eigen::Index G = model.goal_rows(), C = static_cast<Eigen::Index>(model.grid.size());
   if (model.fixed_lux.size() != G || model.fixed_direct_lux.size() != G || model.candidate_lux_per_lm.rows() != G ||
       model.candidate_lux_per_lm.cols() != C || model.candidate_direct_lux_per_lm.rows() != G ||
       model.candidate_direct_lux_per_lm.cols() != C)
@@ -594,9 +617,9 @@ std::optional<std::string> load_lighting_model(const std::string& path, const st
   if (file_key != key) return "stale: the key differs (the scene or a parameter changed)";
   const std::uint64_t G = r.u64(), C = r.u64();
   if (r.failed()) return "corrupt: malformed sizes";
-  if (G != model.goal_patches.size() || C != model.grid.size())
+  if (G != static_cast<std::uint64_t>(model.goal_rows()) || C != model.grid.size())
     return kSizesDiffer + " (file " + std::to_string(G) + " x " + std::to_string(C) + ", scene " +
-           std::to_string(model.goal_patches.size()) + " x " + std::to_string(model.grid.size()) + ")";
+           std::to_string(model.goal_rows()) + " x " + std::to_string(model.grid.size()) + ")";
   OperatorPart part;
   part.fixed_flux_lm = r.f64();  // the geometry's: a check that the file is this scene's
   part.sample_size = r.i32();

@@ -43,7 +43,7 @@ json to_json(const ResultRecord& r) {
   j["variants"] = r.variants;
   j["goals"] = json::array();
   for (const GoalRecord& g : r.goals) {
-    json goal = {{"name", g.name},     {"surfaces", g.surfaces}, {"metric", g.metric},
+    json goal = {{"name", g.name},     {"surfaces", g.surfaces}, {"grid", g.grid}, {"metric", g.metric},
                  {"unit", g.unit},     {"target", g.target},     {"predicted", g.predicted},
                  {"verified", nullptr}, {"met", g.met},          {"fails_only_on_verification", g.fails_only_on_verification},
                  {"tolerance", g.tolerance}};
@@ -53,6 +53,18 @@ json to_json(const ResultRecord& r) {
   j["power_w"] = r.power_w;
   j["mounting_area_m2"] = r.mounting_area_m2;
   j["power_density_w_per_m2"] = r.power_density_w_per_m2;
+  j["floor_area_m2"] = r.floor_area_m2;
+  j["floor_area_source"] = r.floor_area_source;
+  j["power_density_w_per_m2_per_100_lx"] = r.power_density_w_per_m2_per_100_lx;
+  j["maintenance_factor"] = r.maintenance_factor;
+  j["grids"] = json::array();
+  auto values = [](const GridValues& v) {
+    return json{{"average_lux", v.average_lux}, {"min_lux", v.min_lux}, {"max_lux", v.max_lux}, {"uniformity", v.uniformity}};
+  };
+  for (const GridRecord& g : r.grids)
+    j["grids"].push_back({{"name", g.name}, {"points", g.points}, {"area_m2", g.area_m2}, {"spacing_m", g.spacing_m},
+                          {"inside_solid", g.inside_solid}, {"verified", g.verified}, {"initial", values(g.initial)},
+                          {"maintained", values(g.maintained)}});
   j["fixed_flux_lm"] = r.fixed_flux_lm;
   j["feasible"] = r.feasible;
   j["all_met"] = r.all_met;
@@ -99,6 +111,7 @@ ResultRecord from_json(const json& j) {
     GoalRecord goal;
     goal.name = g.at("name").get<std::string>();
     goal.surfaces = g.at("surfaces").get<std::vector<std::string>>();
+    goal.grid = g.value("grid", std::string());
     goal.metric = g.at("metric").get<std::string>();
     goal.unit = g.at("unit").get<std::string>();
     goal.target = g.at("target").get<double>();
@@ -112,6 +125,20 @@ ResultRecord from_json(const json& j) {
   r.power_w = j.at("power_w").get<double>();
   r.mounting_area_m2 = j.at("mounting_area_m2").get<double>();
   r.power_density_w_per_m2 = j.at("power_density_w_per_m2").get<double>();
+  // Results written before calculation grids lack these keys.
+  r.floor_area_m2 = j.value("floor_area_m2", r.mounting_area_m2);
+  r.floor_area_source = j.value("floor_area_source", std::string("mounting surface"));
+  r.power_density_w_per_m2_per_100_lx = j.value("power_density_w_per_m2_per_100_lx", 0.0);
+  r.maintenance_factor = j.value("maintenance_factor", 1.0);
+  auto values = [](const json& v) {
+    return GridValues{v.at("average_lux").get<double>(), v.at("min_lux").get<double>(), v.at("max_lux").get<double>(),
+                      v.at("uniformity").get<double>()};
+  };
+  if (j.contains("grids"))
+    for (const json& g : j.at("grids"))
+      r.grids.push_back({g.at("name").get<std::string>(), g.at("points").get<int>(), g.at("area_m2").get<double>(),
+                         g.at("spacing_m").get<double>(), g.at("inside_solid").get<int>(), g.at("verified").get<bool>(),
+                         values(g.at("initial")), values(g.at("maintained"))});
   r.fixed_flux_lm = j.at("fixed_flux_lm").get<double>();
   r.feasible = j.at("feasible").get<bool>();
   r.all_met = j.at("all_met").get<bool>();
@@ -203,7 +230,14 @@ void print_result(std::ostream& os, const ResultRecord& r) {
          << "; " << b.source << "): " << fixed(b.total_power_w, 1) << " W\n";
   }
   os << "Total power " << fixed(r.power_w, 1) << " W for " << fixed(flux, 0) << " lm; power density "
-     << fixed(r.power_density_w_per_m2, 2) << " W/m² over " << fixed(r.mounting_area_m2, 2) << " m² of mounting surface\n";
+     << fixed(r.power_density_w_per_m2, 2) << " W/m² over " << fixed(r.floor_area_m2, 2) << " m² ("
+     << r.floor_area_source << ")";
+  if (r.power_density_w_per_m2_per_100_lx > 0.0)
+    os << ", " << fixed(r.power_density_w_per_m2_per_100_lx, 2) << " W/m² per 100 lx";
+  os << "\n";
+  if (r.maintenance_factor != 1.0)
+    os << "maintenance factor " << fixed(r.maintenance_factor, 2)
+       << ": targets are maintained values; the luminaires are designed for initial = target / MF\n";
   if (r.fixed_flux_lm > 0.0)
     os << "(plus " << fixed(r.fixed_flux_lm, 0) << " lm of luminaires placed in the config, not counted above)\n";
 
@@ -218,6 +252,17 @@ void print_result(std::ostream& os, const ResultRecord& r) {
     os << std::left << std::setw(30) << label << std::right << std::setw(10) << goal_value(g, g.target) << std::setw(11)
        << goal_value(g, g.predicted) << std::setw(10) << (g.verified ? goal_value(g, *g.verified) : std::string("-"))
        << "  " << status << "\n";
+  }
+  if (!r.grids.empty()) {
+    os << "\n" << std::left << std::setw(20) << "grid" << std::right << std::setw(7) << "points" << std::setw(9)
+       << "Em lx" << std::setw(9) << "Emin lx" << std::setw(9) << "Emax lx" << std::setw(7) << "U0" << "   maintained:"
+       << std::setw(8) << "Em lx" << std::setw(9) << "Emin lx" << std::setw(9) << "Emax lx" << "\n";
+    for (const GridRecord& g : r.grids)
+      os << std::left << std::setw(20) << g.name << std::right << std::setw(7) << g.points << std::setw(9)
+         << fixed(g.initial.average_lux, 1) << std::setw(9) << fixed(g.initial.min_lux, 1) << std::setw(9)
+         << fixed(g.initial.max_lux, 1) << std::setw(7) << fixed(g.initial.uniformity, 3) << std::setw(21)
+         << fixed(g.maintained.average_lux, 1) << std::setw(9) << fixed(g.maintained.min_lux, 1) << std::setw(9)
+         << fixed(g.maintained.max_lux, 1) << "  (" << (g.verified ? "verified" : "predicted") << ", initial | maintained)\n";
   }
   os << "\nverification: ";
   if (r.verification == "none") os << "none (predicted values only)";

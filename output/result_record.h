@@ -35,12 +35,30 @@ struct GoalRecord {
   std::vector<std::string> surfaces;
   std::string metric;       // average, minimum, maximum, uniformity
   std::string unit;         // "lx", or "" for uniformity
-  double target = 0.0;
-  double predicted = 0.0;
+  double target = 0.0;      // maintained (as the job states it)
+  double predicted = 0.0;   // maintained: initial x maintenance factor (lux metrics)
   std::optional<double> verified;
   bool met = false;         // judged on the verified value when there is one
   bool fails_only_on_verification = false;
   double tolerance = 0.0;   // relative
+  std::string grid;         // the calculation grid, or "" for surfaces
+};
+
+// Em, Emin, Emax (lx) and U0 over one set of values.
+struct GridValues {
+  double average_lux = 0.0, min_lux = 0.0, max_lux = 0.0, uniformity = 0.0;
+};
+
+// One calculation grid's values: initial (new luminaires) and maintained (x MF),
+// verified where the job was verified, else predicted.
+struct GridRecord {
+  std::string name;
+  int points = 0;
+  double area_m2 = 0.0;
+  double spacing_m = 0.0;
+  int inside_solid = 0;     // points dropped inside solid objects
+  bool verified = false;
+  GridValues initial, maintained;
 };
 
 struct AttemptRecord {
@@ -60,7 +78,12 @@ struct ResultRecord {
   std::vector<GoalRecord> goals;
   double power_w = 0.0;
   double mounting_area_m2 = 0.0;
-  double power_density_w_per_m2 = 0.0;
+  double power_density_w_per_m2 = 0.0;     // power_w / floor_area_m2
+  double floor_area_m2 = 0.0;
+  std::string floor_area_source;
+  double power_density_w_per_m2_per_100_lx = 0.0;
+  double maintenance_factor = 1.0;
+  std::vector<GridRecord> grids;
   double fixed_flux_lm = 0.0;
   bool feasible = false;                    // predicted
   bool all_met = false;

@@ -1500,3 +1500,103 @@ TEST(JobConfigErrors, DuplicateReflectanceIsAnError) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------
+// Calculation grids, presets and the maintenance factor
+
+TEST(JobConfigGrids, GridGoalsPresetsAndMaintenanceFactor) {
+  TempDir dir;
+  const std::string yaml = dir.write("job.yaml",
+                                     "scene:\n  mesh: room.obj\n"                                         // 1-2
+                                     "grids:\n"                                                           // 3
+                                     "  - name: work\n    over_surface: floor\n    height_m: 0.75\n"      // 4-6
+                                     "  - name: strip\n    rectangle_m: [[1, 1], [0, 3]]\n    border_m: 0\n"  // 7-9
+                                     "    spacing_m: 0.25\n    max_points: 50\n"                          // 10-11
+                                     "  - name: board\n    vertical: {from_m: [0, 1], to_m: [0, 3], bottom_m: 1, top_m: 2, facing: right}\n"
+                                     "maintenance_factor: 0.8\n"                                          // 14
+                                     "goals:\n"                                                           // 15
+                                     "  - {grid: work, preset: office_writing, uniformity: 0.7}\n"        // 16
+                                     "  - {name: b, grid: board, preset: board, min_lux: 100}\n");        // 17
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ASSERT_EQ(job.grids.size(), 3u);
+  EXPECT_EQ(job.grids[0].over_surface, "floor");
+  EXPECT_DOUBLE_EQ(job.grids[0].height_m, 0.75);
+  EXPECT_DOUBLE_EQ(job.grids[0].border_m, 0.5);
+  EXPECT_FALSE(job.grids[0].spacing_m.has_value());
+  EXPECT_EQ(job.grids[0].max_points, 20000);
+  ASSERT_EQ(job.grids[1].polygon_m.size(), 4u);
+  EXPECT_EQ(job.grids[1].polygon_m[0], Eigen::Vector2d(0, 1));
+  EXPECT_EQ(job.grids[1].polygon_m[2], Eigen::Vector2d(1, 3));
+  EXPECT_EQ(*job.grids[1].spacing_m, 0.25);
+  EXPECT_EQ(job.grids[1].max_points, 50);
+  EXPECT_EQ(job.grids[2].kind, ilp::GridKind::vertical);
+  EXPECT_FALSE(job.grids[2].facing_left);
+  EXPECT_DOUBLE_EQ(job.grids[2].border_m, 0.0);
+  EXPECT_DOUBLE_EQ(job.maintenance_factor, 0.8);
+  ASSERT_EQ(job.goals.size(), 5u);
+  EXPECT_EQ(job.goals[0].name, "work");
+  EXPECT_EQ(job.goals[0].grid, "work");
+  EXPECT_TRUE(job.goals[0].surfaces.empty());
+  EXPECT_EQ(job.goals[0].metric, ilp::GoalMetric::average);
+  EXPECT_DOUBLE_EQ(job.goals[0].target, 500.0);  // the preset's Em
+  EXPECT_EQ(job.goals[1].metric, ilp::GoalMetric::uniformity);
+  EXPECT_DOUBLE_EQ(job.goals[1].target, 0.7);  // the explicit key overrides the preset's 0.60
+  EXPECT_EQ(job.goals[2].name, "b");
+  EXPECT_DOUBLE_EQ(job.goals[2].target, 500.0);
+  EXPECT_EQ(job.goals[3].metric, ilp::GoalMetric::minimum);
+  EXPECT_DOUBLE_EQ(job.goals[4].target, 0.70);
+  // Initial = maintained / MF for lux, the ratio unchanged.
+  EXPECT_DOUBLE_EQ(ilp::initial_target(job, job.goals[0]), 625.0);
+  EXPECT_DOUBLE_EQ(ilp::initial_target(job, job.goals[1]), 0.7);
+  ilp::JobConfig sweep = job;
+  ilp::set_goal_parameter(sweep, "goals.work.average_lux", 750);
+  EXPECT_DOUBLE_EQ(sweep.goals[0].target, 750.0);
+  // Every preset is a row of EN 12464-1 with its Em and U0.
+  bool office = false;
+  for (const ilp::GoalPreset& p : ilp::goal_presets()) {
+    EXPECT_GT(p.average_lux, 0.0);
+    EXPECT_GT(p.uniformity, 0.0);
+    office = office || (std::string(p.key) == "office_writing" && p.average_lux == 500.0 && p.uniformity == 0.6);
+  }
+  EXPECT_TRUE(office);
+}
+
+TEST(JobConfigGrids, BadGridsNameFileLineAndKey) {
+  TempDir dir;
+  struct Case {
+    std::string body, where, rule;
+  };
+  const std::string head = "scene:\n  mesh: room.obj\n";  // lines 1-2
+  const Case cases[] = {
+      {"grids:\n  - name: g\n    polygon_m: [[0, 0], [4, 3], [4, 0], [0, 3]]\n", ":5:16: grids[0].polygon_m",
+       "the polygon is not simple"},
+      {"grids:\n  - name: g\n    over_surface: floor\n    rectangle_m: [[0, 0], [1, 1]]\n", ":4:5: grids[0]",
+       "needs exactly one of over_surface, rectangle_m, polygon_m, vertical"},
+      {"grids:\n  - name: g\n    rectangle_m: [[0, 0], [0, 1]]\n", ":5:18: grids[0].rectangle_m",
+       "the corners must differ"},
+      {"grids:\n  - name: g\n    over_surface: floor\n    border_m: -1\n", ":6:15: grids[0].border_m = -1", "must be >= 0"},
+      {"grids:\n  - name: g\n    over_surface: floor\n    spacing_m: 0\n", ":6:16: grids[0].spacing_m = 0", "must be > 0"},
+      {"grids:\n  - name: g\n    over_surface: floor\n  - name: g\n    over_surface: floor\n", ":6:11: grids[1].name = g",
+       "already defined"},
+      {"goals:\n  - {grid: work, average_lux: 300}\n", ":4:12: goals[0].grid = work", "no grids are defined"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: h, average_lux: 300}\n",
+       ":6:12: goals[0].grid = h", "no grid of this name"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, surface: floor, average_lux: 300}\n",
+       ":6:12: goals[0].grid = g", "not both"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, preset: office}\n",
+       ":6:23: goals[0].preset = office", "unknown preset (EN 12464-1 rows: office_writing"},
+      {"maintenance_factor: 1.2\n", ":3:21: maintenance_factor = 1.2", "must be in (0, 1]"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.body);
+    const std::string yaml = dir.write("job.yaml", head + c.body);
+    try {
+      ilp::load_job_config(yaml);
+      ADD_FAILURE() << "no error";
+    } catch (const ilp::ConfigError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(c.where), std::string::npos) << msg;
+      EXPECT_NE(msg.find(c.rule), std::string::npos) << msg;
+    }
+  }
+}

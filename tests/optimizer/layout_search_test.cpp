@@ -9,6 +9,7 @@
 #include "core/config.h"
 #include "core/job.h"
 #include "optimizer/job_runner.h"
+#include "optimizer/model_cache.h"
 #include "tests/optimizer/optimizer_test_scenes.h"
 
 namespace ilp {
@@ -298,6 +299,39 @@ TEST(LayoutSearch, ReflectedLightIsPredictedAsVerified) {
   const double indirect_share = 1.0 - outcome.predicted_direct_lux.mean() / outcome.predicted_lux.mean();
   EXPECT_GT(indirect_share, 0.2);
   EXPECT_NEAR(outcome.flux_correction, 1.0, 0.04) << "predicted / verified of the mat's average";
+}
+
+// A goal on a calculation grid: one luminaire over a 1 m work plane, black room, so the
+// optimum is above the plane's centre; with a maintenance factor the design is for the
+// initial value target / MF, and the verification (each point's exact direct light and
+// gather) agrees with the prediction.
+TEST(LayoutSearch, GridGoalIsSearchedAndVerifiedAtItsPoints) {
+  TempDir dir;
+  dir.write("room.obj", room_obj({}));
+  const std::string grids =
+      "grids:\n  - {name: plane, rectangle_m: [[0.8, 1.2], [1.8, 2.2]], height_m: 0.8, border_m: 0}\n"
+      "maintenance_factor: 0.8\n";
+  const std::string text = room_job("0.5", kOneLuminaire, "  - {grid: plane, average_lux: 200}\n", kOptimizer);
+  const JobConfig job = load_job_config(dir.write("job.yaml", grids + text));
+  const PreparedJob prepared = prepare_job(job);
+  ASSERT_EQ(prepared.model.grids.size(), 1u);
+  const CalcGrid& grid = prepared.model.grids[0];
+  EXPECT_EQ(grid.cells_u * grid.cells_v, 25);  // 1 m: p = 0.2 m, 5 x 5 points
+  EXPECT_EQ(prepared.model.goal_points.size(), 25u);
+  EXPECT_TRUE(prepared.model.goal_patches.empty());
+  EXPECT_EQ(prepared.model.goal_rows(), 25);
+  JobConfig once = job;
+  once.verification.rounds = 1;
+  const JobOutcome outcome = solve_prepared(prepared, once);
+  ASSERT_EQ(outcome.luminaires.size(), 1u);
+  EXPECT_NEAR(outcome.luminaires[0].position_m.x(), 1.3, 0.05);
+  EXPECT_NEAR(outcome.luminaires[0].position_m.y(), 1.7, 0.05);
+  ASSERT_TRUE(outcome.goals[0].verified);
+  EXPECT_NEAR(outcome.goals[0].predicted.target, 250.0, 1e-9) << "initial = 200 / 0.8";
+  EXPECT_NEAR(outcome.goals[0].verified->value, 250.0, 1e-6) << "the flux correction meets the initial target";
+  EXPECT_NEAR(outcome.flux_correction, 1.0, 0.04) << "predicted / verified at the points";
+  EXPECT_EQ(outcome.verification.point_lux.size(), 25);
+  EXPECT_TRUE(outcome.all_met);
 }
 
 }  // namespace

@@ -179,6 +179,7 @@ TEST(ModelCache, TargetsAndSearchSettingsKeepTheKey) {
   same("verification", [](JobConfig& j) { j.verification.rays_per_patch = 64; });
   same("output folder", [](JobConfig& j) { j.output.directory = "elsewhere"; });
   same("constraints", [](JobConfig& j) { j.constraints.min_distance_m = 1.0; });
+  same("maintenance factor", [](JobConfig& j) { j.maintenance_factor = 0.8; });
 }
 
 TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
@@ -201,6 +202,31 @@ TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
   differs("candidate_spacing_m", [](JobConfig& j) { j.search->candidate_spacing_m = 0.4; });
   differs("mount offset", [](JobConfig& j) { j.search->mount_offset_m = 0.05; });
   differs("luminaire size", [](JobConfig& j) { j.luminaire_size_m = 0.4; });
+  // Grid goals: the grid's every placing value.
+  JobConfig on_grid = job;
+  CalcGridSetting plane;
+  plane.name = "plane";
+  plane.over_surface = "floor";
+  on_grid.grids.push_back(plane);
+  on_grid.goals[0].grid = "plane";
+  on_grid.goals[0].surfaces.clear();
+  EXPECT_NE(lighting_model_key(on_grid), key) << "a goal on a grid";
+  const std::string grid_key = lighting_model_key(on_grid);
+  auto grid_differs = [&](const char* what, auto change) {
+    JobConfig other = on_grid;
+    change(other.grids[0]);
+    EXPECT_NE(lighting_model_key(other), grid_key) << what;
+  };
+  grid_differs("grid height", [](CalcGridSetting& g) { g.height_m = 0.75; });
+  grid_differs("grid band", [](CalcGridSetting& g) { g.border_m = 0.3; });
+  grid_differs("grid spacing", [](CalcGridSetting& g) { g.spacing_m = 0.3; });
+  grid_differs("grid outline", [](CalcGridSetting& g) {
+    g.over_surface.clear();
+    g.polygon_m = {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(1, 1)};
+  });
+  differs("an added floor", [](JobConfig& j) {
+    j.add_floors.push_back({"extra", Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1), 0.0, Eigen::Vector3d::Constant(0.3), {}});
+  });
   differs("a goal's surface", [](JobConfig& j) { j.goals[0].surfaces = {"other"}; });
   differs("a placed luminaire", [](JobConfig& j) { j.luminaires.push_back({"old", {0.5, 0.5, 2.4}, 2000.0, {}}); });
   differs("patch size", [](JobConfig& j) { j.scene.max_patch_edge_m = 0.3; });
@@ -383,14 +409,14 @@ TEST(ModelCache, UnwritableCacheFolderStillCompletesTheJob) {
 // then update the size here.
 TEST(ModelCache, FormatAndKeyCoverEveryField) {
 #if defined(__x86_64__) && defined(__GLIBCXX__)
-  EXPECT_EQ(sizeof(SampleOperatorStats), 152u) << "SampleOperatorStats changed: save and load the new field";
+  EXPECT_EQ(sizeof(SampleOperatorStats), 168u) << "SampleOperatorStats changed: save and load the new field";
   EXPECT_EQ(sizeof(SampleSettings), 152u) << "SampleSettings changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(FormFactorOptions), 24u) << "FormFactorOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(DirectLightOptions), 24u) << "DirectLightOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(SceneOptions), 32u) << "SceneOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(MeshReadOptions), 4u) << "MeshReadOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(LuminaireSearch), 400u) << "LuminaireSearch changed: does the new field shape the candidates?";
-  EXPECT_EQ(sizeof(JobConfig), 1440u) << "JobConfig changed: does the new setting change the operator?";
+  EXPECT_EQ(sizeof(JobConfig), 1552u) << "JobConfig changed: does the new setting change the operator?";
 #else
   GTEST_SKIP() << "struct sizes are checked on x86-64 with libstdc++ only";
 #endif

@@ -63,6 +63,35 @@ TEST(ResultJson, RoundTripsEveryField) {
   EXPECT_EQ(back.attempts[0].local_stop, "step tolerance reached");
 }
 
+TEST(ResultJson, RoundTripsGridsMaintenanceAndFloorArea) {
+  test::TempDir dir;
+  ResultRecord r = sample_record();
+  r.maintenance_factor = 0.8;
+  r.floor_area_m2 = 24.0;
+  r.floor_area_source = "floor 'floor' (under grid 'work_plane')";
+  r.power_density_w_per_m2 = 5.85;
+  r.power_density_w_per_m2_per_100_lx = 1.17;
+  r.goals[0].grid = "work_plane";
+  r.grids.push_back({"work_plane", 40, 15.0, 0.616, 2, true, {625.0, 375.5, 890.2, 0.601}, {500.0, 300.4, 712.16, 0.601}});
+  write_result_json(dir.file("result.json"), r);
+  const ResultRecord back = read_result_json(dir.file("result.json"));
+  ASSERT_EQ(back.grids.size(), 1u);
+  EXPECT_EQ(back.grids[0].points, 40);
+  EXPECT_EQ(back.grids[0].inside_solid, 2);
+  EXPECT_EQ(back.grids[0].initial.average_lux, 625.0);
+  EXPECT_EQ(back.grids[0].maintained.max_lux, 712.16);
+  EXPECT_EQ(back.goals[0].grid, "work_plane");
+  EXPECT_EQ(back.maintenance_factor, 0.8);
+  EXPECT_EQ(back.floor_area_source, r.floor_area_source);
+  std::ostringstream out;
+  print_result(out, back);
+  EXPECT_NE(out.str().find("5.85 W/m² over 24.00 m² (floor 'floor' (under grid 'work_plane')), 1.17 W/m² per 100 lx"),
+            std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("maintenance factor 0.80"), std::string::npos);
+  EXPECT_NE(out.str().find("work_plane               40    625.0    375.5    890.2  0.601"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("500.0    300.4    712.2"), std::string::npos) << out.str();
+}
+
 TEST(ResultJson, PrintShowsLayoutGoalsAndMisses) {
   std::ostringstream os;
   print_result(os, sample_record());
