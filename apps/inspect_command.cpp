@@ -71,7 +71,7 @@ void print_surfaces(const SceneInspection& in, std::size_t limit) {
     const SurfaceInspection& s = in.surfaces[order[r]];
     const auto& b = s.bounds_m;
     const bool empty = b.isEmpty();
-    std::string name = s.name + (s.is_luminaire ? " (luminaire)" : "");
+    std::string name = s.name + (s.is_luminaire ? " (luminaire)" : s.two_sided ? " (2-sided)" : "");
     if (name.size() > 23) name = name.substr(0, 22) + "~";
     std::cout << std::left << std::setw(24) << name << std::right << std::setw(10) << s.triangles << std::setw(9)
               << s.patches << std::setw(11) << fixed(s.area_m2, 2) << std::setw(6) << fixed(100 * s.up_share, 0)
@@ -110,6 +110,9 @@ int run_inspect(const InspectArgs& args) {
   InspectOptions options;
   options.weld_tolerance_m = job.surface_split.weld_tolerance_m;
   options.threads = job.form_factors.threads;
+  options.two_sided.assign(scene.surfaces.size(), job.two_sided_all);
+  for (const std::string& name : job.two_sided_surfaces)
+    if (const int s = scene.find_surface(name); s >= 0) options.two_sided[static_cast<std::size_t>(s)] = true;
   const SceneInspection in = inspect_scene(scene, mesh, job.scene, caster, options);
 
   std::cout << "scene: " << job.mesh_path << " as ilp sees it (metres, z up; scale_to_m " << job.scene.scale_to_m

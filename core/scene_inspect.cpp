@@ -109,6 +109,7 @@ SceneInspection inspect_scene(const Scene& scene, const TriangleMesh& mesh, cons
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
     all[s].name = scene.surfaces[s].name;
     all[s].is_luminaire = scene.surfaces[s].is_luminaire();
+    all[s].two_sided = s < options.two_sided.size() && options.two_sided[s];
   }
   count_edges(mesh, frame, options.weld_tolerance_m, out, all);
 
@@ -237,7 +238,7 @@ SceneInspection inspect_scene(const Scene& scene, const TriangleMesh& mesh, cons
     w.push_back(std::to_string(scene.stats.degenerate_dropped) + " degenerate triangles (zero or near-zero area) and " +
                 std::to_string(scene.stats.duplicate_dropped) + " duplicates dropped by meshing");
   for (const SurfaceInspection& s : out.surfaces) {
-    if (s.is_luminaire || s.area_m2 < 0.005 * out.area_m2) continue;
+    if (s.is_luminaire || s.two_sided || s.area_m2 < 0.005 * out.area_m2) continue;
     if (s.escape_share >= 0.5)
       w.push_back("'" + s.name + "': " + percent(s.escape_share) +
                   " of the probe rays from its front leave the model: it faces out of the room (wound inside out? "

@@ -21,6 +21,7 @@ namespace ilp {
 struct SurfaceInspection {
   std::string name;
   bool is_luminaire = false;
+  bool two_sided = false;
   std::size_t triangles = 0;          // of the mesh (after exclusions), degenerate ones included
   std::size_t degenerate = 0;         // of those, dropped by meshing
   std::size_t patches = 0;
@@ -55,6 +56,9 @@ struct InspectOptions {
   double weld_tolerance_m = 1e-3;          // for the edge topology
   std::size_t max_probe_patches = 400000;  // probe every patch up to this, else an even stride
   int threads = 0;
+  // Per scene surface: doubled back to back (scene.two_sided). Its twins face out, so
+  // escapes and back hits say nothing about its winding: no winding warnings for it.
+  std::vector<bool> two_sided;
 };
 
 // `mesh` is the one the scene was made from (after exclusions; file units: `frame`

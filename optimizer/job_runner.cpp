@@ -197,10 +197,12 @@ PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, 
   out.model = lighting_model_geometry(out.loaded.scene, job);
   {
     // The cost model: printed, and a job that cannot fit is refused now, not minutes later.
+    // (Kept apart from the model's log, which the cache compares with the file's.)
     const CostEstimate estimate = estimate_job_cost(job_cost_counts(job, out.loaded.scene, out.model, budget));
-    for (const std::string& line : format_estimate(estimate)) out.model.log.push_back(line);
-    if (budget) out.model.log.push_back("memory available to the job: " + format_bytes(*budget));
+    out.estimate_log = format_estimate(estimate);
+    if (budget) out.estimate_log.push_back("memory available to the job: " + format_bytes(*budget));
     emit(out.model.log, 0);
+    emit(out.estimate_log, 0);
     require_fits(estimate, budget, job.path);
   }
   const std::size_t geometry_lines = out.model.log.size();

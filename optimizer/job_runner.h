@@ -32,6 +32,7 @@ struct PreparedJob {
   bool loaded_from_cache = false;  // the operator came from the cache folder
   std::string cache_status;        // for the run log; empty without a cache folder
   double cache_seconds = 0.0;      // computing the key and reading, or writing, the cache file
+  std::vector<std::string> estimate_log;  // the cost model's estimate (core/cost_model.h), for the run log
 };
 
 // Throws ConfigError when the job does not describe an inverse problem (no

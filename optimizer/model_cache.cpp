@@ -269,6 +269,8 @@ std::string key_text(const JobConfig& job) {
   if (s.target_error) t << *s.target_error;
   else t << "none";
   t << " error samples " << s.error_samples << " pilot fraction " << s.pilot_fraction << "\n";
+  if (s.target_error) t << "max sample size " << s.max_size_for_target << "\n";  // caps the k it picks
+  if (job.ignore_material_kd) t << "material Kd ignored\n";
   return t.str();
 }
 

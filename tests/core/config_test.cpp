@@ -548,7 +548,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "must be in (0, 1)"},
         BadValue{"UpAxisX", SCENE "  up_axis: x\n", "scene.up_axis = x", "must be y or z"},
         BadValue{"SurfacesFromBad", SCENE "  surfaces_from: layer\n", "scene.surfaces_from = layer",
-                 "must be group, object or material"},
+                 "must be group, object, material or connected"},
         BadValue{"ScaleZero", SCENE "  scale_to_m: 0\n", "scene.scale_to_m = 0", "must be > 0"},
         BadValue{"MaxPatchEdgeNegative", SCENE "  max_patch_edge_m: -0.5\n", "scene.max_patch_edge_m = -0.5",
                  "must be > 0"},

@@ -105,6 +105,20 @@ TEST(SceneInspect, AWallWoundOutwardsIsNamed) {
   EXPECT_TRUE(warned(in, "4 edges where neighbouring triangles are wound inconsistently, most in 'wall_x1' (4)"));
 }
 
+TEST(SceneInspect, ATwoSidedSurfaceGetsNoWindingWarnings) {
+  const TriangleMesh mesh = room(true, false);
+  SceneOptions options;
+  const Scene scene = make_scene(mesh, TriangleReflectance(mesh.triangles.size(), V::Constant(0.5)), options);
+  const RayCaster caster(scene, 1);
+  InspectOptions inspect_options;
+  inspect_options.two_sided.assign(scene.surfaces.size(), false);
+  inspect_options.two_sided[static_cast<std::size_t>(scene.find_surface("wall_x1"))] = true;
+  const SceneInspection in = inspect_scene(scene, mesh, options, caster, inspect_options);
+  EXPECT_TRUE(surface(in, "wall_x1").two_sided);
+  EXPECT_FALSE(warned(in, "'wall_x1': 100 %"));
+  EXPECT_TRUE(warned(in, "wound inconsistently"));  // the edges still say so
+}
+
 TEST(SceneInspect, AnOpenRoomCountsItsRimAndTheLightLeaving) {
   const SceneInspection in = inspect(room(false, true)).in;
   EXPECT_EQ(in.open_edges, 4u);  // the top rim of the four walls
