@@ -155,7 +155,8 @@ Unoccluded unoccluded_light(const Scene& scene, const LuminaireGeometry& g, cons
   // luminaire 1.2 m x 4 cm needs several along and one across).
   const double spacing = kSourceSpacingPerDistance * std::max((x - g.centre_m).norm(), 1e-9);
   auto sources_along = [&](double side_m) {
-    return std::clamp(static_cast<int>(std::ceil(side_m / spacing)), 1, kMaxSourcesPerSide);
+    // Clamped in double: a receiver on the opening would make the count overflow an int.
+    return static_cast<int>(std::clamp(std::ceil(side_m / spacing), 1.0, static_cast<double>(kMaxSourcesPerSide)));
   };
   int mx = sources_along(g.type->length_m), my = sources_along(g.type->width_m);
   if (g.type->shape == OutlineShape::disc) mx = my = std::max(mx, my);  // the concentric map's cells
@@ -268,7 +269,11 @@ LuminaireLight compute_luminaire_light_at_points(const Scene& scene, const RayCa
                                                  std::span<const ReceiverPoint> points,
                                                  std::span<const int> luminaire_surfaces,
                                                  const DirectLightOptions& options) {
-  return luminaire_light(scene, caster, points.size(), 1, luminaire_surfaces, options,
+  // A point has no area to average its visibility over: it gets the shadow rays a
+  // patch spends on all its receiver points (in a penumbra; 4 decide elsewhere).
+  DirectLightOptions point_options = options;
+  point_options.shadow_rays = options.shadow_rays * std::max(1, options.receiver_points);
+  return luminaire_light(scene, caster, points.size(), 1, luminaire_surfaces, point_options,
                          [](std::size_t r) { return static_cast<std::uint64_t>(r) ^ 0x5851F42D4C957F2Dull; },
                          [&](std::size_t r, int) { return points[r]; });
 }

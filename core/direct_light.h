@@ -60,7 +60,8 @@ struct LuminaireLight {
 // Receivers are patches, each averaged over options.receiver_points points on it.
 LuminaireLight compute_luminaire_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
                                        std::span<const int> luminaire_surfaces, const DirectLightOptions& options);
-// Receivers are points (a calculation grid): one point each.
+// Receivers are points (a calculation grid): one point each, with receiver_points x
+// shadow_rays rays where a luminaire is partly hidden (a patch's whole budget).
 LuminaireLight compute_luminaire_light_at_points(const Scene& scene, const RayCaster& caster,
                                                  std::span<const ReceiverPoint> points,
                                                  std::span<const int> luminaire_surfaces,
