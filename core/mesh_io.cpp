@@ -329,10 +329,17 @@ DeclaredCounts check_off(const fs::path& path, std::uintmax_t file_bytes) {
       header.emplace_back(t);
       if (header.size() == 2) counts_line = line_no;
     }
-    if (!header.empty() && header[0].find("OFF") == std::string::npos) return out;
-    if (header.size() >= 2 && header[1] == "BINARY") return out;
+    if (header.size() >= 2 && header[1] == "BINARY")  // its counts cannot be checked as text
+      throw SceneError(path.string() + ": binary OFF is not read (convert it to ASCII OFF, PLY or OBJ)");
   }
-  if (header.size() < 3) return out;
+  if (header.empty()) return out;  // an empty file: OpenMesh says it cannot read it
+  // OpenMesh parses whatever follows: "OFF" (with its S, T, C, N, 4, n prefixes), then
+  // whole-number counts, or it reserves what it made of garbage (found by ply_off_fuzz).
+  if (header[0].size() < 3 || header[0].compare(header[0].size() - 3, 3, "OFF") != 0 ||
+      header[0].find_first_not_of("STCN4n", 0) != header[0].size() - 3)
+    throw SceneError(path.string() + ": could not read the mesh: not an OFF file (the first word is not OFF)");
+  if (header.size() < 3)
+    throw SceneError(path.string() + ": the OFF header needs vertex, face and edge counts (a truncated file?)");
   out.vertices = header_count(header[1], "vertex", path, counts_line, file_bytes);
   out.faces = header_count(header[2], "face", path, counts_line, file_bytes);
   if (out.vertices + out.faces > static_cast<long long>(file_bytes))

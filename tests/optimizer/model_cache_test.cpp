@@ -389,8 +389,8 @@ TEST(ModelCache, FormatAndKeyCoverEveryField) {
   EXPECT_EQ(sizeof(DirectLightOptions), 24u) << "DirectLightOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(SceneOptions), 32u) << "SceneOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(MeshReadOptions), 4u) << "MeshReadOptions changed: is the new field in lighting_model_key?";
-  EXPECT_EQ(sizeof(LuminaireSearch), 400u) << "LuminaireSearch changed: does the new field shape the candidates?";
-  EXPECT_EQ(sizeof(JobConfig), 1440u) << "JobConfig changed: does the new setting change the operator?";
+  EXPECT_EQ(sizeof(LuminaireSearch), 448u) << "LuminaireSearch changed: does the new field shape the candidates?";
+  EXPECT_EQ(sizeof(JobConfig), 1488u) << "JobConfig changed: does the new setting change the operator?";
 #else
   GTEST_SKIP() << "struct sizes are checked on x86-64 with libstdc++ only";
 #endif
