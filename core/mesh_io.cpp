@@ -238,7 +238,7 @@ DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
     if (line_no == 1 && tokens[0] != "ply")
       throw SceneError(path.string() + ": could not read the mesh: not a PLY file (no 'ply' on the first line)");
     if (tokens[0] == "format") {
-      if (tokens.size() != 3 || (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" &&
+      if (tokens.size() != 3 || tokens[2] != "1.0" || (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" &&
                                  tokens[1] != "binary_big_endian"))
         throw SceneError(located(loc, "format must be ascii, binary_little_endian or binary_big_endian, then a version"));
       format = std::string(tokens[1]);
