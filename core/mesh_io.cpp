@@ -325,10 +325,14 @@ DeclaredCounts check_off(const fs::path& path, std::uintmax_t file_bytes) {
   int line_no = 0, counts_line = 0;
   while (header.size() < 4 && std::getline(in, line)) {
     ++line_no;
+    const std::size_t before = header.size();
     for (auto t : split_ws(line)) {
       header.emplace_back(t);
       if (header.size() == 2) counts_line = line_no;
     }
+    // OpenMesh reads the counts from the line after the keyword, whatever follows it.
+    if (before == 0 && header.size() > 1 && header[1] != "BINARY")
+      throw SceneError(located({path.string(), line_no}, "the OFF keyword must be alone on its line (the counts follow on the next)"));
     if (header.size() >= 2 && header[1] == "BINARY")  // its counts cannot be checked as text
       throw SceneError(path.string() + ": binary OFF is not read (convert it to ASCII OFF, PLY or OBJ)");
   }
@@ -342,6 +346,7 @@ DeclaredCounts check_off(const fs::path& path, std::uintmax_t file_bytes) {
     throw SceneError(path.string() + ": the OFF header needs vertex, face and edge counts (a truncated file?)");
   out.vertices = header_count(header[1], "vertex", path, counts_line, file_bytes);
   out.faces = header_count(header[2], "face", path, counts_line, file_bytes);
+  if (header.size() > 3) header_count(header[3], "edge", path, counts_line, file_bytes);
   if (out.vertices + out.faces > static_cast<long long>(file_bytes))
     throw SceneError(located({path.string(), counts_line}, "the header declares " + std::to_string(out.vertices) +
                                                                " vertices and " + std::to_string(out.faces) +

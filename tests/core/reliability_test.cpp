@@ -213,6 +213,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadHeader{"OffGarbageAfterTheKeyword", "junk.off", std::string("OFF\0plyf\n\n111111q111\n", 22),
                   {"not an OFF file"}},
         BadHeader{"OffCountsNotNumbers", "words.off", "OFF\n1111q11 1 0\n", {":2:", "'1111q11' is not a whole number"}},
+        BadHeader{"OffCountsOnTheKeywordLine", "same.off", "OFF 0\n1 -10\n0 1  1\nH", {":1:", "alone on its line"}},
         BadHeader{"BinaryOff", "bin.off", "OFF BINARY\n\x01\x02", {"binary OFF is not read"}},
         BadHeader{"OffHugeVertexCount", "big.off", "OFF\n3000000000 1 0\n0 0 0\n", {":2:", "3000000000", "bytes"}},
         BadHeader{"OffNegativeVertexCount", "neg.off", "OFF\n-5 1 0\n", {":2:", "'-5' is not a whole number >= 0"}},
