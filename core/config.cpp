@@ -1,5 +1,6 @@
 #include "core/config.h"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <iomanip>
 #include <set>
 #include <sstream>
@@ -124,6 +126,35 @@ class Value {
   std::string key_;
   std::string file_;
 };
+
+// Counts the documents of a YAML stream (the parser's events; nothing is built).
+class DocumentCounter : public YAML::EventHandler {
+ public:
+  int documents = 0;
+  YAML::Mark second;
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    if (++documents == 2) second = mark;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+// YAML::Load reads the first document and ignores the rest: a second one is refused.
+void reject_second_document(const std::string& text, const std::string& path) {
+  std::istringstream stream(text);
+  YAML::Parser parser(stream);
+  DocumentCounter counter;
+  if (!parser.HandleNextDocument(counter) || !parser.HandleNextDocument(counter) || counter.documents < 2) return;
+  const YAML::Mark& mark = counter.second;
+  throw ConfigError(located({path, mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0},
+                            "a second YAML document (after '---'): a config file holds one job"));
+}
 
 // yaml-cpp keeps repeated keys and lets lookups see the first: refuse them instead.
 void reject_duplicate_keys(const Value& map) {
@@ -983,13 +1014,14 @@ JobConfig load_job_config(const std::string& path) {
   }
   YAML::Node root;
   try {
-    std::vector<YAML::Node> documents = YAML::LoadAllFromFile(path);
-    if (documents.size() > 1) {
-      const YAML::Mark mark = documents[1].Mark();
-      throw ConfigError(located({path, mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0},
-                                "a second YAML document (after '---'): a config file holds one job"));
-    }
-    if (!documents.empty()) root = documents.front();
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // yaml-cpp stops reading at a NUL byte, and YAML::LoadAll then loops for ever (found by config_fuzz).
+    if (const auto nul = text.find('\0'); nul != std::string::npos)
+      throw ConfigError(located({path, 1 + static_cast<int>(std::count(text.begin(), text.begin() + nul, '\n'))},
+                                "a NUL byte: the config must be a text file"));
+    reject_second_document(text, path);
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw ConfigError(located({path, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg));
   } catch (const YAML::Exception& e) {

@@ -238,7 +238,7 @@ DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
     if (line_no == 1 && tokens[0] != "ply")
       throw SceneError(path.string() + ": could not read the mesh: not a PLY file (no 'ply' on the first line)");
     if (tokens[0] == "format") {
-      if (tokens.size() != 3 || (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" &&
+      if (tokens.size() != 3 || tokens[2] != "1.0" || (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" &&
                                  tokens[1] != "binary_big_endian"))
         throw SceneError(located(loc, "format must be ascii, binary_little_endian or binary_big_endian, then a version"));
       format = std::string(tokens[1]);
@@ -325,16 +325,28 @@ DeclaredCounts check_off(const fs::path& path, std::uintmax_t file_bytes) {
   int line_no = 0, counts_line = 0;
   while (header.size() < 4 && std::getline(in, line)) {
     ++line_no;
+    const std::size_t before = header.size();
     for (auto t : split_ws(line)) {
       header.emplace_back(t);
       if (header.size() == 2) counts_line = line_no;
     }
-    if (!header.empty() && header[0].find("OFF") == std::string::npos) return out;
-    if (header.size() >= 2 && header[1] == "BINARY") return out;
+    // OpenMesh reads the counts from the line after the keyword, whatever follows it.
+    if (before == 0 && header.size() > 1 && header[1] != "BINARY")
+      throw SceneError(located({path.string(), line_no}, "the OFF keyword must be alone on its line (the counts follow on the next)"));
+    if (header.size() >= 2 && header[1] == "BINARY")  // its counts cannot be checked as text
+      throw SceneError(path.string() + ": binary OFF is not read (convert it to ASCII OFF, PLY or OBJ)");
   }
-  if (header.size() < 3) return out;
+  if (header.empty()) return out;  // an empty file: OpenMesh says it cannot read it
+  // OpenMesh parses whatever follows: "OFF" (with its S, T, C, N, 4, n prefixes), then
+  // whole-number counts, or it reserves what it made of garbage (found by ply_off_fuzz).
+  if (header[0].size() < 3 || header[0].compare(header[0].size() - 3, 3, "OFF") != 0 ||
+      header[0].find_first_not_of("STCN4n", 0) != header[0].size() - 3)
+    throw SceneError(path.string() + ": could not read the mesh: not an OFF file (the first word is not OFF)");
+  if (header.size() < 3)
+    throw SceneError(path.string() + ": the OFF header needs vertex, face and edge counts (a truncated file?)");
   out.vertices = header_count(header[1], "vertex", path, counts_line, file_bytes);
   out.faces = header_count(header[2], "face", path, counts_line, file_bytes);
+  if (header.size() > 3) header_count(header[3], "edge", path, counts_line, file_bytes);
   if (out.vertices + out.faces > static_cast<long long>(file_bytes))
     throw SceneError(located({path.string(), counts_line}, "the header declares " + std::to_string(out.vertices) +
                                                                " vertices and " + std::to_string(out.faces) +

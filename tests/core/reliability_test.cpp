@@ -106,8 +106,17 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(ReliabilityConfig, SecondYamlDocumentIsRefused) {
   TempDir dir;
   const std::string message = config_error(dir, kScene + kPlaced + "---\nscene:\n  mesh: other.obj\n");
-  EXPECT_TRUE(Contains(message, dir.file("job.yaml") + ":9:"));
+  EXPECT_TRUE(Contains(message, dir.file("job.yaml") + ":8:"));  // the --- line
   EXPECT_TRUE(Contains(message, "second YAML document"));
+}
+
+// yaml-cpp stops at a NUL byte, and reading every document then looped for ever
+// (found by config_fuzz).
+TEST(ReliabilityConfig, NulByteIsRefusedWithItsLine) {
+  TempDir dir;
+  const std::string message = config_error(dir, kScene + std::string("\0\0ification:\n", 14));
+  EXPECT_TRUE(Contains(message, dir.file("job.yaml") + ":4:"));
+  EXPECT_TRUE(Contains(message, "NUL byte"));
 }
 
 TEST(ReliabilityConfig, FolderAsConfigIsNamed) {
@@ -200,6 +209,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadHeader{"PlyHeaderWithoutEnd", "open.ply", "ply\nformat ascii 1.0\nelement vertex 0\n", {"no end_header"}},
         BadHeader{"PlyUnknownPropertyType", "type.ply", kPlyHead + "element vertex 1\nproperty quad x\nend_header\n0\n",
                   {":4:", "property must"}},
+        // OpenMesh reserved whatever it made of these (found by ply_off_fuzz).
+        BadHeader{"OffGarbageAfterTheKeyword", "junk.off", std::string("OFF\0plyf\n\n111111q111\n", 22),
+                  {"not an OFF file"}},
+        BadHeader{"OffCountsNotNumbers", "words.off", "OFF\n1111q11 1 0\n", {":2:", "'1111q11' is not a whole number"}},
+        BadHeader{"OffCountsOnTheKeywordLine", "same.off", "OFF 0\n1 -10\n0 1  1\nH", {":1:", "alone on its line"}},
+        BadHeader{"BinaryOff", "bin.off", "OFF BINARY\n\x01\x02", {"binary OFF is not read"}},
         BadHeader{"OffHugeVertexCount", "big.off", "OFF\n3000000000 1 0\n0 0 0\n", {":2:", "3000000000", "bytes"}},
         BadHeader{"OffNegativeVertexCount", "neg.off", "OFF\n-5 1 0\n", {":2:", "'-5' is not a whole number >= 0"}},
         BadHeader{"OffTruncatedFace", "short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n",
