@@ -160,8 +160,8 @@ std::string luminaire(const Frame& f, const PlanLuminaire& l) {
   const Eigen::Vector3d& p = l.position_m;
   constexpr std::string_view kHalo = " fill=\"#111111\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\"";
   return cat("<g>\n<title>",
-             xml_escape(cat(l.id, ": ", l.product.empty() ? cat(significant(l.size_m), " m square") : l.product, ", ",
-                            flux, " at (", significant(p.x()), ", ", significant(p.y()), ", ", significant(p.z()), ") m")),
+             xml_escape(cat(l.id, ": ", flux, ", ", l.product.empty() ? cat(significant(l.size_m), " m square") : l.product,
+                            " at (", significant(p.x()), ", ", significant(p.y()), ", ", significant(p.z()), ") m")),
              "</title>\n",
              // A dark line on a white halo, and dark text on a white halo: legible on
              // every colour of the map.

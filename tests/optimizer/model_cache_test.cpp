@@ -415,8 +415,8 @@ TEST(ModelCache, FormatAndKeyCoverEveryField) {
   EXPECT_EQ(sizeof(DirectLightOptions), 24u) << "DirectLightOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(SceneOptions), 32u) << "SceneOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(MeshReadOptions), 4u) << "MeshReadOptions changed: is the new field in lighting_model_key?";
-  EXPECT_EQ(sizeof(LuminaireSearch), 640u) << "LuminaireSearch changed: does the new field shape the candidates?";
-  EXPECT_EQ(sizeof(JobConfig), 1888u) << "JobConfig changed: does the new setting change the operator?";
+  EXPECT_EQ(sizeof(LuminaireSearch), 592u) << "LuminaireSearch changed: does the new field shape the candidates?";
+  EXPECT_EQ(sizeof(JobConfig), 1840u) << "JobConfig changed: does the new setting change the operator?";
 #else
   GTEST_SKIP() << "struct sizes are checked on x86-64 with libstdc++ only";
 #endif
