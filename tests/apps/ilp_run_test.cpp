@@ -265,3 +265,55 @@ TEST(IlpInspect, ShowsSurfacesSuggestionsWarningsAndTheCostEstimate) {
 }
 
 }  // namespace
+
+namespace {
+
+// The mat room lit by a product read from a photometric file.
+std::string product_job(const TempDir& dir, const std::string& photometry) {
+  dir.write("room.obj", ilp::test::room_obj({{"mat", {1.3, 1.7}}}));
+  std::ostringstream luminaires, goals;
+  luminaires << "  products:\n    - name: downlight\n      photometry: " << photometry
+             << "\n      dimming: [0.1, 1.0]\n  mounting_surface: ceiling\n  candidate_spacing_m: 0.5\n  count: 1\n";
+  goals << "  - surface: mat\n    average_lux: 50\n";
+  return dir.write("job.yaml", ilp::test::room_job("0.4", luminaires.str(), goals.str(),
+                                                   "optimizer:\n  max_evaluations: 400\n  local_max_evaluations: 400\n"));
+}
+
+TEST(IlpRunProducts, APhotometricProductIsPlacedAndBilled) {
+  TempDir dir;
+  const std::string job = product_job(dir, std::string(ILP_SOURCE_DIR) + "/data/photometry/erco_iku_downlight.ldt");
+  const std::string out = dir.file("out");
+  const RunResult r = run_ilp(dir, {"run", job, "--out", out, "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  for (const char* part : {"Bill of materials:", "1 x downlight (612 lm, 6.9 W each", "erco_iku_downlight.ldt", "product"})
+    EXPECT_TRUE(OutputContains(r.out, part));
+  const std::string json = read_file((fs::path(out) / "result.json").string());
+  EXPECT_TRUE(OutputContains(json, "\"bill_of_materials\""));
+  EXPECT_TRUE(OutputContains(json, "\"product\": \"downlight\""));
+}
+
+TEST(IlpRunProducts, EveryBadPhotometricFileExitsOneNamingItAndWritesNothing) {
+  const std::string header = "IESNA:LM-63-2002\n[TEST] t\nTILT=NONE\n";
+  const std::string counts = "1 1000 1 3 1 1 2 0.3 0.3 0\n1 1 50\n";
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"truncated", header + counts + "0 45 90\n0\n100 80\n"},
+      {"wrong counts", header + counts + "0 45 90\n0\n100 80 20 10\n"},
+      {"negative candela", header + counts + "0 45 90\n0\n100 -80 20\n"},
+      {"non-monotonic angles", header + counts + "0 90 45\n0\n100 80 20\n"},
+      {"unknown type", header + "1 1000 1 3 1 7 2 0.3 0.3 0\n1 1 50\n0 45 90\n0\n100 80 20\n"},
+  };
+  for (const auto& [name, text] : files) {
+    SCOPED_TRACE(name);
+    TempDir dir;
+    const std::string bad = dir.write("bad.ies", text);
+    const std::string job = product_job(dir, bad);
+    const std::string out = dir.file("out");
+    const RunResult r = run_ilp(dir, {"run", job, "--out", out, "-q"});
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_TRUE(OutputContains(r.err, bad + ":")) << "names the photometric file with its line";
+    EXPECT_TRUE(OutputContains(r.err, "job.yaml:")) << "and the config's line";
+    EXPECT_FALSE(fs::exists(out)) << "nothing written";
+  }
+}
+
+}  // namespace
