@@ -307,6 +307,31 @@ struct Stage {
   bool time_limited = false;
 };
 
+// Catmull-Rom blends can overshoot the best candidate column a little; 1.25 leaves a
+// wide margin, so that no count that could reach a target is skipped.
+constexpr double kBlendOvershootMargin = 1.25;
+
+// The least, over the average goals still short with the fixed light alone, of what
+// one luminaire at full output can add to the goal's average at the best candidate,
+// as a share of the shortfall (times the blend's margin): n luminaires reach at most
+// n times that. Infinite when no average goal is short.
+double best_average_gain_ratio(const LightingModel& model, const JobConfig& job) {
+  double ratio = std::numeric_limits<double>::infinity();
+  for (const GoalSetting& goal : job.goals) {
+    if (goal.metric != GoalMetric::average) continue;
+    const int a = find_goal_area(model, goal.name);
+    if (a < 0) continue;
+    const GoalArea& area = model.areas[static_cast<std::size_t>(a)];
+    const double deficit = initial_target(job, goal) - area_average(area, model.fixed_lux);
+    if (!(deficit > 0.0)) continue;
+    double best_gain = 0.0;
+    for (Eigen::Index c = 0; c < model.candidate_lux_per_lm.cols(); ++c)
+      best_gain = std::max(best_gain, area_average(area, model.candidate_lux_per_lm.col(c)));
+    ratio = std::min(ratio, kBlendOvershootMargin * best_gain * job.search->flux_max_lm / deficit);
+  }
+  return ratio;
+}
+
 }  // namespace
 
 double goal_tolerance(const JobConfig& job, GoalMetric metric) {
@@ -377,8 +402,18 @@ SearchResult search_layout(const LightingModel& model, const JobConfig& job, con
   const Evaluator evaluate(model, job);
   SearchResult result;
   std::optional<LayoutEvaluation> best;
+  const double reach_per_luminaire = best_average_gain_ratio(model, job);
   for (std::size_t attempt = 0; attempt < counts.size(); ++attempt) {
     const int n = counts[attempt];
+    // A count whose luminaires, all at full output where each lights the goal best,
+    // cannot reach an average target is not searched (the largest count always is).
+    if (job.objective == Objective::min_power && attempt + 1 < counts.size() && n * reach_per_luminaire < 1.0) {
+      CountAttempt skipped;
+      skipped.luminaires = n;
+      skipped.global_stop = skipped.local_stop = "not searched: cannot reach an average target at full output";
+      result.attempts.push_back(skipped);
+      continue;
+    }
     const LayoutCoding coding(model, job, n);
     const auto attempt_start = Clock::now();
     std::vector<Eigen::Vector2d> xy;
