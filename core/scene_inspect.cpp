@@ -41,16 +41,10 @@ std::string percent(double share) {
 // inconsistently wound, counted per surface (an edge counts for each surface of its triangles).
 void count_edges(const TriangleMesh& mesh, const SceneOptions& frame, double tolerance, SceneInspection& out,
                  std::vector<SurfaceInspection>& per_surface) {
-  std::vector<Eigen::Vector3d> p(mesh.positions.size());
-  std::vector<bool> used(mesh.positions.size(), false);
-  Eigen::AlignedBox3d bounds;
-  for (const Eigen::Vector3i& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(t[k])] = true;
-  for (std::size_t v = 0; v < p.size(); ++v) {
-    p[v] = to_scene_frame(mesh.positions[v], frame);
-    if (used[v]) bounds.extend(p[v]);
-  }
-  const double diagonal2 = bounds.isEmpty() ? 0.0 : bounds.diagonal().squaredNorm();
+  const FramedVertices framed = framed_vertices(mesh, frame);
+  const std::vector<Eigen::Vector3d>& p = framed.positions;
+  const std::vector<bool>& used = framed.used;
+  const double diagonal2 = framed.diagonal2;
   const std::vector<int> rep = weld_positions(p, used, tolerance, out.welded_vertices);
   struct EdgeUse {
     int count = 0, forward = 0;  // triangles using it; of those, traversing it from the lower vertex

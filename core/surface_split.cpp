@@ -120,21 +120,30 @@ Facing facing_of(const Eigen::Vector3d& n) {
   return Facing::vertical;
 }
 
+FramedVertices framed_vertices(const TriangleMesh& mesh, const SceneOptions& frame) {
+  FramedVertices out;
+  out.positions.resize(mesh.positions.size());
+  out.used.assign(mesh.positions.size(), false);
+  Eigen::AlignedBox3d bounds;
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) out.used[static_cast<std::size_t>(t[k])] = true;
+  for (std::size_t v = 0; v < out.positions.size(); ++v) {
+    out.positions[v] = to_scene_frame(mesh.positions[v], frame);
+    if (out.used[v]) bounds.extend(out.positions[v]);
+  }
+  out.diagonal2 = bounds.isEmpty() ? 0.0 : bounds.diagonal().squaredNorm();
+  return out;
+}
+
 SurfaceSplitReport split_surfaces(TriangleMesh& mesh, const SceneOptions& frame, const SurfaceSplitOptions& options) {
   SurfaceSplitReport report;
   if (!options.active()) return report;
   if (!(options.weld_tolerance_m > 0.0)) throw std::invalid_argument("split_surfaces: weld tolerance must be > 0");
   const std::size_t T = mesh.triangles.size();
-  std::vector<Eigen::Vector3d> p(mesh.positions.size());
-  std::vector<bool> used(mesh.positions.size(), false);
-  Eigen::AlignedBox3d bounds;
-  for (const Eigen::Vector3i& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(t[k])] = true;
-  for (std::size_t v = 0; v < p.size(); ++v) {
-    p[v] = to_scene_frame(mesh.positions[v], frame);
-    if (used[v]) bounds.extend(p[v]);
-  }
-  const double diagonal2 = bounds.isEmpty() ? 0.0 : bounds.diagonal().squaredNorm();
+  const FramedVertices framed = framed_vertices(mesh, frame);
+  const std::vector<Eigen::Vector3d>& p = framed.positions;
+  const std::vector<bool>& used = framed.used;
+  const double diagonal2 = framed.diagonal2;
   const std::vector<int> rep = weld_positions(p, used, options.weld_tolerance_m, report.welded_vertices);
 
   // Facing and area per triangle; degenerate ones (-1) have no facing.

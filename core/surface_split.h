@@ -49,6 +49,15 @@ struct SurfaceSplitReport {
   std::vector<std::string> log;    // for the run log
 };
 
+// A mesh's vertices in the scene frame (metres, z up), which of them triangles use, and
+// the squared diagonal of the used ones' bounds (the scale of the degenerate-area test).
+struct FramedVertices {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<bool> used;
+  double diagonal2 = 0.0;
+};
+FramedVertices framed_vertices(const TriangleMesh& mesh, const SceneOptions& frame);
+
 // Welds positions closer than tolerance_m: each used position maps to the
 // lowest-numbered representative within the tolerance, else becomes one (unused
 // positions map to -1). Deterministic in position order. `representatives` receives
