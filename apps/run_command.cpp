@@ -7,6 +7,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <numeric>
 #include <sstream>
 
 #include "apps/cli_support.h"
@@ -88,30 +89,57 @@ struct Chosen {
   std::size_t variant = 0;
   JobOutcome outcome;
   std::vector<std::string> tried;  // one line per variant
+  double search_seconds = 0.0;      // every variant's search, all rounds
+  double verify_seconds = 0.0;      // every variant's verification, all rounds
 };
 
 // Solves each variant with its job adjusted by `adjust` (a sweep point's targets) and
-// keeps the best outcome (every goal met, then least power).
+// keeps the best outcome (every goal met, then least power). min_power: the variants
+// are tried in the order of the least power they could draw, and each is searched only
+// for the counts that could draw less than the best layout found so far with every
+// goal met (optimizer/layout_search.h), so a product that cannot win costs nothing.
 Chosen solve_variants(const std::vector<PreparedJob>& prepared, const std::vector<JobVariant>& variants,
                       const std::function<void(JobConfig&)>& adjust, const ProgressCallback& progress) {
+  std::vector<JobConfig> jobs;
+  std::vector<double> least_w;
+  for (const JobVariant& v : variants) {
+    jobs.push_back(v.job);
+    adjust(jobs.back());
+    least_w.push_back(least_layout_power_w(prepared[jobs.size() - 1].model, jobs.back()));
+  }
+  std::vector<std::size_t> order(variants.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const bool bounded = variants.size() > 1 && variants.front().job.objective == Objective::min_power;
+  if (bounded) std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return least_w[a] < least_w[b]; });
   Chosen best;
-  for (std::size_t v = 0; v < variants.size(); ++v) {
-    JobConfig job = variants[v].job;
-    adjust(job);
-    JobOutcome outcome = solve_prepared(prepared[v], job, progress);
+  bool have = false;
+  best.tried.resize(variants.size());
+  for (const std::size_t v : order) {
+    const double to_beat = bounded && have && best.outcome.all_met ? best.outcome.power_w : kNoPowerToBeat;
+    JobOutcome outcome = solve_prepared(prepared[v], jobs[v], progress, to_beat);
     if (variants[v].variant) {
       std::ostringstream line;
       line << std::fixed << std::setprecision(1) << variants[v].variant->product << " at "
-           << variants[v].variant->rotation_deg << " deg: " << outcome.luminaires.size() << " luminaires, "
-           << outcome.power_w << " W, " << (outcome.all_met ? "every goal met" : "goals missed");
-      best.tried.push_back(line.str());
+           << variants[v].variant->rotation_deg << " deg: ";
+      if (outcome.search.beaten)
+        line << "not searched: at least " << least_w[v] << " W, no less than the " << to_beat << " W already found";
+      else
+        line << outcome.luminaires.size() << " luminaires, " << outcome.power_w << " W, "
+             << (outcome.all_met ? "every goal met" : "goals missed") << std::setprecision(2) << " (search "
+             << outcome.search.seconds << " s, verification " << outcome.verify_seconds << " s)";
+      best.tried[v] = line.str();
       std::cerr << "variant " << v + 1 << ": " << line.str() << "\n";
     }
-    if (v == 0 || better_outcome(outcome, best.outcome)) {
+    best.search_seconds += outcome.search.seconds;
+    best.verify_seconds += outcome.verify_seconds;
+    if (outcome.search.beaten) continue;
+    if (!have || better_outcome(outcome, best.outcome)) {
       best.variant = v;
       best.outcome = std::move(outcome);
+      have = true;
     }
   }
+  if (!variants.front().variant) best.tried.clear();
   return best;
 }
 
@@ -349,13 +377,19 @@ int run_job(const RunArgs& args) {
   const PreparedJob& prepared = all[chosen.variant];
   const JobConfig& job = variants[chosen.variant].job;
   const JobOutcome& outcome = chosen.outcome;
+  // Every variant's phases, summed: what the run cost.
+  double scene_s = 0.0, bvh_s = 0.0, operator_s = 0.0;
+  for (const PreparedJob& p : all) {
+    scene_s += p.scene_seconds;
+    bvh_s += p.bvh_seconds;
+    operator_s += p.loaded_from_cache ? p.cache_seconds : p.model.build_seconds;
+  }
   const std::vector<std::pair<std::string, double>> timings{
-      {"scene", prepared.scene_seconds},
-      {"BVH", prepared.bvh_seconds},
-      {prepared.loaded_from_cache ? "operator from cache" : "operator",
-       prepared.loaded_from_cache ? prepared.cache_seconds : prepared.model.build_seconds},
-      {"search", outcome.search.seconds},
-      {"verification", outcome.verify_seconds},
+      {"scene", scene_s},
+      {"BVH", bvh_s},
+      {prepared.loaded_from_cache ? "operator from cache" : "operator", operator_s},
+      {"search", chosen.search_seconds},
+      {"verification", chosen.verify_seconds},
       {"total", seconds_since(start)}};
   ResultRecord record = make_record(prepared, job, outcome, timings);
   record.bill_of_materials = bill_of_materials(variants[chosen.variant], outcome);

@@ -368,7 +368,7 @@ void read_products(const Value& section, const JobConfig& job, LuminaireSearch& 
   std::set<std::string> names;
   for (const Value& item : section.list()) {
     const Map m(item, {"name", "photometry", "model", "size_m", "flux_lm", "power_w", "dimming", "maintenance_factor",
-                       "rotations_deg"});
+                       "rotations_deg", "mount_offset_m"});
     ProductSetting p;
     p.loc = item.loc();
     p.name = m.require("name").text();
@@ -403,6 +403,11 @@ void read_products(const Value& section, const JobConfig& job, LuminaireSearch& 
     if (auto v = m.get("rotations_deg")) {
       for (const Value& r : v->list()) p.rotations_deg.push_back(r.number_in(-360.0, 360.0, false, "[-360, 360] degrees"));
       if (p.rotations_deg.empty()) v->fail("must list at least one rotation");
+    }
+    if (auto v = m.get("mount_offset_m")) {
+      p.mount_offset_m = v->number_in(0.0, 10.0, true, "(0, 10) m");
+      if (*p.mount_offset_m <= 0.0) v->fail("must be in (0, 10) m");
+      p.mount_offset_loc = v->loc();
     }
     search.products.push_back(p);
   }

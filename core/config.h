@@ -100,6 +100,8 @@ struct ProductSetting {
   double dim_min = 1.0, dim_max = 1.0; // dimming: [min, max] as fractions of the rated output
   std::optional<double> maintenance_factor;
   std::vector<double> rotations_deg;   // empty: 0 for rotationally symmetric distributions, else 0 and 90
+  std::optional<double> mount_offset_m;  // its opening this far below the mounting surface (a pendant's
+  FileLoc mount_offset_loc;              // suspension); default: luminaires.mount_offset_m
 };
 
 // luminaires: the luminaires the search places (present when mounting_surface is given).

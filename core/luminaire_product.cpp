@@ -138,7 +138,9 @@ std::vector<ProductVariant> product_variants(const LuminaireSearch& search) {
     ProductVariant base = p.photometry_path.empty() ? panel_base(p) : photometric_base(p);
     base.dim_min = p.dim_min;
     base.dim_max = p.dim_max;
-    base.maintenance_factor = p.maintenance_factor.value_or(1.0);
+    base.maintenance_factor = p.maintenance_factor;
+    base.mount_offset_m = p.mount_offset_m;
+    base.mount_offset_loc = p.mount_offset_loc;
     std::vector<double> rotations = p.rotations_deg;
     if (rotations.empty()) rotations = rotationally_symmetric(base.type) ? std::vector<double>{0.0} : std::vector<double>{0.0, 90.0};
     for (double r : rotations) {
@@ -160,6 +162,12 @@ JobConfig job_for_variant(const JobConfig& job, const ProductVariant& variant) {
   s.flux_min_lm = variant.dim_min * variant.rated_flux_lm;
   s.flux_max_lm = variant.dim_max * variant.rated_flux_lm;
   s.efficacy_lm_per_w = variant.rated_flux_lm / variant.power_w;
+  // Maintained values depend on the product's own depreciation when it states it.
+  if (variant.maintenance_factor) out.maintenance_factor = *variant.maintenance_factor;
+  if (variant.mount_offset_m) {
+    s.mount_offset_m = *variant.mount_offset_m;
+    s.offset_loc = variant.mount_offset_loc;
+  }
   return out;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,7 +45,9 @@ struct ProductVariant {
   double rated_flux_lm = 0.0;  // at full output
   double power_w = 0.0;        // at full output
   double dim_min = 1.0, dim_max = 1.0;  // the output range, fractions of rated_flux_lm
-  double maintenance_factor = 1.0;
+  std::optional<double> maintenance_factor;  // the product's own; replaces the job's when given
+  std::optional<double> mount_offset_m;      // the product's own suspension; replaces the job's when given
+  FileLoc mount_offset_loc;
   std::vector<std::string> notes;  // the file's warnings, what was taken from where
 };
 
@@ -55,7 +58,8 @@ std::vector<ProductVariant> product_variants(const LuminaireSearch& search);
 
 // `job` with its search set to one variant: the type, rotation, product name, a flux
 // range of the dimming range x the rated output, the efficacy of rated lumens per
-// watt, and one output for every luminaire of a layout.
+// watt, and one output for every luminaire of a layout; the product's maintenance
+// factor and mount offset (suspension) replace the job's when it gives them.
 JobConfig job_for_variant(const JobConfig& job, const ProductVariant& variant);
 
 }  // namespace ilp

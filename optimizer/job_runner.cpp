@@ -250,10 +250,11 @@ namespace {
 // One search (with the search targets of `search_job`) and its verification, judged
 // against the real targets of `job`.
 JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, const JobConfig& search_job,
-                             const ProgressCallback& progress) {
+                             const ProgressCallback& progress, const SearchBounds& bounds) {
   const LightingModel& model = prepared.model;
   JobOutcome out;
-  out.search = search_layout(model, search_job, progress);
+  out.search = search_layout(model, search_job, progress, bounds);
+  if (out.search.beaten) return out;  // nothing to verify
   const LayoutEvaluation& best = out.search.best;
   out.luminaires = best.luminaires;
   out.predicted_lux = best.lux;
@@ -360,14 +361,20 @@ bool better_outcome(const JobOutcome& a, const JobOutcome& b, Objective objectiv
 
 }  // namespace
 
-JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress) {
+JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress,
+                          double power_to_beat_w) {
   JobConfig search_job = job;
   std::optional<JobOutcome> best;
   const int rounds = job.verification.method == VerificationMethod::none ? 1 : job.verification.rounds;
   int searches = 0, evaluations = 0;
+  SearchBounds bounds{.power_to_beat_w = power_to_beat_w};
   double search_seconds = 0.0, verify_seconds = 0.0;
   for (int round = 0; round < rounds; ++round) {
-    JobOutcome outcome = search_and_verify(prepared, job, search_job, progress);
+    JobOutcome outcome = search_and_verify(prepared, job, search_job, progress, bounds);
+    if (outcome.search.beaten) return outcome;
+    // The next round's targets are no easier: what this one found infeasible stays so.
+    for (const CountAttempt& a : outcome.search.attempts)
+      if (a.evaluations > 0 && !a.feasible) bounds.infeasible_counts.push_back(a.luminaires);
     ++searches;
     evaluations += outcome.search.evaluations;
     search_seconds += outcome.search.seconds;

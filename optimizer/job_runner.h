@@ -132,6 +132,10 @@ std::string luminaire_name(std::size_t j);
 // first). search.evaluations, search.seconds and verify_seconds add up all rounds;
 // search.attempts are the returned round's. `job`'s goals may differ from
 // prepared.job's in targets, as in a sweep; the goal surfaces must be the same.
-JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress = {});
+// power_to_beat_w (min_power): the power of a layout already found with every goal
+// met (another product's); counts that cannot draw less are not searched, and when
+// none can, the outcome's search.beaten is set and nothing is searched or verified.
+JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress = {},
+                          double power_to_beat_w = kNoPowerToBeat);
 
 }  // namespace ilp

@@ -8,9 +8,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/error.h"
@@ -55,13 +57,15 @@ class LayoutCoding {
     lo_ = model.grid.lower_m();
     hi_ = model.grid.upper_m();
     if (s.layout == LayoutFamily::free) {
-      // One output for all (a product): positions only; else a relative flux each.
-      per_luminaire_ = s.uniform_output ? 2 : 3;
+      // One output for all (a product) or a fixed package: positions only; else a
+      // relative flux each (a zero-width flux range would stall NLopt's local stage).
+      const bool own_flux = !s.uniform_output && s.flux_min_lm < s.flux_max_lm;
+      per_luminaire_ = own_flux ? 3 : 2;
       const double w_lo = s.flux_max_lm > 0.0 ? s.flux_min_lm / s.flux_max_lm : 0.0;
       for (int j = 0; j < n_; ++j) {
         lower_.insert(lower_.end(), {lo_.x(), lo_.y(), w_lo});
         upper_.insert(upper_.end(), {hi_.x(), hi_.y(), 1.0});
-        if (s.uniform_output) {
+        if (!own_flux) {
           lower_.pop_back();
           upper_.pop_back();
         }
@@ -75,7 +79,7 @@ class LayoutCoding {
         const int in_row = std::min(columns, n_ - r * columns);
         initial_.insert(initial_.end(), {lo_.x() + (c + 0.5) / in_row * (hi_.x() - lo_.x()),
                                          lo_.y() + (r + 0.5) / rows * (hi_.y() - lo_.y()), 1.0});
-        if (s.uniform_output) initial_.pop_back();
+        if (!own_flux) initial_.pop_back();
       }
       return;
     }
@@ -311,12 +315,13 @@ struct Stage {
 // wide margin, so that no count that could reach a target is skipped.
 constexpr double kBlendOvershootMargin = 1.25;
 
-// The least, over the average goals still short with the fixed light alone, of what
-// one luminaire at full output can add to the goal's average at the best candidate,
-// as a share of the shortfall (times the blend's margin): n luminaires reach at most
-// n times that. Infinite when no average goal is short.
-double best_average_gain_ratio(const LightingModel& model, const JobConfig& job) {
-  double ratio = std::numeric_limits<double>::infinity();
+// The least total flux (lm) that can bring every average goal up to its target: over
+// the average goals still short with the fixed light alone, the shortfall over what
+// one lumen adds to the goal's average at the best candidate (times the blend's
+// margin). 0 when no average goal is short; infinite when one is short and no
+// candidate lights it.
+double least_total_flux_lm(const LightingModel& model, const JobConfig& job) {
+  double flux_lm = 0.0;
   for (const GoalSetting& goal : job.goals) {
     if (goal.metric != GoalMetric::average) continue;
     const int a = find_goal_area(model, goal.name);
@@ -327,9 +332,42 @@ double best_average_gain_ratio(const LightingModel& model, const JobConfig& job)
     double best_gain = 0.0;
     for (Eigen::Index c = 0; c < model.candidate_lux_per_lm.cols(); ++c)
       best_gain = std::max(best_gain, area_average(area, model.candidate_lux_per_lm.col(c)));
-    ratio = std::min(ratio, kBlendOvershootMargin * best_gain * job.search->flux_max_lm / deficit);
+    const double gain = kBlendOvershootMargin * best_gain;
+    flux_lm = std::max(flux_lm, gain > 0.0 ? deficit / gain : std::numeric_limits<double>::infinity());
   }
-  return ratio;
+  return flux_lm;
+}
+
+// What the search knows of n luminaires before searching them: can they reach every
+// average target at full output, and the least electric power they can draw doing so
+// (each at least its minimum output, together at least least_total_flux_lm).
+struct CountBound {
+  bool reaches_averages = true;
+  double least_power_w = 0.0;
+};
+
+CountBound count_bound(const LuminaireSearch& s, int n, double least_flux_lm) {
+  const double most_flux_lm = n * s.flux_max_lm;
+  return {most_flux_lm >= least_flux_lm, std::max(n * s.flux_min_lm, least_flux_lm) / s.efficacy_lm_per_w};
+}
+
+std::vector<int> searched_counts(const JobConfig& job) {
+  const LuminaireSearch& s = *job.search;
+  std::vector<int> counts;
+  if (s.layout == LayoutFamily::array) {
+    counts.push_back(s.array_rows * s.array_columns);
+  } else {
+    const int most = job.constraints.max_luminaires ? std::min(s.count_max, *job.constraints.max_luminaires) : s.count_max;
+    for (int n = s.count_min; n <= most; ++n) counts.push_back(n);
+  }
+  if (counts.empty()) throw std::invalid_argument("no luminaire count is allowed by luminaires.count and constraints.max_luminaires");
+  return counts;
+}
+
+std::string watts(double w) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(1) << w << " W";
+  return out.str();
 }
 
 }  // namespace
@@ -384,33 +422,52 @@ LayoutEvaluation evaluate_layout(const LightingModel& model, const JobConfig& jo
   return LayoutEvaluator(model, job)(xy_m, relative_flux);
 }
 
-SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress) {
+double least_layout_power_w(const LightingModel& model, const JobConfig& job) {
+  if (!job.search) throw std::invalid_argument("the job places no luminaires (no luminaires.mounting_surface)");
+  const double least_flux_lm = least_total_flux_lm(model, job);
+  double least = kNoPowerToBeat;
+  for (const int n : searched_counts(job)) {
+    const CountBound bound = count_bound(*job.search, n, least_flux_lm);
+    if (bound.reaches_averages) least = std::min(least, bound.least_power_w);
+  }
+  return least;
+}
+
+SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress,
+                           const SearchBounds& bounds) {
   if (!job.search) throw std::invalid_argument("the job places no luminaires (no luminaires.mounting_surface)");
   const LuminaireSearch& s = *job.search;
   const OptimizerSettings& opt = job.optimizer;
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(opt.max_seconds));
-  std::vector<int> counts;
-  if (s.layout == LayoutFamily::array) {
-    counts.push_back(s.array_rows * s.array_columns);
-  } else {
-    const int most = job.constraints.max_luminaires ? std::min(s.count_max, *job.constraints.max_luminaires) : s.count_max;
-    for (int n = s.count_min; n <= most; ++n) counts.push_back(n);
-  }
-  if (counts.empty()) throw std::invalid_argument("no luminaire count is allowed by luminaires.count and constraints.max_luminaires");
+  const std::vector<int> counts = searched_counts(job);
 
   const Evaluator evaluate(model, job);
   SearchResult result;
   std::optional<LayoutEvaluation> best;
-  const double reach_per_luminaire = best_average_gain_ratio(model, job);
+  const double least_flux_lm = least_total_flux_lm(model, job);
   for (std::size_t attempt = 0; attempt < counts.size(); ++attempt) {
     const int n = counts[attempt];
-    // A count whose luminaires, all at full output where each lights the goal best,
-    // cannot reach an average target is not searched (the largest count always is).
-    if (job.objective == Objective::min_power && attempt + 1 < counts.size() && n * reach_per_luminaire < 1.0) {
+    const CountBound bound = count_bound(s, n, least_flux_lm);
+    std::string skip;
+    if (job.objective == Objective::min_power) {
+      // A count whose luminaires, all at full output where each lights the goal best,
+      // cannot reach an average target is not searched (the largest count always is,
+      // unless a power to beat is given) ...
+      const bool may_skip = attempt + 1 < counts.size() || bounds.power_to_beat_w < kNoPowerToBeat;
+      if (!bound.reaches_averages && may_skip) skip = "not searched: cannot reach an average target at full output";
+      if (skip.empty() && may_skip && std::ranges::find(bounds.infeasible_counts, n) != bounds.infeasible_counts.end())
+        skip = "not searched: infeasible as searched at the easier targets of an earlier round";
+      // ... nor one that cannot draw less than a layout already found (here, or given).
+      const double to_beat = std::min(bounds.power_to_beat_w, best && best->feasible ? best->power_w : kNoPowerToBeat);
+      if (skip.empty() && bound.least_power_w >= to_beat)
+        skip = "not searched: needs at least " + watts(bound.least_power_w) + ", no less than the " + watts(to_beat) +
+               " of a layout already found";
+    }
+    if (!skip.empty()) {
       CountAttempt skipped;
       skipped.luminaires = n;
-      skipped.global_stop = skipped.local_stop = "not searched: cannot reach an average target at full output";
+      skipped.global_stop = skipped.local_stop = skip;
       result.attempts.push_back(skipped);
       continue;
     }
@@ -497,7 +554,8 @@ SearchResult search_layout(const LightingModel& model, const JobConfig& job, con
     result.evaluations += evaluations;
     if (!best || better(found, *best, job.objective)) best = std::move(found);
   }
-  result.best = std::move(*best);
+  result.beaten = !best;
+  if (best) result.best = std::move(*best);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }

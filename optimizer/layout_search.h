@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -71,12 +72,40 @@ struct SearchResult {
   int evaluations = 0;
   double seconds = 0.0;
   bool time_limited = false;           // the time budget, not the evaluation budget, ended a stage
+  // No count was searched: none could draw less than the power to beat. `best` is
+  // then empty (no luminaires) and means nothing.
+  bool beaten = false;
+};
+
+// No power to beat: every count that can reach the average targets is searched.
+inline constexpr double kNoPowerToBeat = std::numeric_limits<double>::infinity();
+
+// What is known before a search that lets it leave counts out (min_power only).
+struct SearchBounds {
+  double power_to_beat_w = kNoPowerToBeat;  // a layout already found with every goal met (another product's)
+  // Counts a search of the same job at targets no harder than these found infeasible
+  // (an earlier verification round: its targets only rise): not searched again.
+  std::vector<int> infeasible_counts;
 };
 
 // Searches job.search's layout family for job.objective under job.goals and
 // job.constraints. Deterministic for job.optimizer.seed as long as the evaluation
 // budget, not max_seconds, ends each stage.
-SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress = {});
+//
+// min_power: a count is not searched when it cannot draw less than
+// bounds.power_to_beat_w (e.g. a layout of another product already found) nor less
+// than a feasible layout found at a smaller count: its least power is bounded from
+// below by each luminaire's minimum output and by the total flux the best-lit
+// candidate needs to reach each average target (with the blend's margin), so the skip
+// never loses a better layout. A count that cannot reach an average target even at
+// full output is not searched either, nor one of bounds.infeasible_counts, except
+// the largest count when no power to beat is given.
+SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress = {},
+                           const SearchBounds& bounds = {});
+
+// The least electric power (W) any searched count can draw while reaching every
+// average target: the bound above, over the counts. kNoPowerToBeat when none reaches.
+double least_layout_power_w(const LightingModel& model, const JobConfig& job);
 
 // Evaluates layouts as the search does, reusing its set-up (goal areas, a thread
 // arena) across calls: for measuring and for many evaluations of one model.

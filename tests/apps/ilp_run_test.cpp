@@ -292,6 +292,28 @@ TEST(IlpRunProducts, APhotometricProductIsPlacedAndBilled) {
   EXPECT_TRUE(OutputContains(json, "\"product\": \"downlight\""));
 }
 
+TEST(IlpRunProducts, AProductsOwnMountOffsetHangsItAndABadOneNamesTheKey) {
+  TempDir dir;
+  const std::string file = std::string(ILP_SOURCE_DIR) + "/data/photometry/erco_iku_downlight.ldt";
+  std::string text = read_file(product_job(dir, file));
+  const std::string at = "      dimming: [0.1, 1.0]\n";
+  ASSERT_NE(text.find(at), std::string::npos);
+  const std::string hung = text.replace(text.find(at), at.size(), at + "      mount_offset_m: 0.4\n");
+  const std::string job = dir.write("job.yaml", hung);
+  const RunResult r = run_ilp(dir, {"run", job, "--out", dir.file("out"), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const std::string json = read_file((fs::path(dir.file("out")) / "result.json").string());
+  EXPECT_TRUE(OutputContains(json, "\"z_m\": 2.1")) << "the ceiling at 2.5 m, the product 0.4 m below it";
+
+  std::string broken = hung;
+  broken.replace(broken.find("mount_offset_m: 0.4"), 19, "mount_offset_m: -1.");
+  const RunResult bad = run_ilp(dir, {"run", dir.write("bad.yaml", broken), "--out", dir.file("bad_out"), "-q"});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_TRUE(OutputContains(bad.err, "bad.yaml:")) << bad.err;
+  EXPECT_TRUE(OutputContains(bad.err, "mount_offset_m")) << bad.err;
+  EXPECT_FALSE(fs::exists(dir.file("bad_out")));
+}
+
 TEST(IlpRunProducts, EveryBadPhotometricFileExitsOneNamingItAndWritesNothing) {
   const std::string header = "IESNA:LM-63-2002\n[TEST] t\nTILT=NONE\n";
   const std::string counts = "1 1000 1 3 1 1 2 0.3 0.3 0\n1 1 50\n";

@@ -156,6 +156,24 @@ TEST(ProductVariants, RotationsWattsAndFluxComeFromTheFileUnlessGiven) {
   EXPECT_NEAR(j.search->flux_max_lm / j.search->efficacy_lm_per_w, v[2].power_w, 1e-9);
 }
 
+TEST(ProductVariants, AProductsMaintenanceFactorAndMountOffsetReplaceTheJobsOnlyWhenGiven) {
+  ProductSetting clean{.name = "clean", .photometry_path = kData + "erco_iku_downlight.ldt"};
+  ProductSetting dusty = clean;
+  dusty.name = "dusty";
+  dusty.maintenance_factor = 0.67;
+  dusty.mount_offset_m = 0.6;
+  const std::vector<ProductVariant> v = product_variants(search_with({clean, dusty}));
+  ASSERT_EQ(v.size(), 2u);
+  JobConfig job;
+  job.search.emplace();
+  job.maintenance_factor = 0.8;
+  EXPECT_EQ(job_for_variant(job, v[0]).maintenance_factor, 0.8) << "no factor of its own: the job's";
+  EXPECT_EQ(job_for_variant(job, v[1]).maintenance_factor, 0.67) << "the product's own";
+  job.search->mount_offset_m = 0.05;
+  EXPECT_EQ(job_for_variant(job, v[0]).search->mount_offset_m, 0.05);
+  EXPECT_EQ(job_for_variant(job, v[1]).search->mount_offset_m, 0.6) << "hung on its own suspension";
+}
+
 TEST(ProductVariants, AFileThatCannotBeReadNamesTheConfigAndTheFile) {
   const std::string bad = ::testing::TempDir() + "/ilp_truncated.ies";
   std::ofstream(bad) << "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3 1 1 2 0.5 0.5 0\n";

@@ -60,6 +60,75 @@ TEST(LayoutSearch, OneLuminaireLandsOverTheTargetCentre) {
   EXPECT_NEAR(outcome.goals[0].verified->value, 200.0, 1e-6) << "the flux correction makes the verified value exact";
 }
 
+// A fixed 3000 lm package over the mat: the bound on power is exact (n x 30 W), so once
+// one count meets the goal, no larger count is searched, and a power to beat that no
+// count can undercut leaves the whole search undone.
+const char* kFixedPackage =
+    "  size_m: 0.3\n  flux_lm: 3000\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+    "  mount_offset_m: 0.02\n  candidate_spacing_m: 0.5\n  count: [1, 4]\n";
+
+TEST(LayoutSearch, CountsThatCannotDrawLessThanALayoutFoundAreNotSearched) {
+  TempDir dir;
+  const JobConfig job = mat_job(dir, 100.0, "0", kFixedPackage);
+  ASSERT_EQ(job.search->flux_min_lm, job.search->flux_max_lm);
+  const PreparedJob prepared = prepare_job(job);
+  const SearchResult all = search_layout(prepared.model, job);
+  ASSERT_FALSE(all.beaten);
+  ASSERT_TRUE(all.best.feasible);
+  ASSERT_EQ(all.best.luminaires.size(), 1u) << "one 3000 lm panel gives the mat about 490 lx";
+  ASSERT_EQ(all.attempts.size(), 4u);
+  EXPECT_GT(all.attempts[0].evaluations, 0);
+  for (std::size_t a = 1; a < 4; ++a) {
+    EXPECT_EQ(all.attempts[a].evaluations, 0) << all.attempts[a].luminaires;
+    EXPECT_NE(all.attempts[a].global_stop.find("needs at least"), std::string::npos) << all.attempts[a].global_stop;
+  }
+  EXPECT_NEAR(least_layout_power_w(prepared.model, job), 30.0, 1e-9);
+
+  const SearchResult beaten = search_layout(prepared.model, job, {}, {.power_to_beat_w = 29.9});
+  EXPECT_TRUE(beaten.beaten);
+  EXPECT_EQ(beaten.evaluations, 0);
+  const JobOutcome outcome = solve_prepared(prepared, job, {}, 29.9);
+  EXPECT_TRUE(outcome.search.beaten);
+  EXPECT_EQ(outcome.verification.method, "none") << "nothing searched, nothing verified";
+
+  const SearchResult not_beaten = search_layout(prepared.model, job, {}, {.power_to_beat_w = 30.1});
+  ASSERT_FALSE(not_beaten.beaten);
+  EXPECT_EQ(not_beaten.best.power_w, all.best.power_w);
+}
+
+TEST(LayoutSearch, CountsFoundInfeasibleAtEasierTargetsAreNotSearchedAgain) {
+  TempDir dir;
+  const JobConfig job = mat_job(dir, 100.0, "0", kFixedPackage);
+  const PreparedJob prepared = prepare_job(job);
+  const SearchResult again = search_layout(prepared.model, job, {}, {.infeasible_counts = {1, 2}});
+  ASSERT_EQ(again.attempts.size(), 4u);
+  EXPECT_EQ(again.attempts[0].evaluations, 0);
+  EXPECT_NE(again.attempts[0].global_stop.find("earlier round"), std::string::npos) << again.attempts[0].global_stop;
+  EXPECT_EQ(again.attempts[1].evaluations, 0);
+  EXPECT_GT(again.attempts[2].evaluations, 0) << "3 panels: searched";
+  ASSERT_TRUE(again.best.feasible);
+  EXPECT_EQ(again.best.luminaires.size(), 3u);
+  // The largest count is searched even when listed, unless another layout is to be beaten.
+  const SearchResult last = search_layout(prepared.model, job, {}, {.infeasible_counts = {1, 2, 3, 4}});
+  EXPECT_GT(last.attempts[3].evaluations, 0);
+  EXPECT_FALSE(last.beaten);
+}
+
+TEST(LayoutSearch, TheBoundOnPowerNeverExceedsThePowerFound) {
+  // Dimmable panels in a grey room: the bound comes from the best candidate's gain.
+  TempDir dir;
+  const JobConfig job = mat_job(dir, 300.0, "0.5",
+                                "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n"
+                                "  mounting_surface: ceiling\n  mount_offset_m: 0.02\n  candidate_spacing_m: 0.5\n"
+                                "  count: [1, 3]\n");
+  const PreparedJob prepared = prepare_job(job);
+  const SearchResult found = search_layout(prepared.model, job);
+  ASSERT_TRUE(found.best.feasible);
+  const double bound_w = least_layout_power_w(prepared.model, job);
+  EXPECT_GT(bound_w, 0.5 * found.best.power_w) << "a bound worth having";
+  EXPECT_LE(bound_w, found.best.power_w);
+}
+
 TEST(LayoutSearch, DoublingTheTargetDoublesTheFlux) {
   TempDir dir;
   const JobConfig job = mat_job(dir, 200.0);
