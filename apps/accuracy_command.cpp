@@ -9,6 +9,8 @@
 #include "apps/cli_support.h"
 #include "apps/commands.h"
 #include "core/accuracy_study.h"
+#include "core/calc_grid.h"
+#include "core/ray_caster.h"
 #include "core/config.h"
 #include "core/error.h"
 #include "core/job.h"
@@ -35,13 +37,19 @@ void write_csv(const std::string& path, const AccuracyStudy& study) {
     out << std::setprecision(6);
     out << "strategy,indirect,sample_fraction,k,sample_patches,rays_per_row,sample_seed,build_seconds,"
            "evaluation_microseconds,rms_rel_error_total,max_rel_error_total,rms_rel_error_indirect,"
-           "max_rel_error_indirect,predicted_rms_rel_error_total,goal_fallback_patches,condition_estimate\n";
-    for (const AccuracyRow& r : study.rows)
+           "max_rel_error_indirect,predicted_rms_rel_error_total,goal_fallback_patches,condition_estimate";
+    for (const std::string& g : study.grids)
+      out << ',' << csv_field("grid." + g + ".rms_rel_error_total") << ',' << csv_field("grid." + g + ".max_rel_error_total");
+    out << '\n';
+    for (const AccuracyRow& r : study.rows) {
       out << to_string(r.strategy) << ',' << to_string(r.method) << ',' << r.sample_fraction << ',' << r.sample_size
           << ',' << r.sample_patches << ',' << r.rays_per_row << ',' << r.sample_seed << ',' << r.build_seconds << ','
           << r.evaluation_microseconds << ',' << r.error.rms_relative_total << ',' << r.error.max_relative_total
           << ',' << r.error.rms_relative_indirect << ',' << r.error.max_relative_indirect << ','
-          << r.predicted_rms_error_total << ',' << r.goal_fallback_rows << ',' << r.condition_estimate << '\n';
+          << r.predicted_rms_error_total << ',' << r.goal_fallback_rows << ',' << r.condition_estimate;
+      for (const PointError& e : r.grids) out << ',' << e.rms_relative_total << ',' << e.max_relative_total;
+      out << '\n';
+    }
   });
 }
 
@@ -49,6 +57,7 @@ void write_csv(const std::string& path, const AccuracyStudy& study) {
 struct Point {
   double fraction = 0.0, build_seconds = 0.0, eval_us = 0.0, rms_total = 0.0, max_total = 0.0, rms_indirect = 0.0,
          predicted = 0.0;
+  std::vector<PointError> grids;  // per grid: medians of RMS and max
   int k = 0;
   std::size_t runs = 0;
 };
@@ -76,6 +85,9 @@ std::map<std::string, std::vector<Point>> summarise(const AccuracyStudy& study) 
       p.rms_total = med([](const AccuracyRow& r) { return r.error.rms_relative_total; });
       p.max_total = med([](const AccuracyRow& r) { return r.error.max_relative_total; });
       p.rms_indirect = med([](const AccuracyRow& r) { return r.error.rms_relative_indirect; });
+      for (std::size_t g = 0; g < rows.front()->grids.size(); ++g)
+        p.grids.push_back({med([&](const AccuracyRow& r) { return r.grids[g].rms_relative_total; }),
+                           med([&](const AccuracyRow& r) { return r.grids[g].max_relative_total; })});
       out[name].push_back(p);
     }
   return out;
@@ -104,6 +116,34 @@ void write_plot(const std::string& path, const std::map<std::string, std::vector
                       true};
   const std::string svg = render_svg_plot(axes, series);
   write_file_atomically(path, [&](std::ostream& out) { out << svg; });
+}
+
+// Every grid of the job laid on the scene, its points to measure.
+std::vector<AccuracyGrid> lay_grids(const Scene& scene, const JobConfig& job) {
+  if (job.grids.empty()) return {};
+  const RayCaster caster(scene, job.form_factors.threads);
+  std::vector<AccuracyGrid> out;
+  for (const CalcGridSetting& setting : job.grids) {
+    CalcGrid grid = make_calc_grid(scene, caster, setting);
+    std::cerr << "grid '" << grid.name << "': " << grid.points.size() << " points\n";
+    out.push_back({grid.name, std::move(grid.points)});
+  }
+  return out;
+}
+
+// Per series, sample size and grid: the medians of the points' RMS and max relative errors.
+void print_grid_errors(const std::map<std::string, std::vector<Point>>& summary, const std::vector<std::string>& grids) {
+  if (grids.empty()) return;
+  std::cout << "at grid points (each point weighted equally; reference: each point's gather over the exact "
+               "radiosity)\n"
+            << std::left << std::setw(40) << "series" << std::setw(20) << "grid" << std::right << std::setw(8) << "k"
+            << std::setw(11) << "RMS tot %" << std::setw(11) << "max tot %" << "\n";
+  for (const auto& [name, points] : summary)
+    for (const Point& p : points)
+      for (std::size_t g = 0; g < grids.size(); ++g)
+        std::cout << std::left << std::setw(40) << name << std::setw(20) << grids[g] << std::right << std::setw(8) << p.k
+                  << std::fixed << std::setprecision(2) << std::setw(11) << 100.0 * p.grids[g].rms_relative_total
+                  << std::setw(11) << 100.0 * p.grids[g].max_relative_total << "\n";
 }
 
 }  // namespace
@@ -138,16 +178,18 @@ int run_accuracy(const AccuracyArgs& args) {
   options.base.direct_light = job.direct_light;
   options.base.sample_seed = job.sample.seed;
   const std::vector<std::string>& goal_surfaces = args.goals.empty() ? job.report_surfaces : args.goals;
-  if (goal_surfaces.empty()) throw ConfigError(args.config + ": no goal surfaces (give --goals or report.surfaces)");
+  if (goal_surfaces.empty() && job.grids.empty())
+    throw ConfigError(args.config + ": no goal surfaces (give --goals or report.surfaces) and no grids");
   std::vector<int> goals;
   try {
-    goals = scene.patches_of(goal_surfaces);
+    if (!goal_surfaces.empty()) goals = scene.patches_of(goal_surfaces);
   } catch (const std::invalid_argument& e) {
     throw ConfigError(args.config + ": goal " + e.what());
   }
+  const std::vector<AccuracyGrid> grids = lay_grids(scene, job);
 
   OutputSet set(args.out_dir, {"accuracy.csv", "accuracy.svg"});  // one set: the folder never mixes two studies
-  const AccuracyStudy study = run_accuracy_study(scene, goals, options, make_progress(args.quiet));
+  const AccuracyStudy study = run_accuracy_study(scene, goals, grids, options, make_progress(args.quiet));
   write_csv(set.staging_path("accuracy.csv"), study);
   set.staged("accuracy.csv");
   const auto summary = summarise(study);
@@ -160,7 +202,7 @@ int run_accuracy(const AccuracyArgs& args) {
   const std::string csv = written[0], svg = written[1];
 
   std::cout << "Accuracy of the sample-based operator: " << study.patches << " patches, " << study.population
-            << " reflecting, " << study.goal_patches << " goal patches\n"
+            << " reflecting, " << study.goal_patches << " goal patches, " << study.goal_points << " grid points\n"
             << "reference: exact solve with " << options.reference_rays << " rays per patch (seed "
             << options.reference_seed << ") in " << std::fixed << std::setprecision(2) << reference_seconds << " s\n";
   for (const StudyPrediction& sp : study.predictions) {
@@ -170,7 +212,8 @@ int run_accuracy(const AccuracyArgs& args) {
               << std::setprecision(2) << 100.0 * p.rms_relative_spread_total << " % RMS (total), "
               << 100.0 * p.rms_relative_spread_indirect << " % (indirect) in " << p.seconds << " s\n";
   }
-  std::cout << "medians over seeds; errors are area-weighted RMS and maximum over goal patches, relative\n";
+  std::cout << "medians over seeds; errors are area-weighted RMS and maximum over goal patches, relative"
+            << (goals.empty() ? " (no goal patches: -nan)" : "") << "\n";
   std::cout << std::left << std::setw(40) << "series" << std::right << std::setw(8) << "k %" << std::setw(8) << "k"
             << std::setw(10) << "build s" << std::setw(10) << "eval us" << std::setw(11) << "RMS tot %"
             << std::setw(11) << "max tot %" << std::setw(11) << "RMS ind %" << std::setw(11) << "predict %" << "\n";
@@ -181,6 +224,7 @@ int run_accuracy(const AccuracyArgs& args) {
                 << p.build_seconds << std::setprecision(2) << std::setw(10) << p.eval_us << std::setw(11)
                 << 100.0 * p.rms_total << std::setw(11) << 100.0 * p.max_total << std::setw(11)
                 << 100.0 * p.rms_indirect << std::setw(11) << 100.0 * p.predicted << "\n";
+  print_grid_errors(summary, study.grids);
   std::cout << "wrote " << csv << " and " << svg << "\n";
   return 0;
 }

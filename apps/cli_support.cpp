@@ -1,6 +1,7 @@
 #include "apps/cli_support.h"
 
 #include <chrono>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -53,6 +54,12 @@ std::string csv_field(const std::string& text) {
   std::string out = "\"";
   for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
+}
+
+std::string output_directory(const JobConfig& job, const std::string& override_dir) {
+  if (!override_dir.empty()) return override_dir;
+  if (!job.output.directory.empty()) return job.output.directory;
+  return (std::filesystem::path("results") / std::filesystem::path(job.path).stem()).string();
 }
 
 }  // namespace ilp::cli

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "core/config.h"
 #include "core/progress.h"
 
 namespace ilp::cli {
@@ -13,5 +14,9 @@ ProgressCallback make_progress(bool quiet);
 
 // A CSV field: quoted (quotes doubled) when it holds a comma, quote or line break.
 std::string csv_field(const std::string& text);
+
+// The folder a job's files go to: `override_dir` if given, else output.directory, else
+// results/<config stem>.
+std::string output_directory(const JobConfig& job, const std::string& override_dir);
 
 }  // namespace ilp::cli

@@ -10,6 +10,7 @@ namespace ilp::cli {
 struct SolveArgs {
   std::string config;
   std::string csv;            // per-patch results; asks for the full-scene solution
+  std::string out_dir;        // grid.csv and isolux plans of the job's grids; "": <output directory>/solve
   std::string method;         // "", "sample" or "exact": overrides solver.method
   int threads = -1;           // -1: the job's solver.threads
   std::string max_memory;     // --max-memory: a memory budget (e.g. 4G) below the machine's available memory

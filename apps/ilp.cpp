@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
   solve->add_option("config", solve_args.config, "job file (YAML)")->required();
   solve->add_option("--csv", solve_args.csv,
                     "also write per-patch results (centroid, area, direct and total lux) for every patch to this CSV");
+  solve->add_option("--out", solve_args.out_dir,
+                    "folder for the calculation grids' files: grid.csv, isolux_<grid>.svg and .png (default: the job's "
+                    "output folder + /solve)");
   solve->add_option("--method", solve_args.method, "sample or exact (default: solver.method of the job, else sample)")
       ->check(CLI::IsMember({"sample", "exact"}));
   solve->add_option("--threads", solve_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")

@@ -12,6 +12,7 @@
 
 #include "apps/cli_support.h"
 #include "apps/commands.h"
+#include "apps/grid_outputs.h"
 #include "core/config.h"
 #include "core/cost_model.h"
 #include "optimizer/goal_metrics.h"
@@ -38,12 +39,6 @@ JobConfig load_for_run(const std::string& path, int threads, const std::string& 
   return job;
 }
 
-std::string output_directory(const JobConfig& job, const std::string& override_dir) {
-  if (!override_dir.empty()) return override_dir;
-  if (!job.output.directory.empty()) return job.output.directory;
-  return (std::filesystem::path("results") / std::filesystem::path(job.path).stem()).string();
-}
-
 std::string cache_folder(const std::string& requested, bool disabled) {
   if (disabled) return {};
   return requested.empty() ? default_cache_dir() : requested;
@@ -64,11 +59,6 @@ PreparedJob prepare_and_log(const JobConfig& job, const ProgressCallback& progre
 }
 
 std::string unit_of(GoalMetric metric) { return std::string(metric_rule(metric).unit); }
-
-GridValues grid_values(const GoalArea& area, const Eigen::VectorXd& lux, double factor) {
-  const AreaStatistics s = area_statistics(area, lux);
-  return {s.average_lux * factor, s.min_lux * factor, s.max_lux * factor, s.uniformity};
-}
 
 // Every variant of the job (each product at each rotation) prepared, its notes logged.
 std::vector<PreparedJob> prepare_variants(const std::vector<JobVariant>& variants, const ProgressCallback& progress,
@@ -167,8 +157,31 @@ std::vector<BillLine> bill_of_materials(const JobVariant& variant, const JobOutc
   return {line};
 }
 
+// Every grid of the job with its light: verified where the job was verified (after the
+// flux correction), else predicted.
+std::vector<GridResult> run_grid_results(const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome) {
+  const LightingModel& model = prepared.model;
+  const Verification& v = outcome.verification;
+  const bool verified = v.method != "none";
+  const auto patches = static_cast<Eigen::Index>(model.goal_patches.size());
+  std::vector<GridResult> out;
+  for (std::size_t g = 0; g < model.grids.size(); ++g) {
+    const CalcGrid& grid = model.grids[g];
+    const Eigen::Index first = model.grid_first_row[g], n = static_cast<Eigen::Index>(grid.points.size());
+    GridResult r{&grid, {}};
+    r.light.total_initial_lux = verified ? v.point_lux.segment(first - patches, n) : outcome.predicted_lux.segment(first, n);
+    r.light.direct_initial_lux =
+        verified ? v.point_direct_lux.segment(first - patches, n) : outcome.predicted_direct_lux.segment(first, n);
+    r.light.maintenance_factor = job.maintenance_factor;
+    r.light.target_lux = grid_target_lux(job, grid.name);
+    r.light.basis = verified ? "verified, " + v.method : "predicted";
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
 ResultRecord make_record(const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
-                         const std::vector<std::pair<std::string, double>>& timings) {
+                         const std::vector<GridResult>& grids, const std::vector<std::pair<std::string, double>>& timings) {
   ResultRecord r;
   r.program_version = kVersion;
   r.config = job.path;
@@ -203,20 +216,7 @@ ResultRecord make_record(const PreparedJob& prepared, const JobConfig& job, cons
   r.floor_area_source = outcome.floor_area_source;
   r.power_density_w_per_m2_per_100_lx = outcome.power_density_w_per_m2_per_100_lx;
   r.maintenance_factor = job.maintenance_factor;
-  {
-    const LightingModel& model = prepared.model;
-    const bool verified = outcome.verification.method != "none";
-    const Eigen::VectorXd lux = verified ? verified_goal_lux(model, outcome.verification) : outcome.predicted_lux;
-    for (const GoalArea& area : model.areas) {
-      if (area.grid < 0) continue;
-      const CalcGrid& grid = model.grids[static_cast<std::size_t>(area.grid)];
-      if (std::any_of(r.grids.begin(), r.grids.end(), [&](const GridRecord& g) { return g.name == grid.name; })) continue;
-      GridRecord rec{grid.name, static_cast<int>(grid.points.size()), grid.area_m2, grid.spacing_m,
-                     static_cast<int>(grid.inside_solid), verified, grid_values(area, lux, 1.0),
-                     grid_values(area, lux, job.maintenance_factor)};
-      r.grids.push_back(rec);
-    }
-  }
+  for (const GridResult& g : grids) r.grids.push_back(grid_record(g, outcome.verification.method != "none"));
   r.fixed_flux_lm = outcome.fixed_flux_lm;
   r.feasible = outcome.feasible;
   r.all_met = outcome.all_met;
@@ -275,61 +275,119 @@ void write_illuminance_csv(const std::string& path, const PreparedJob& prepared,
   });
 }
 
-// result.json, illuminance.csv, plan.svg and scene.ply as the job's output.formats asks.
-// Written as one set (OutputSet): the folder holds the previous run's files or these,
-// never a mix; a format left out removes the previous run's file of that format.
-std::vector<std::string> write_outputs(OutputSet& set, const PreparedJob& prepared, const JobConfig& job,
-                                       const JobOutcome& outcome, const ResultRecord& record) {
-  const Scene& scene = prepared.loaded.scene;
-  if (job.output.json) {
-    write_result_json(set.staging_path("result.json"), record);
-    set.staged("result.json");
-  }
-  if (job.output.csv) {
-    write_illuminance_csv(set.staging_path("illuminance.csv"), prepared, outcome);
-    set.staged("illuminance.csv");
-  }
-  // Pictures show the verified illuminance where there is one, else the predicted.
-  const bool verified = outcome.verification.method != "none";
-  // The plan and the PLY show the goal patches. TODO(isolux branch): per grid, grid.csv and
-  // the isolux plan (output/grid_csv.*, output/isolux_plan.*) from prepared.model.grids,
-  // outcome.predicted_lux / verified_goal_lux rows model.grid_first_row[g] onwards, and
-  // outcome.verification.point_direct_lux for the direct column.
+// What `ilp run` writes its files from.
+struct RunProducts {
+  const PreparedJob& prepared;
+  const JobConfig& job;
+  const JobOutcome& outcome;
+  const ResultRecord& record;
+  const std::vector<GridResult>& grids;
+};
+
+// The goal patches' illuminance the pictures show: verified where there is one, else predicted.
+Eigen::VectorXd picture_goal_lux(const PreparedJob& prepared, const JobOutcome& outcome) {
   Eigen::VectorXd goal_lux = outcome.predicted_lux.head(static_cast<Eigen::Index>(prepared.model.goal_patches.size()));
-  if (verified) {
-    const Eigen::VectorXd per_patch = verified_lux_per_patch(scene, outcome);
-    for (std::size_t r = 0; r < prepared.model.goal_patches.size(); ++r)
-      goal_lux[static_cast<Eigen::Index>(r)] = per_patch[prepared.model.goal_patches[r]];
+  if (outcome.verification.method == "none") return goal_lux;
+  const Eigen::VectorXd per_patch = verified_lux_per_patch(prepared.loaded.scene, outcome);
+  for (std::size_t r = 0; r < prepared.model.goal_patches.size(); ++r)
+    goal_lux[static_cast<Eigen::Index>(r)] = per_patch[prepared.model.goal_patches[r]];
+  return goal_lux;
+}
+
+void stage_result_json(OutputSet& set, const RunProducts& p) {
+  write_result_json(set.staging_path("result.json"), p.record);
+  set.staged("result.json");
+}
+
+void stage_illuminance_csv(OutputSet& set, const RunProducts& p) {
+  write_illuminance_csv(set.staging_path("illuminance.csv"), p.prepared, p.outcome);
+  set.staged("illuminance.csv");
+}
+
+void stage_plan_svg(OutputSet& set, const RunProducts& p) {
+  const bool verified = p.outcome.verification.method != "none";
+  PlanView view;
+  std::ostringstream title;
+  title << std::fixed << std::setprecision(1) << std::filesystem::path(p.job.path).stem().string() << ": "
+        << p.outcome.luminaires.size() << " luminaires, " << p.outcome.power_w << " W, "
+        << (verified ? "verified" : "predicted") << " illuminance";
+  view.title = title.str();
+  view.goal_patches = p.prepared.model.goal_patches;
+  view.goal_lux = picture_goal_lux(p.prepared, p.outcome);
+  view.outline_patches = p.prepared.model.grid.mounting_patches();
+  const LuminaireSearch& s = *p.job.search;
+  for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j) {
+    PlanLuminaire l{luminaire_name(j), p.outcome.luminaires[j].position_m, s.type.length_m, p.outcome.luminaires[j].flux_lm,
+                    {}, s.product};
+    for (const Eigen::Vector3d& v : luminaire_outline_m(s.type, {l.position_m, s.rotation_deg})) l.outline_m.push_back(v.head<2>());
+    view.luminaires.push_back(std::move(l));
   }
-  const ColourScale scale = colour_scale_for(goal_lux);  // the plan's and the PLY's, so both read the same
-  if (job.output.svg) {
-    PlanView view;
-    std::ostringstream title;
-    title << std::fixed << std::setprecision(1) << std::filesystem::path(job.path).stem().string() << ": "
-          << outcome.luminaires.size() << " luminaires, " << outcome.power_w << " W, " << (verified ? "verified" : "predicted")
-          << " illuminance";
-    view.title = title.str();
-    view.goal_patches = prepared.model.goal_patches;
-    view.goal_lux = goal_lux;
-    view.outline_patches = prepared.model.grid.mounting_patches();
-    const LuminaireSearch& s = *job.search;
-    for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
-      PlanLuminaire l{luminaire_name(j), outcome.luminaires[j].position_m, s.type.length_m, outcome.luminaires[j].flux_lm,
-                      {}, s.product};
-      for (const Eigen::Vector3d& v : luminaire_outline_m(s.type, {l.position_m, s.rotation_deg})) l.outline_m.push_back(v.head<2>());
-      view.luminaires.push_back(std::move(l));
-    }
-    const std::string svg = render_plan_svg(scene, view);
-    set.write("plan.svg", [&](std::ostream& out) { out << svg; });
-  }
-  if (job.output.ply) {
-    Eigen::VectorXd lux = verified_lux_per_patch(scene, outcome);
-    if (!verified)
-      for (std::size_t r = 0; r < prepared.model.goal_patches.size(); ++r)
-        lux[prepared.model.goal_patches[r]] = outcome.predicted_lux[static_cast<Eigen::Index>(r)];
-    write_illuminance_ply(set.staging_path("scene.ply"), scene, lux, scale);
-    set.staged("scene.ply");
-  }
+  const std::string svg = render_plan_svg(p.prepared.loaded.scene, view);
+  set.write("plan.svg", [&](std::ostream& out) { out << svg; });
+}
+
+// The PLY's colour scale is the plan's (colour_scale_for over the same values), so both read the same.
+void stage_scene_ply(OutputSet& set, const RunProducts& p) {
+  const Scene& scene = p.prepared.loaded.scene;
+  Eigen::VectorXd lux = verified_lux_per_patch(scene, p.outcome);
+  if (p.outcome.verification.method == "none")
+    for (std::size_t r = 0; r < p.prepared.model.goal_patches.size(); ++r)
+      lux[p.prepared.model.goal_patches[r]] = p.outcome.predicted_lux[static_cast<Eigen::Index>(r)];
+  write_illuminance_ply(set.staging_path("scene.ply"), scene, lux, colour_scale_for(picture_goal_lux(p.prepared, p.outcome)));
+  set.staged("scene.ply");
+}
+
+// The layout found (L1, L2, ... as the report names them) and the luminaires placed in the config.
+std::vector<DrawnLuminaire> run_luminaires(const RunProducts& p) {
+  const LuminaireSearch& s = *p.job.search;
+  std::vector<DrawnLuminaire> out = scene_luminaires(p.prepared.loaded.scene);
+  for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j)
+    out.push_back({luminaire_name(j), s.product, s.type, {p.outcome.luminaires[j].position_m, s.rotation_deg}});
+  return out;
+}
+
+void stage_run_grid_csv(OutputSet& set, const RunProducts& p) { stage_grid_csv(set, p.grids); }
+void stage_isolux_svg(OutputSet& set, const RunProducts& p) { stage_isolux(set, p.grids, run_luminaires(p), ".svg"); }
+void stage_isolux_png(OutputSet& set, const RunProducts& p) { stage_isolux(set, p.grids, run_luminaires(p), ".png"); }
+
+std::vector<std::string> named(const char* name) { return {name}; }
+
+// One output format of `ilp run`: its flag in output.formats, every file it may write
+// for the job (the set owns them all, so a format left out removes the previous run's
+// file) and its writer.
+struct RunOutput {
+  bool OutputSettings::*flag;
+  std::function<std::vector<std::string>(const JobConfig&)> names;
+  void (*write)(OutputSet&, const RunProducts&);
+};
+
+const std::vector<RunOutput>& run_outputs() {
+  static const std::vector<RunOutput> outputs{
+      {&OutputSettings::json, [](const JobConfig&) { return named("result.json"); }, stage_result_json},
+      {&OutputSettings::csv, [](const JobConfig&) { return named("illuminance.csv"); }, stage_illuminance_csv},
+      {&OutputSettings::svg, [](const JobConfig&) { return named("plan.svg"); }, stage_plan_svg},
+      {&OutputSettings::ply, [](const JobConfig&) { return named("scene.ply"); }, stage_scene_ply},
+      {&OutputSettings::grid_csv, grid_csv_names, stage_run_grid_csv},
+      {&OutputSettings::isolux_svg, [](const JobConfig& j) { return isolux_names(j, ".svg"); }, stage_isolux_svg},
+      {&OutputSettings::isolux_png, [](const JobConfig& j) { return isolux_names(j, ".png"); }, stage_isolux_png},
+  };
+  return outputs;
+}
+
+// Every file `ilp run` may write for the job (all formats), or those output.formats selects.
+std::vector<std::string> run_output_names(const JobConfig& job, bool selected_only) {
+  std::vector<std::string> out;
+  for (const RunOutput& o : run_outputs())
+    if (!selected_only || job.output.*o.flag)
+      for (const std::string& name : o.names(job)) out.push_back(name);
+  return out;
+}
+
+// The formats output.formats selects, written as one set (OutputSet): the folder holds
+// the previous run's files or these, never a mix.
+std::vector<std::string> write_outputs(OutputSet& set, const RunProducts& products) {
+  for (const RunOutput& o : run_outputs())
+    if (products.job.output.*o.flag) o.write(set, products);
   return set.commit();
 }
 
@@ -370,7 +428,7 @@ int run_job(const RunArgs& args) {
   const JobConfig loaded = load_for_run(args.config, args.threads, args.max_memory);
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.
-  OutputSet set(output_directory(loaded, args.out_dir), {"result.json", "illuminance.csv", "plan.svg", "scene.ply"});
+  OutputSet set(output_directory(loaded, args.out_dir), run_output_names(loaded, false));
   const std::vector<JobVariant> variants = job_variants(loaded);
   const std::vector<PreparedJob> all = prepare_variants(variants, progress, cache_folder(args.cache_dir, args.no_cache));
   const Chosen chosen = solve_variants(all, variants, [](JobConfig&) {}, progress);
@@ -391,11 +449,14 @@ int run_job(const RunArgs& args) {
       {"search", chosen.search_seconds},
       {"verification", chosen.verify_seconds},
       {"total", seconds_since(start)}};
-  ResultRecord record = make_record(prepared, job, outcome, timings);
+  const std::vector<GridResult> grids = run_grid_results(prepared, job, outcome);
+  ResultRecord record = make_record(prepared, job, outcome, grids, timings);
   record.bill_of_materials = bill_of_materials(variants[chosen.variant], outcome);
   record.variants = chosen.tried;
+  record.files = run_output_names(job, true);
   print_result(std::cout, record);
-  for (const std::string& file : write_outputs(set, prepared, job, outcome, record)) std::cout << "wrote " << file << "\n";
+  for (const std::string& file : write_outputs(set, {prepared, job, outcome, record, grids}))
+    std::cout << "wrote " << file << "\n";
   return outcome.all_met ? 0 : 2;
 }
 

@@ -1,20 +1,24 @@
 // ilp solve: illuminance per surface for the job's luminaires as placed, through the
 // sample-based operator (default) or the exact reference.
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 
 #include "apps/cli_support.h"
 #include "apps/commands.h"
+#include "apps/grid_outputs.h"
 #include "core/config.h"
 #include "core/cost_model.h"
 #include "core/exact_solver.h"
 #include "core/job.h"
+#include "core/point_gather.h"
 #include "core/operator_setup.h"
 #include "core/sample_operator.h"
 #include "optimizer/illuminance_metrics.h"
 #include "output/atomic_file.h"
+#include "output/result_record.h"
 
 namespace ilp::cli {
 namespace {
@@ -45,8 +49,57 @@ void print_table(const Scene& scene, const std::vector<int>& patches, const Eige
   print_illuminance_table(std::cout, surface_illuminance_table(scene, all, surfaces));
 }
 
-int solve_with_sample(const JobConfig& job, const JobScene& loaded, bool full_scene, const std::string& csv,
-                      bool quiet) {
+// The job's calculation grids laid on the scene, and their points in one list (grid after grid).
+struct SolveGrids {
+  std::vector<CalcGrid> grids;
+  std::vector<ReceiverPoint> points;
+};
+
+SolveGrids lay_grids(const Scene& scene, const RayCaster& caster, const JobConfig& job) {
+  SolveGrids out;
+  for (const CalcGridSetting& setting : job.grids) {
+    out.grids.push_back(make_calc_grid(scene, caster, setting));
+    const CalcGrid& g = out.grids.back();
+    out.points.insert(out.points.end(), g.points.begin(), g.points.end());
+    std::cerr << "grid '" << g.name << "': " << g.points.size() << " points (" << g.cells_u << " x " << g.cells_v
+              << " cells), " << g.inside_solid << " inside solid objects dropped\n";
+  }
+  return out;
+}
+
+// Prints the grids' table and writes their files (grid.csv, isolux plans as
+// output.formats says) into the solve folder as one set. `total` and `direct`: lux at
+// every grid point, grid after grid.
+void report_grids(const JobConfig& job, const std::string& out_dir, const Scene& scene, const SolveGrids& laid,
+                  const Eigen::VectorXd& total, const Eigen::VectorXd& direct, const std::string& basis) {
+  if (laid.grids.empty()) return;
+  std::vector<GridResult> results;
+  std::vector<GridRecord> records;
+  Eigen::Index first = 0;
+  for (const CalcGrid& grid : laid.grids) {
+    const auto n = static_cast<Eigen::Index>(grid.points.size());
+    GridResult r{&grid, {direct.segment(first, n), total.segment(first, n), job.maintenance_factor,
+                         grid_target_lux(job, grid.name), basis}};
+    records.push_back(grid_record(r, false));
+    results.push_back(std::move(r));
+    first += n;
+  }
+  std::cout << "\nIlluminance per calculation grid (the luminaires of the job, maintenance factor "
+            << job.maintenance_factor << ")\n";
+  print_grid_table(std::cout, records, basis);
+  std::vector<std::string> owned = grid_csv_names(job);
+  for (const char* ext : {".svg", ".png"})
+    for (const std::string& name : isolux_names(job, ext)) owned.push_back(name);
+  OutputSet set(out_dir, owned);
+  if (job.output.grid_csv) stage_grid_csv(set, results);
+  if (job.output.isolux_svg) stage_isolux(set, results, scene_luminaires(scene), ".svg");
+  if (job.output.isolux_png) stage_isolux(set, results, scene_luminaires(scene), ".png");
+  for (const std::string& file : set.commit()) std::cout << "wrote " << file << "\n";
+}
+
+int solve_with_sample(const JobConfig& job, const JobScene& loaded, const SolveArgs& args) {
+  const bool full_scene = !args.csv.empty(), quiet = args.quiet;
+  const std::string& csv = args.csv;
   const Scene& scene = loaded.scene;
   const ProgressCallback progress = make_progress(quiet);
   auto start = std::chrono::steady_clock::now();
@@ -55,9 +108,10 @@ int solve_with_sample(const JobConfig& job, const JobScene& loaded, bool full_sc
   const std::vector<LightSource> sources = scene_light_sources(scene);
   const Eigen::VectorXd flux = source_flux_lm(scene, sources);
   const std::vector<int> goals = full_scene ? scene.all_patches() : scene.patches_of(job.report_surfaces);
+  const SolveGrids laid = lay_grids(scene, caster, job);
 
   SampleOperatorOptions options = sample_operator_options(job);
-  const GoalRows goal_rows = compute_goal_rows(scene, caster, goals, sources, options, progress);
+  const GoalRows goal_rows = compute_goal_rows(scene, caster, goals, laid.points, sources, options, progress);
   const SampleSizeChoice choice = choose_sample_size(job, scene, caster, goal_rows, flux, options, progress);
   if (!choice.log.empty()) std::cerr << choice.log << "\n";
   options.sample_size = choice.sample_size;
@@ -69,9 +123,12 @@ int solve_with_sample(const JobConfig& job, const JobScene& loaded, bool full_sc
             << st.direct_seconds << " s, solve " << st.solve_seconds << " s, T " << st.response_seconds
             << " s; total " << bvh_seconds + st.build_seconds() << " s\n";
 
-  const Eigen::VectorXd total = op.illuminance_lux(flux), direct = op.direct_lux(flux);
+  const Eigen::VectorXd all_total = op.illuminance_lux(flux), all_direct = op.direct_lux(flux);
+  const auto G = static_cast<Eigen::Index>(goals.size()), Q = static_cast<Eigen::Index>(laid.points.size());
+  const Eigen::VectorXd total = all_total.head(G), direct = all_direct.head(G);
   if (!csv.empty()) {
-    Eigen::VectorXd radiosity = op.reflected_lm_per_m2_per_lm * flux;
+    const Eigen::VectorXd radiosity_all = op.reflected_lm_per_m2_per_lm * flux;
+    Eigen::VectorXd radiosity = radiosity_all.head(G);
     for (std::size_t r = 0; r < goals.size(); ++r)
       radiosity[static_cast<Eigen::Index>(r)] += scene.patches[goals[r]].exitance_lm_per_m2;
     write_patch_csv(csv, scene, goals, direct, total, radiosity);
@@ -81,13 +138,15 @@ int solve_with_sample(const JobConfig& job, const JobScene& loaded, bool full_sc
   else std::cout << "k = " << st.sample_patches << " of " << st.population << " reflecting patches";
   std::cout << ", " << job.form_factors.rays_per_patch << " rays per row, seed " << job.form_factors.seed << ")\n";
   print_table(scene, goals, total, job.report_surfaces);
+  report_grids(job, args.out_dir, scene, laid, all_total.tail(Q), all_direct.tail(Q), "sample-based operator");
   return 0;
 }
 
-int solve_exactly(const JobConfig& job, const JobScene& loaded, const std::string& csv, bool quiet) {
+int solve_exactly(const JobConfig& job, const JobScene& loaded, const SolveArgs& args) {
   const Scene& scene = loaded.scene;
+  const std::string& csv = args.csv;
   const ExactSolveOptions options = exact_solve_options(job);
-  const ExactSolution solution = solve_exact(scene, options, make_progress(quiet));
+  const ExactSolution solution = solve_exact(scene, options, make_progress(args.quiet));
   std::cerr << solution.summary << "\n";
   // A closed model with consistent winding absorbs little on back faces; more hints at flipped faces.
   constexpr double kBackFaceWarning = 0.05;
@@ -105,6 +164,14 @@ int solve_exactly(const JobConfig& job, const JobScene& loaded, const std::strin
   std::cout << "Illuminance per surface (exact radiosity, " << job.form_factors.rays_per_patch
             << " rays per patch, seed " << job.form_factors.seed << ")\n";
   print_table(scene, scene.all_patches(), solution.radiosity.total_lux, job.report_surfaces);
+  if (!job.grids.empty()) {
+    // The points as the verification of `ilp run` computes them: each point's gather over the exact radiosity.
+    const RayCaster caster(scene, job.form_factors.threads);
+    const SolveGrids laid = lay_grids(scene, caster, job);
+    const PointIlluminance at = exact_point_illuminance(scene, caster, solution.radiosity, laid.points,
+                                                        options.form_factors, options.direct_light, make_progress(args.quiet));
+    report_grids(job, args.out_dir, scene, laid, at.total_lux, at.direct_lux, "exact");
+  }
   return 0;
 }
 
@@ -146,8 +213,10 @@ int run_solve(const SolveArgs& args) {
     for (const std::string& line : format_estimate(estimate)) std::cerr << line << "\n";
     require_fits(estimate, budget, job.path);
   }
-  if (job.method == SolveMethod::exact) solve_exactly(job, loaded, args.csv, args.quiet);
-  else solve_with_sample(job, loaded, !args.csv.empty(), args.csv, args.quiet);
+  SolveArgs resolved = args;
+  resolved.out_dir = args.out_dir.empty() ? (std::filesystem::path(output_directory(job, "")) / "solve").string() : args.out_dir;
+  if (job.method == SolveMethod::exact) solve_exactly(job, loaded, resolved);
+  else solve_with_sample(job, loaded, resolved);
   std::cout << "total time " << std::fixed << std::setprecision(2)
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
   if (!args.csv.empty()) std::cout << "per-patch results: " << args.csv << "\n";

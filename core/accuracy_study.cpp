@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
+#include "core/point_gather.h"
 #include "core/ray_caster.h"
 
 namespace ilp {
@@ -28,8 +30,30 @@ double time_evaluation_microseconds(const SampleOperator& op, const Eigen::Vecto
   return batch_us[kBatches / 2];
 }
 
+PointError compare_point_illuminance(const Eigen::VectorXd& total, const Eigen::VectorXd& reference) {
+  if (total.size() != reference.size()) throw std::invalid_argument("compare_point_illuminance: sizes differ");
+  PointError e;
+  double sum = 0.0;
+  Eigen::Index n = 0;
+  for (Eigen::Index q = 0; q < total.size(); ++q) {
+    if (!(reference[q] > 0.0)) continue;
+    const double r = std::abs(total[q] - reference[q]) / reference[q];
+    sum += r * r;
+    e.max_relative_total = std::max(e.max_relative_total, r);
+    ++n;
+  }
+  e.rms_relative_total = n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+  return e;
+}
+
 AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_patches,
                                  const AccuracyStudyOptions& options, const ProgressCallback& progress) {
+  return run_accuracy_study(scene, goal_patches, {}, options, progress);
+}
+
+AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_patches,
+                                 std::span<const AccuracyGrid> grids, const AccuracyStudyOptions& options,
+                                 const ProgressCallback& progress) {
   if (options.seeds < 1) throw std::invalid_argument("accuracy study: seeds must be >= 1");
   for (double f : options.sample_fractions)
     if (!(f > 0.0 && f <= 1.0)) throw std::invalid_argument("accuracy study: sample fractions must be in (0, 1]");
@@ -37,6 +61,12 @@ AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_p
   study.patches = scene.patches.size();
   study.population = reflecting_patches(scene).size();
   study.goal_patches = goal_patches.size();
+  std::vector<ReceiverPoint> points;
+  for (const AccuracyGrid& g : grids) {
+    study.grids.push_back(g.name);
+    points.insert(points.end(), g.points.begin(), g.points.end());
+  }
+  study.goal_points = points.size();
   if (study.population == 0) throw std::invalid_argument("accuracy study: every reflectance is 0, nothing to sample");
 
   // The reference: every row, more rays, independent seed.
@@ -55,6 +85,24 @@ AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_p
   }
 
   const RayCaster caster(scene, options.base.form_factors.threads);
+  const Eigen::VectorXd reference_points =
+      points.empty() ? Eigen::VectorXd()
+                     : exact_point_illuminance(scene, caster, reference.radiosity, points, exact.form_factors,
+                                               exact.direct_light, progress)
+                           .total_lux;
+  // The error of one operator: over the goal patches (NaN without any), per grid over its points.
+  const auto G = static_cast<Eigen::Index>(goal_patches.size());
+  auto measure = [&](const Eigen::VectorXd& total, const Eigen::VectorXd& direct, AccuracyRow& row) {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    row.error = G ? compare_illuminance(scene, goal_patches, total.head(G), direct.head(G), reference_total, reference_direct)
+                  : IlluminanceError{nan, nan, nan, nan};
+    Eigen::Index first = G;
+    for (const AccuracyGrid& g : grids) {
+      const auto n = static_cast<Eigen::Index>(g.points.size());
+      row.grids.push_back(compare_point_illuminance(total.segment(first, n), reference_points.segment(first - G, n)));
+      first += n;
+    }
+  };
   const std::vector<LightSource> sources = scene_light_sources(scene);
   const Eigen::VectorXd flux = source_flux_lm(scene, sources);
   const int population = static_cast<int>(study.population);
@@ -73,7 +121,7 @@ AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_p
       SampleOperatorOptions base = options.base;
       base.indirect = method;
       base.form_factors.rays_per_patch = rays;
-      const GoalRows goals = compute_goal_rows(scene, caster, goal_patches, sources, base);
+      const GoalRows goals = compute_goal_rows(scene, caster, goal_patches, points, sources, base);
       for (SampleStrategy strategy : options.strategies) {
         base.strategy = strategy;
         const int pilot =
@@ -98,8 +146,7 @@ AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_p
             row.sample_seed = o.sample_seed;
             row.build_seconds = op.stats.build_seconds();
             row.evaluation_microseconds = time_evaluation_microseconds(op, flux, options.evaluation_repeats);
-            row.error = compare_illuminance(scene, goal_patches, op.illuminance_lux(flux), op.direct_lux(flux),
-                                            reference_total, reference_direct);
+            measure(op.illuminance_lux(flux), op.direct_lux(flux), row);
             row.predicted_rms_error_total = prediction.predicted_rms_error(k);
             row.goal_fallback_rows = op.stats.goal_fallback_rows;
             row.condition_estimate = op.stats.condition_estimate;

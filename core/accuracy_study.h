@@ -7,8 +7,10 @@
 
 #include <Eigen/Core>
 #include <span>
+#include <string>
 #include <vector>
 
+#include "core/direct_light.h"
 #include "core/exact_solver.h"
 #include "core/progress.h"
 #include "core/sample_error.h"
@@ -32,6 +34,20 @@ struct AccuracyStudyOptions {
   SampleOperatorOptions base;                    // ray seed, threads, direct-light settings
 };
 
+// A calculation grid's points measured with the goal patches (rows after them in T).
+struct AccuracyGrid {
+  std::string name;
+  std::vector<ReceiverPoint> points;
+};
+
+// Relative error of total illuminance at points, each point weighted equally:
+// RMS and maximum of |value - reference| / reference over points whose reference is > 0.
+struct PointError {
+  double rms_relative_total = 0.0;
+  double max_relative_total = 0.0;
+};
+PointError compare_point_illuminance(const Eigen::VectorXd& total_lux, const Eigen::VectorXd& reference_total_lux);
+
 struct AccuracyRow {
   SampleStrategy strategy = SampleStrategy::stratified;
   IndirectMethod method = IndirectMethod::sample_gather;
@@ -42,7 +58,8 @@ struct AccuracyRow {
   std::uint64_t sample_seed = 0;
   double build_seconds = 0.0;       // goal rows + sample rows + direct + solve + T
   double evaluation_microseconds = 0.0;  // one T phi, median
-  IlluminanceError error;
+  IlluminanceError error;           // over the goal patches (NaN without goal patches)
+  std::vector<PointError> grids;    // per AccuracyGrid, in order
   double predicted_rms_error_total = 0.0;
   std::size_t goal_fallback_rows = 0;
   double condition_estimate = 0.0;
@@ -56,7 +73,8 @@ struct StudyPrediction {
 };
 
 struct AccuracyStudy {
-  std::size_t patches = 0, population = 0, goal_patches = 0;
+  std::size_t patches = 0, population = 0, goal_patches = 0, goal_points = 0;
+  std::vector<std::string> grids;             // the grids' names, as AccuracyRow::grids
   ExactSolveSummary reference;
   std::vector<StudyPrediction> predictions;   // one per (strategy, method, rays)
   std::vector<AccuracyRow> rows;
@@ -65,6 +83,13 @@ struct AccuracyStudy {
 // Light sources: every luminaire and emitting surface at its configured flux.
 AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_patches,
                                  const AccuracyStudyOptions& options, const ProgressCallback& progress = {});
+// The same with calculation grids: the reference at their points is each point's gather
+// over the reference radiosity with reference_rays rays and its direct light
+// (exact_point_illuminance, as `ilp run`'s verification), the operator's the rows
+// after the goal patches. Goal patches may then be empty.
+AccuracyStudy run_accuracy_study(const Scene& scene, std::span<const int> goal_patches,
+                                 std::span<const AccuracyGrid> grids, const AccuracyStudyOptions& options,
+                                 const ProgressCallback& progress = {});
 
 // Median time of one T phi product, microseconds.
 double time_evaluation_microseconds(const SampleOperator& op, const Eigen::VectorXd& flux_lm, int repeats);

@@ -244,6 +244,9 @@ CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcG
                                          " outside the outline less its band, " + std::to_string(grid.inside_solid) +
                                          " inside solid objects)"));
   grid.area_m2 = static_cast<double>(grid.points.size()) * grid.cell_u_m * grid.cell_v_m;
+  grid.border_m = s.border_m;
+  grid.outline_polygon_m = std::move(outline.polygon);
+  grid.outline_triangles_m = std::move(outline.triangles);
   return grid;
 }
 

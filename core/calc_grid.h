@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -72,6 +73,12 @@ struct CalcGrid {
   std::size_t outside_outline = 0;       // cells whose centre is outside the outline less its band
   std::size_t inside_solid = 0;          // dropped: inside a solid object
   double area_m2 = 0.0;                  // kept points x cell area
+  double border_m = 0.0;                 // the band left out at the edges
+  // What the grid lies over, for drawing (x, y in the scene frame): a horizontal grid's
+  // polygon (rectangle_m, polygon_m) or the over_surface's triangles facing up; empty
+  // for a vertical grid (its plane is the rectangle from_m .. to_m, bottom_m .. top_m).
+  std::vector<Eigen::Vector2d> outline_polygon_m;
+  std::vector<std::array<Eigen::Vector2d, 3>> outline_triangles_m;
 };
 
 // Builds the grid on the scene. Throws ConfigError (at the setting's file:line) when the

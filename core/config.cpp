@@ -867,19 +867,30 @@ void read_output(const Map& output, JobConfig& job) {
     if (o.directory.empty()) v->fail("must not be empty");
   }
   if (auto v = output.get("formats")) {
+    // One row per format: its name in the file and its flag.
+    struct Format {
+      const char* name;
+      bool OutputSettings::*flag;
+      bool needs_grids;
+    };
+    static constexpr Format kFormats[] = {
+        {"json", &OutputSettings::json, false},          {"csv", &OutputSettings::csv, false},
+        {"svg", &OutputSettings::svg, false},            {"ply", &OutputSettings::ply, false},
+        {"grid_csv", &OutputSettings::grid_csv, true},   {"isolux_svg", &OutputSettings::isolux_svg, true},
+        {"isolux_png", &OutputSettings::isolux_png, true}};
+    std::string names;
+    for (const Format& f : kFormats) names += (names.empty() ? "" : ", ") + std::string(f.name);
     const std::vector<Value> formats = v->list();
-    if (formats.empty()) v->fail("must list at least one of json, csv, svg, ply");
-    o.json = o.csv = o.svg = o.ply = false;
-    for (const Value& f : formats) {
-      const std::string name = f.text();
-      bool* flag = name == "json" ? &o.json
-                   : name == "csv" ? &o.csv
-                   : name == "svg" ? &o.svg
-                   : name == "ply" ? &o.ply
-                                   : nullptr;
-      if (!flag) f.fail("must be json, csv, svg or ply");
-      if (*flag) f.fail("is listed twice");
-      *flag = true;
+    if (formats.empty()) v->fail("must list at least one of " + names);
+    for (const Format& f : kFormats) o.*f.flag = false;
+    for (const Value& item : formats) {
+      const std::string name = item.text();
+      const Format* f = std::find_if(std::begin(kFormats), std::end(kFormats),
+                                     [&](const Format& x) { return name == x.name; });
+      if (f == std::end(kFormats)) item.fail("must be one of " + names);
+      if (f->needs_grids && job.grids.empty()) item.fail("needs calculation grids (the job has no grids section)");
+      if (o.*f->flag) item.fail("is listed twice");
+      o.*f->flag = true;
     }
   }
 }

@@ -214,7 +214,11 @@ struct VerificationSettings {
 
 struct OutputSettings {
   std::string directory;  // as written in the file (relative to the working directory); empty: "results/<config stem>"
-  bool json = true, csv = true, svg = true, ply = true;  // formats: [json, csv, svg, ply]
+  // formats: [json, csv, svg, ply, grid_csv, isolux_svg, isolux_png]; the grid formats
+  // write one file per job (grid.csv) or per grid (isolux_<grid>.svg, .png) and nothing
+  // for a job without grids (listing one there is an error).
+  bool json = true, csv = true, svg = true, ply = true;
+  bool grid_csv = true, isolux_svg = true, isolux_png = true;
 };
 
 // sweep: run the job once per value of one goal parameter, e.g.

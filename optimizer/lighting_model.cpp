@@ -76,19 +76,18 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& j
       const int setting = find_grid(job, goal.grid);
       if (setting < 0) throw std::invalid_argument("goal '" + goal.name + "': no grid '" + goal.grid + "'");
       area.grid = setting;  // a setting index for now, a model grid index below
-      grid_of_setting[static_cast<std::size_t>(setting)] = 0;
     }
     model.areas.push_back(area);
   }
-  // The grids goals name, in the job's order, their points after the goal patches.
-  if (std::any_of(grid_of_setting.begin(), grid_of_setting.end(), [](int g) { return g >= 0; })) {
+  // Every grid of the job, in its order, their points after the goal patches: the grids
+  // goals name and the others (reported and drawn, not judged).
+  if (!job.grids.empty()) {
     std::unique_ptr<RayCaster> own;
     if (!caster) {
       own = std::make_unique<RayCaster>(job_scene, job.form_factors.threads);
       caster = own.get();
     }
     for (std::size_t g = 0; g < job.grids.size(); ++g) {
-      if (grid_of_setting[g] < 0) continue;
       grid_of_setting[g] = static_cast<int>(model.grids.size());
       model.grids.push_back(make_calc_grid(job_scene, *caster, job.grids[g]));
       const CalcGrid& grid = model.grids.back();

@@ -38,7 +38,7 @@ struct LightingModel {
   CandidateGrid grid;
   std::vector<int> goal_patches;                 // ascending, each once: goal rows 0 ... #patches - 1
   std::vector<ReceiverPoint> goal_points;        // the grids' points, grid after grid: the goal rows after the patches
-  std::vector<CalcGrid> grids;                   // the job's grids that goals name, in job.grids order
+  std::vector<CalcGrid> grids;                   // every grid of the job (named by goals or only reported), in job.grids order
   std::vector<Eigen::Index> grid_first_row;      // per grid: its first goal row
   std::vector<GoalArea> areas;                   // one per goal name, in the job's order
   // Goal rows: T's rows, patches then points (fixed_lux and the candidate columns have this many).

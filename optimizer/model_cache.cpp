@@ -241,19 +241,23 @@ std::string key_text(const JobConfig& job) {
       put(t, s);
     }
     t << " facing " << static_cast<int>(g.facing) << "\n";
-    // A grid goal: every value that places its points.
-    if (const int k = find_grid(job, g.grid); k >= 0) {
-      const CalcGridSetting& c = job.grids[static_cast<std::size_t>(k)];
-      t << "grid ";
-      put(t, c.name);
-      t << " kind " << static_cast<int>(c.kind) << " over ";
-      put(t, c.over_surface);
-      t << " polygon";
-      for (const Eigen::Vector2d& p : c.polygon_m) t << ' ' << p.x() << ' ' << p.y();
-      t << " height " << c.height_m << " vertical " << c.from_m.x() << ' ' << c.from_m.y() << ' ' << c.to_m.x() << ' '
-        << c.to_m.y() << ' ' << c.bottom_m << ' ' << c.top_m << ' ' << c.facing_left << " border " << c.border_m
-        << " spacing " << (c.spacing_m ? *c.spacing_m : -1.0) << " max " << c.max_points << "\n";
+    if (!g.grid.empty()) {
+      t << "on grid ";
+      put(t, g.grid);
+      t << "\n";
     }
+  }
+  // Every grid of the job (lighting_model_geometry lays them all): each value that places its points.
+  for (const CalcGridSetting& c : job.grids) {
+    t << "grid ";
+    put(t, c.name);
+    t << " kind " << static_cast<int>(c.kind) << " over ";
+    put(t, c.over_surface);
+    t << " polygon";
+    for (const Eigen::Vector2d& p : c.polygon_m) t << ' ' << p.x() << ' ' << p.y();
+    t << " height " << c.height_m << " vertical " << c.from_m.x() << ' ' << c.from_m.y() << ' ' << c.to_m.x() << ' '
+      << c.to_m.y() << ' ' << c.bottom_m << ' ' << c.top_m << ' ' << c.facing_left << " border " << c.border_m
+      << " spacing " << (c.spacing_m ? *c.spacing_m : -1.0) << " max " << c.max_points << "\n";
   }
 
   // The solver (threads left out: the operator is the same for any thread count).

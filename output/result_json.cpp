@@ -41,6 +41,7 @@ json to_json(const ResultRecord& r) {
                                       {"output_fraction", b.output_fraction},
                                       {"total_power_w", b.total_power_w}});
   j["variants"] = r.variants;
+  j["files"] = r.files;
   j["goals"] = json::array();
   for (const GoalRecord& g : r.goals) {
     json goal = {{"name", g.name},     {"surfaces", g.surfaces}, {"grid", g.grid}, {"metric", g.metric},
@@ -107,6 +108,7 @@ ResultRecord from_json(const json& j) {
                                      b.at("unit_power_w").get<double>(), b.at("output_fraction").get<double>(),
                                      b.at("total_power_w").get<double>()});
   r.variants = j.value("variants", std::vector<std::string>());
+  r.files = j.value("files", std::vector<std::string>());
   for (const json& g : j.at("goals")) {
     GoalRecord goal;
     goal.name = g.at("name").get<std::string>();
@@ -253,17 +255,8 @@ void print_result(std::ostream& os, const ResultRecord& r) {
        << goal_value(g, g.predicted) << std::setw(10) << (g.verified ? goal_value(g, *g.verified) : std::string("-"))
        << "  " << status << "\n";
   }
-  if (!r.grids.empty()) {
-    os << "\n" << std::left << std::setw(20) << "grid" << std::right << std::setw(7) << "points" << std::setw(9)
-       << "Em lx" << std::setw(9) << "Emin lx" << std::setw(9) << "Emax lx" << std::setw(7) << "U0" << "   maintained:"
-       << std::setw(8) << "Em lx" << std::setw(9) << "Emin lx" << std::setw(9) << "Emax lx" << "\n";
-    for (const GridRecord& g : r.grids)
-      os << std::left << std::setw(20) << g.name << std::right << std::setw(7) << g.points << std::setw(9)
-         << fixed(g.initial.average_lux, 1) << std::setw(9) << fixed(g.initial.min_lux, 1) << std::setw(9)
-         << fixed(g.initial.max_lux, 1) << std::setw(7) << fixed(g.initial.uniformity, 3) << std::setw(21)
-         << fixed(g.maintained.average_lux, 1) << std::setw(9) << fixed(g.maintained.min_lux, 1) << std::setw(9)
-         << fixed(g.maintained.max_lux, 1) << "  (" << (g.verified ? "verified" : "predicted") << ", initial | maintained)\n";
-  }
+  if (!r.grids.empty()) os << "\n";
+  print_grid_table(os, r.grids);
   os << "\nverification: ";
   if (r.verification == "none") os << "none (predicted values only)";
   else os << r.verification << ", " << r.verification_rays_per_patch << " rays per patch";
@@ -287,6 +280,19 @@ void print_result(std::ostream& os, const ResultRecord& r) {
   for (std::size_t k = 0; k < r.timings_s.size(); ++k)
     os << (k ? ", " : " ") << r.timings_s[k].first << " " << fixed(r.timings_s[k].second, 2) << " s";
   os << "\n";
+}
+
+void print_grid_table(std::ostream& os, const std::vector<GridRecord>& grids, const std::string& basis) {
+  if (grids.empty()) return;
+  os << std::left << std::setw(20) << "grid" << std::right << std::setw(7) << "points" << std::setw(9)
+     << "Em lx" << std::setw(9) << "Emin lx" << std::setw(9) << "Emax lx" << std::setw(7) << "U0" << "   maintained:"
+     << std::setw(8) << "Em lx" << std::setw(9) << "Emin lx" << std::setw(9) << "Emax lx" << "\n";
+  for (const GridRecord& g : grids)
+    os << std::left << std::setw(20) << g.name << std::right << std::setw(7) << g.points << std::setw(9)
+       << fixed(g.initial.average_lux, 1) << std::setw(9) << fixed(g.initial.min_lux, 1) << std::setw(9)
+       << fixed(g.initial.max_lux, 1) << std::setw(7) << fixed(g.initial.uniformity, 3) << std::setw(21)
+       << fixed(g.maintained.average_lux, 1) << std::setw(9) << fixed(g.maintained.min_lux, 1) << std::setw(9)
+       << fixed(g.maintained.max_lux, 1) << "  (" << (basis.empty() ? (g.verified ? "verified" : "predicted") : basis) << ", initial | maintained)\n";
 }
 
 }  // namespace ilp

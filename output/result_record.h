@@ -105,6 +105,7 @@ struct ResultRecord {
   std::vector<AttemptRecord> attempts;
   std::vector<BillLine> bill_of_materials;
   std::vector<std::string> variants;        // each product and rotation tried, with its outcome
+  std::vector<std::string> files;           // the files the run writes into its output folder (names), result.json included
 };
 
 // Throws std::runtime_error naming the file on unreadable or malformed input.
@@ -114,5 +115,10 @@ ResultRecord read_result_json(const std::string& path);
 // The report `ilp run` and `ilp print` show: layout table, goals (target, predicted,
 // verified), power, timings.
 void print_result(std::ostream& os, const ResultRecord& result);
+
+// The per-grid table of print_result: points, Em, Emin, Emax, U0 initial and maintained
+// Em, Emin, Emax (nothing for no grids). `basis` ends each line, e.g. "verified"; empty:
+// each record's own (verified or predicted).
+void print_grid_table(std::ostream& os, const std::vector<GridRecord>& grids, const std::string& basis = "");
 
 }  // namespace ilp

@@ -1150,7 +1150,9 @@ INSTANTIATE_TEST_SUITE_P(
                  "must list at least one of json, csv, svg, ply"},
         BadValue{"FormatsNotAList", SCENE "output:\n  formats: json\n", "output.formats = json", "must be a list"},
         BadValue{"FormatOther", SCENE "output:\n  formats: [json, pdf]\n", "output.formats[1] = pdf",
-                 "must be json, csv, svg or ply"},
+                 "must be one of json, csv, svg, ply, grid_csv, isolux_svg, isolux_png"},
+        BadValue{"GridFormatWithoutGrids", SCENE "output:\n  formats: [json, isolux_png]\n", "output.formats[1] = isolux_png",
+                 "needs calculation grids (the job has no grids section)"},
         BadValue{"FormatTwice", SCENE "output:\n  formats:\n    - json\n    - csv\n    - json\n",
                  "output.formats[2] = json", "is listed twice"},
         // sweep: checked by applying each value as `ilp sweep` will

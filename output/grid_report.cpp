@@ -1,0 +1,225 @@
+#include "output/grid_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "output/contours.h"
+
+namespace ilp {
+namespace {
+
+using V2 = Eigen::Vector2d;
+
+// The segment from_m .. to_m of a vertical grid starts here (z left at 0).
+Eigen::Vector3d vertical_start_m(const CalcGrid& g) { return g.origin_m - g.border_m * (g.u_axis + g.v_axis); }
+
+void check_light(const CalcGrid& grid, const GridLight& light) {
+  const auto n = static_cast<Eigen::Index>(grid.points.size());
+  if (light.total_initial_lux.size() != n || light.direct_initial_lux.size() != n)
+    throw std::invalid_argument("grid '" + grid.name + "': need one value per point");
+  if (!(light.maintenance_factor > 0.0 && light.maintenance_factor <= 1.0))
+    throw std::invalid_argument("grid '" + grid.name + "': the maintenance factor must be in (0, 1]");
+}
+
+// Distance of p from the segment a..b.
+double segment_distance(const V2& p, const V2& a, const V2& b) {
+  const V2 d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * d)).norm();
+}
+
+// Douglas-Peucker on points[first .. last] (both kept), appending the kept points after first.
+void simplify(const std::vector<V2>& pts, std::size_t first, std::size_t last, double tolerance, std::vector<V2>& out) {
+  double worst = -1.0;
+  std::size_t at = first;
+  for (std::size_t k = first + 1; k < last; ++k)
+    if (const double d = segment_distance(pts[k], pts[first], pts[last]); d > worst) {
+      worst = d;
+      at = k;
+    }
+  if (worst > tolerance) {
+    simplify(pts, first, at, tolerance, out);
+    simplify(pts, at, last, tolerance, out);
+  } else {
+    out.push_back(pts[last]);
+  }
+}
+
+// A closed ring simplified: split at the point farthest from the first, each half by Douglas-Peucker.
+std::vector<V2> simplify_ring(const std::vector<V2>& ring, double tolerance) {
+  if (ring.size() < 4) return ring;
+  std::size_t far = 0;
+  for (std::size_t k = 1; k < ring.size(); ++k)
+    if ((ring[k] - ring[0]).squaredNorm() > (ring[far] - ring[0]).squaredNorm()) far = k;
+  std::vector<V2> closed = ring;
+  closed.push_back(ring[0]);
+  std::vector<V2> out{ring[0]};
+  simplify(closed, 0, far, tolerance, out);
+  simplify(closed, far, closed.size() - 1, tolerance, out);
+  out.pop_back();  // the first point again
+  return out;
+}
+
+// The boundary of a union of triangles: a 0/1 raster of their cover (a ring of empty
+// nodes around it), traced at 0.5 by marching squares, each ring simplified.
+std::vector<std::vector<V2>> triangles_outline_m(const std::vector<std::array<V2, 3>>& triangles) {
+  Eigen::AlignedBox2d box;
+  for (const auto& t : triangles)
+    for (const V2& v : t) box.extend(v);
+  if (box.isEmpty() || !(box.sizes().maxCoeff() > 0.0)) return {};
+  const double cell = box.sizes().maxCoeff() / kOutlineRasterCells;
+  LatticeField field;
+  field.nx = static_cast<int>(std::ceil(box.sizes().x() / cell)) + 3;
+  field.ny = static_cast<int>(std::ceil(box.sizes().y() / cell)) + 3;
+  field.origin_m = box.min() - V2::Constant(cell);
+  field.spacing_m = V2::Constant(cell);
+  field.values.assign(static_cast<std::size_t>(field.nx) * static_cast<std::size_t>(field.ny), 0.0);
+  const double eps = 1e-9 * cell * cell;
+  auto cross = [](const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); };
+  for (const auto& t : triangles) {
+    const double area = cross(t[1] - t[0], t[2] - t[0]);
+    if (area == 0.0) continue;
+    const double sign = area > 0.0 ? 1.0 : -1.0;
+    Eigen::AlignedBox2d tb;
+    for (const V2& v : t) tb.extend(v);
+    const int i0 = std::max(0, static_cast<int>(std::floor((tb.min().x() - field.origin_m.x()) / cell)));
+    const int j0 = std::max(0, static_cast<int>(std::floor((tb.min().y() - field.origin_m.y()) / cell)));
+    const int i1 = std::min(field.nx - 1, static_cast<int>(std::ceil((tb.max().x() - field.origin_m.x()) / cell)));
+    const int j1 = std::min(field.ny - 1, static_cast<int>(std::ceil((tb.max().y() - field.origin_m.y()) / cell)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const V2 p = field.node_m(i, j);
+        bool inside = true;
+        for (int e = 0; e < 3 && inside; ++e) inside = sign * cross(t[(e + 1) % 3] - t[e], p - t[e]) >= -eps;
+        if (inside) field.values[static_cast<std::size_t>(j) * field.nx + i] = 1.0;
+      }
+  }
+  std::vector<std::vector<V2>> out;
+  for (const ContourLine& line : contour_lines(field, 0.5))
+    out.push_back(line.closed ? simplify_ring(line.points_m, 0.5 * cell) : line.points_m);
+  return out;
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+// "z = 0.80 m: Em 512 lx, Emin 301 lx, U0 0.59 (maintained, verified, exact)".
+std::string view_title(const CalcGrid& grid, const GridLight& light) {
+  const Eigen::VectorXd m = light.total_initial_lux * light.maintenance_factor;
+  const double em = m.size() ? m.mean() : 0.0, emin = m.size() ? m.minCoeff() : 0.0;
+  std::string where = grid.kind == GridKind::horizontal
+                          ? "horizontal at z = " + fixed(grid.points.empty() ? 0.0 : grid.points.front().position_m.z(), 2) + " m"
+                          : "vertical plane";
+  return where + ": Em " + fixed(em, 0) + " lx, Emin " + fixed(emin, 0) + " lx, U0 " +
+         fixed(em > 0.0 ? emin / em : 0.0, 2) + " (maintained" + (light.basis.empty() ? "" : ", " + light.basis) + ")";
+}
+
+}  // namespace
+
+Eigen::Vector2d grid_plan_position_m(const CalcGrid& grid, const Eigen::Vector3d& p) {
+  if (grid.kind == GridKind::horizontal) return p.head<2>();
+  const Eigen::Vector3d start = vertical_start_m(grid);
+  return V2((p - start).head<2>().dot(grid.u_axis.head<2>()), p.z());
+}
+
+std::vector<std::vector<Eigen::Vector2d>> grid_room_outline_m(const CalcGrid& grid) {
+  if (grid.kind == GridKind::vertical) {
+    const double length = 2.0 * grid.border_m + grid.cells_u * grid.cell_u_m;
+    const double bottom = grid.origin_m.z() - grid.border_m;
+    const double top = bottom + 2.0 * grid.border_m + grid.cells_v * grid.cell_v_m;
+    return {{V2(0.0, bottom), V2(length, bottom), V2(length, top), V2(0.0, top)}};
+  }
+  if (!grid.outline_polygon_m.empty()) return {grid.outline_polygon_m};
+  return triangles_outline_m(grid.outline_triangles_m);
+}
+
+std::vector<IsoluxLuminaire> isolux_luminaires(const CalcGrid& grid, const std::vector<DrawnLuminaire>& luminaires) {
+  constexpr double kMinThickness_m = 0.02;
+  std::vector<IsoluxLuminaire> out;
+  for (const DrawnLuminaire& l : luminaires) {
+    IsoluxLuminaire d;
+    d.id = l.id;
+    d.product = l.product;
+    if (grid.kind == GridKind::horizontal) {
+      d.centre_m = l.at.position_m.head<2>();
+      d.length_m = l.type.length_m;
+      d.width_m = l.type.width_m;
+      d.rotation_deg = l.at.rotation_deg;
+      d.round = l.type.shape == OutlineShape::disc;
+    } else {
+      Eigen::AlignedBox2d box;
+      for (const Eigen::Vector3d& v : luminaire_outline_m(l.type, l.at)) box.extend(grid_plan_position_m(grid, v));
+      d.centre_m = box.center();
+      d.length_m = box.sizes().x();
+      d.width_m = std::max(kMinThickness_m, box.sizes().y());
+    }
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+IsoluxGridView isolux_grid_view(const CalcGrid& grid, const GridLight& light,
+                                const std::vector<DrawnLuminaire>& luminaires) {
+  check_light(grid, light);
+  IsoluxGridView v;
+  v.name = grid.name;
+  v.title = view_title(grid, light);
+  v.nx = grid.cells_u;
+  v.ny = grid.cells_v;
+  const Eigen::Vector3d first = grid.origin_m + 0.5 * grid.cell_u_m * grid.u_axis + 0.5 * grid.cell_v_m * grid.v_axis;
+  v.origin_m = grid_plan_position_m(grid, first);
+  v.spacing_m = V2(grid.cell_u_m, grid.cell_v_m);
+  v.maintained_lux.assign(static_cast<std::size_t>(v.nx) * static_cast<std::size_t>(v.ny),
+                          std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t q = 0; q < grid.points.size(); ++q) {
+    const Eigen::Vector2i c = grid.cell_of_point[q];
+    v.maintained_lux[static_cast<std::size_t>(c.y()) * v.nx + c.x()] =
+        light.total_initial_lux[static_cast<Eigen::Index>(q)] * light.maintenance_factor;
+  }
+  v.room_outline_m = grid_room_outline_m(grid);
+  v.luminaires = isolux_luminaires(grid, luminaires);
+  v.target_lux = light.target_lux;
+  v.maintenance_factor = light.maintenance_factor;
+  if (grid.kind == GridKind::vertical) {
+    v.x_label = "along the plane (m)";
+    v.y_label = "height z (m)";
+  }
+  return v;
+}
+
+GridCsvGrid grid_csv_grid(const CalcGrid& grid, const GridLight& light) {
+  check_light(grid, light);
+  GridCsvGrid out{grid.name, light.maintenance_factor, {}};
+  for (std::size_t q = 0; q < grid.points.size(); ++q) {
+    const auto k = static_cast<Eigen::Index>(q);
+    out.points.push_back({grid.points[q].position_m, light.direct_initial_lux[k], light.total_initial_lux[k]});
+  }
+  return out;
+}
+
+std::vector<std::string> isolux_file_stems(const std::vector<std::string>& grid_names) {
+  std::vector<std::string> out;
+  std::set<std::string> taken;
+  for (const std::string& name : grid_names) {
+    std::string safe;
+    for (const char c : name) {
+      const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+      safe += keep ? c : '_';
+    }
+    std::string stem = "isolux_" + safe;
+    for (int n = 2; taken.count(stem); ++n) stem = "isolux_" + safe + "_" + std::to_string(n);
+    taken.insert(stem);
+    out.push_back(stem);
+  }
+  return out;
+}
+
+}  // namespace ilp
