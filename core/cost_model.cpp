@@ -30,8 +30,11 @@ double d(std::size_t v) { return static_cast<double>(v); }
 // Non-zeros of `rows` rows of `rays` rays in a scene of n patches (at most one per ray).
 double row_nnz(double rows, int rays, std::size_t n) { return rows * std::min<double>(rays, d(n)); }
 
-double dense_solve_flops(double k, double sources, int channels) {
-  return channels * ((2.0 / 3.0) * k * k * k + 2.0 * k * k * sources);
+// The interreflection solve (core/contraction_solve.h): per channel, the first
+// reflection gathered through the sample rows (rays x sources each), then sweeps
+// over k rows of about 2 gathers (one sampled hit, the ambient term) x sources.
+double interreflection_flops(double k, double sources, int channels, int rays_per_patch, const MachineCosts& m) {
+  return channels * (2.0 * k * rays_per_patch * sources + m.interreflection_sweeps * 2.0 * 3.0 * k * sources);
 }
 
 }  // namespace
@@ -46,9 +49,9 @@ double exact_verification_bytes(std::size_t patches, int rays_per_patch) {
   return n * (kPatchBytes + kBvhBytesPerPatch + kIndexBytesPerPatch) + row_nnz(n, rays_per_patch, patches) * kRowNnzPeakBytes;
 }
 
-double dense_verification_bytes(std::size_t k, std::size_t goal_patches, std::size_t sources, int rays_per_patch) {
+double sample_verification_bytes(std::size_t k, std::size_t goal_patches, std::size_t sources, int rays_per_patch) {
   const double kk = d(k);
-  return 16.0 * kk * kk + row_nnz(kk + d(goal_patches), rays_per_patch, k + goal_patches) * kRowNnzPeakBytes +
+  return row_nnz(kk + d(goal_patches), rays_per_patch, k + goal_patches) * kRowNnzPeakBytes +
          8.0 * 4.0 * (kk + d(goal_patches)) * d(sources);
 }
 
@@ -99,9 +102,8 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                       held + 2.0 * sample_nnz * kRowNnzBytes + 3.0 * 8.0 * kk * L + 2.0 * 8.0 * hits * L,
                       "luminaires.candidate_spacing_m (fewer candidates) or " + setting});
     phases.push_back({label + "k x k solve (" + std::to_string(c.channels) + (c.channels == 1 ? " channel)" : " channels)"),
-                      dense_solve_flops(kk, L, c.channels) * m.dense_flop_s,
-                      held + 2.0 * sample_nnz * kRowNnzBytes + 16.0 * kk * kk + 4.0 * 8.0 * kk * L + 8.0 * hits * L +
-                          4.0 * D_goal,
+                      interreflection_flops(kk, L, c.channels, c.rays_per_patch, m) * m.sparse_flop_s,
+                      held + 2.0 * sample_nnz * kRowNnzBytes + 6.0 * 8.0 * kk * L + 16.0 * hits * L + 4.0 * D_goal,
                       setting});
     return phases;
   };
@@ -142,12 +144,12 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     const double kv = d(c.verify_sample_size);
     const double hits = std::max(0.0, expected_hit_patches(kv + G, c.verify_rays, pop, m) - kv - G);
     const double per = (kv + G) * c.verify_rays * m.gather_ray_s + (kv + G) * Lv * c.direct_rays * m.precise_pair_ray_s +
-                       hits * Lv * m.cheap_pair_s + dense_solve_flops(kv, Lv, c.channels) * m.dense_flop_s;
+                       hits * Lv * m.cheap_pair_s + interreflection_flops(kv, Lv, c.channels, c.verify_rays, m) * m.sparse_flop_s;
     out.phases.push_back({"verification (sample, k = " + std::to_string(c.verify_sample_size) + ", up to " +
                               std::to_string(c.verify_rounds) + " rounds)",
                           c.verify_rounds * per,
                           model_bytes + n * (kPatchBytes + kBvhBytesPerPatch) +
-                              dense_verification_bytes(c.verify_sample_size, c.goal_patches, c.luminaires + 1,
+                              sample_verification_bytes(c.verify_sample_size, c.goal_patches, c.luminaires + 1,
                                                        c.verify_rays),
                           "verification.sample_fraction or verification.method"});
   }

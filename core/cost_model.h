@@ -20,6 +20,8 @@ struct MachineCosts {
   double precise_pair_ray_s = 7.8e-8;       // direct light: per shadow ray of a precise receiver-source pair
   double cheap_pair_s = 6.4e-8;             // direct light: one cheap (1 point, 2 rays) receiver-source pair
   double dense_flop_s = 1.0 / 13.3e9;       // LU and triangular solves in double
+  double sparse_flop_s = 1.0 / 1.0e9;       // gathers of rows of D and X (memory-bound)
+  int interreflection_sweeps = 100;         // sweeps of a typical interreflection solve (q ~ 0.9, 1e-10)
   double blend_mac_s = 1.44e-10;            // search: one multiply-add of a candidate column, single precision
   double gauss_seidel_nnz_s = 2.0e-9;       // one non-zero of F per Gauss-Seidel sweep
   int gauss_seidel_sweeps = 24;             // sweeps a typical solve needs (relative residual 1e-6)
@@ -69,7 +71,7 @@ CostEstimate estimate_job_cost(const CostCounts& counts, const MachineCosts& cos
 
 // Memory of the verification alone (peak), for choosing its method.
 double exact_verification_bytes(std::size_t patches, int rays_per_patch);
-double dense_verification_bytes(std::size_t k, std::size_t goal_patches, std::size_t sources, int rays_per_patch);
+double sample_verification_bytes(std::size_t k, std::size_t goal_patches, std::size_t sources, int rays_per_patch);
 // Distinct patches hit by `rows` rows of `rays` rays each, of `population` (a fit).
 double expected_hit_patches(double rows, double rays, double population, const MachineCosts& costs = {});
 

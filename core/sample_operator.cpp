@@ -2,14 +2,18 @@
 
 #include <Eigen/LU>
 #include <Eigen/SparseCore>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
+#include "core/contraction_solve.h"
 #include "core/error.h"
 #include "core/point_gather.h"
 #include "core/radiosity.h"
@@ -261,14 +265,57 @@ void clamp_round_off(Eigen::MatrixXd& T, const Scene& scene, std::span<const int
 
 // F(rows,:) B1 where B1_j = rho_j(channel) D(j,:) is known at the patches in `at`
 // (dense index `slot`): the first reflection gathered through full rows.
+using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Row-major: each hit adds a whole row of D, and rows are split among threads (each
+// row's sum is its own, so the result does not depend on the split).
 Eigen::MatrixXd gather_first_reflection(const Scene& scene, const SparseRows& F, const std::vector<int>& slot,
-                                        const Eigen::MatrixXd& D_at, int channel) {
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(F.rows(), D_at.cols());
-  for (Eigen::Index r = 0; r < F.rows(); ++r)
-    for (SparseRows::InnerIterator it(F, r); it; ++it)
-      if (const int s = slot[it.col()]; s >= 0)
-        out.row(r) += it.value() * scene.reflectance(static_cast<int>(it.col()), channel) * D_at.row(s);
+                                        const RowMajorMatrix& D, int channel) {
+  RowMajorMatrix out = RowMajorMatrix::Zero(F.rows(), D.cols());
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, F.rows(), 64), [&](const tbb::blocked_range<Eigen::Index>& r) {
+    for (Eigen::Index row = r.begin(); row < r.end(); ++row)
+      for (SparseRows::InnerIterator it(F, row); it; ++it)
+        if (const int s = slot[it.col()]; s >= 0)
+          out.row(row) += it.value() * scene.reflectance(static_cast<int>(it.col()), channel) * D.row(s);
+  });
   return out;
+}
+
+// (I - K) X = rhs. By iteration (core/contraction_solve.h) when K's contraction
+// factor lets it converge in kMaxSweeps or k is too large for a dense k x k matrix
+// (memory grows as k, not k^2), else by a dense LU. The condition figure in the stats
+// is the LU's 1-norm estimate, or for the iteration the infinity-norm bound
+// (1 + q) / (1 - q); either way the largest over channels.
+constexpr double kSolveTolerance = 1e-10;
+constexpr int kMaxSweeps = 3000;
+constexpr Eigen::Index kLargestDenseSolve = 4000;  // 128 MB a copy
+
+Eigen::MatrixXd solve_interreflection(const ContractionSystem& system, const Eigen::MatrixXd& rhs,
+                                      SampleOperatorStats& st, int& sweeps) {
+  const double q = contraction_factor(system);
+  const Eigen::Index k = system.W.rows();
+  const double needed = sweeps_needed(q, kSolveTolerance);
+  if (needed <= kMaxSweeps || k > kLargestDenseSolve) {
+    const int most = static_cast<int>(std::min(1e6, std::max<double>(kMaxSweeps, needed)));
+    if (std::optional<ContractionSolution> x = solve_contraction(system, rhs, kSolveTolerance, most)) {
+      st.condition_estimate = std::max(st.condition_estimate, (1.0 + q) / (1.0 - q));
+      sweeps = std::max(sweeps, x->sweeps);
+      return std::move(x->X);
+    }
+    if (k > kLargestDenseSolve)
+      throw NumericalError("interreflection solve: no convergence in " + std::to_string(most) +
+                           " sweeps (largest row sum of K " + std::to_string(q) + ")");
+  }
+  Eigen::MatrixXd dense = Eigen::MatrixXd(system.W);
+  for (Eigen::Index a = 0; a < k; ++a)
+    if (system.fallback_scale[a] > 0.0) dense.row(a) += system.fallback_scale[a] * system.ambient.transpose();
+  // I - K factorised in place: at k = n (10K patches) each k x k copy is 800 MB.
+  dense = -(system.rho.asDiagonal() * dense);
+  dense.diagonal().array() += 1.0;
+  const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(dense);
+  const double rcond = lu.rcond();
+  st.condition_estimate = std::max(st.condition_estimate, rcond > 0.0 ? 1.0 / rcond : INFINITY);
+  return lu.solve(rhs);
 }
 
 }  // namespace
@@ -521,21 +568,30 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   Eigen::VectorXd ambient(k);
   for (Eigen::Index b = 0; b < k; ++b) ambient[b] = scene.patches[P[b]].area_m2 * w[b];
   ambient /= ambient.sum();
-  Eigen::MatrixXd W_PP = Eigen::MatrixXd::Zero(k, k);
+  // W_PP = the sparse gathers + a rank-one ambient term for the rows that saw no
+  // sample patch (core/contraction_solve.h).
+  ContractionSystem W_PP;
+  W_PP.ambient = ambient;
+  W_PP.fallback_scale = Eigen::VectorXd::Zero(k);
   std::vector<bool> sample_fallback(static_cast<std::size_t>(k), false);
-  for (Eigen::Index a = 0; a < k; ++a) {
-    double den = 0.0;
-    for (SparseRows::InnerIterator it(rows.F, a); it; ++it)
-      if (const int b = sample_slot[it.col()]; b >= 0) den += it.value() * w[b];
-    const double s = sample_sums.reflecting[a];
-    if (den > 0.0) {
+  {
+    std::vector<Eigen::Triplet<double>> gathers;
+    for (Eigen::Index a = 0; a < k; ++a) {
+      double den = 0.0;
       for (SparseRows::InnerIterator it(rows.F, a); it; ++it)
-        if (const int b = sample_slot[it.col()]; b >= 0) W_PP(a, b) += s * it.value() * w[b] / den;
-    } else {
-      W_PP.row(a) = s * ambient.transpose();
-      sample_fallback[static_cast<std::size_t>(a)] = true;
-      if (s > 0.0) ++st.sample_fallback_rows;
+        if (const int b = sample_slot[it.col()]; b >= 0) den += it.value() * w[b];
+      const double s = sample_sums.reflecting[a];
+      if (den > 0.0) {
+        for (SparseRows::InnerIterator it(rows.F, a); it; ++it)
+          if (const int b = sample_slot[it.col()]; b >= 0) gathers.emplace_back(a, b, s * it.value() * w[b] / den);
+      } else {
+        W_PP.fallback_scale[a] = s;
+        sample_fallback[static_cast<std::size_t>(a)] = true;
+        if (s > 0.0) ++st.sample_fallback_rows;
+      }
     }
+    W_PP.W.resize(k, k);
+    W_PP.W.setFromTriplets(gathers.begin(), gathers.end());  // a patch hit twice: the entries sum
   }
   // Goal rows: a sampled goal uses its sample row. Others estimate A_i F_ip from
   // the sample's columns (A_p F_pi, reciprocity) and, where the goal's own full row
@@ -555,8 +611,8 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     if (const int s = sample_slot[i]; s >= 0) {
       if (sample_fallback[static_cast<std::size_t>(s)]) fallback = true;
       else
-        for (Eigen::Index b = 0; b < k; ++b)
-          if (W_PP(s, b) != 0.0) entries.emplace_back(g, b, W_PP(s, b));
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W_PP.W, s); it; ++it)
+          if (it.value() != 0.0) entries.emplace_back(g, it.col(), it.value());
     } else {
       auto add = [&](Eigen::Index b, double value) {
         if (a[static_cast<std::size_t>(b)] == 0.0) touched.push_back(b);
@@ -616,27 +672,25 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   op.reflected_lm_per_m2_per_lm = Eigen::MatrixXd::Zero(G, L);
   Eigen::MatrixXd indirect = Eigen::MatrixXd::Zero(G, L);
   double solve_seconds = 0.0;
+  int solve_sweeps = 0;  // 0: every channel by the dense LU
+  const RowMajorMatrix D_hit_rows = refine ? RowMajorMatrix(D_hit) : RowMajorMatrix();
   for (int c = 0; c < scene.channels; ++c) {
     if (progress) progress("k x k solve (LU)", static_cast<std::size_t>(c), static_cast<std::size_t>(scene.channels));
     const auto solve_start = std::chrono::steady_clock::now();
     Eigen::VectorXd rho(k);
     for (Eigen::Index b = 0; b < k; ++b) rho[b] = scene.reflectance(P[b], c);
+    W_PP.rho = rho;
     // Energy: a sample patch reflects rho_a s_a < 1 of what reaches it (row sums of
-    // K), so no light is created and I - K is strictly diagonally dominant.
+    // K), so no light is created and K is a contraction.
+    const double ambient_sum = W_PP.ambient.sum();
     for (Eigen::Index a = 0; a < k; ++a) {
-      const double row_sum = rho[a] * W_PP.row(a).sum();
+      const double row_sum = rho[a] * (W_PP.W.row(a).sum() + W_PP.fallback_scale[a] * ambient_sum);
       st.max_row_sum = std::max(st.max_row_sum, row_sum);
       if (!(row_sum < 1.0))
         throw NumericalError("interreflection operator: " + patch_name(scene, P[a]) + " would reflect " +
                              std::to_string(row_sum) + " of the light reaching it (rho " + std::to_string(rho[a]) +
                              ", channel " + std::to_string(c) + "): energy would be created");
     }
-    // I - K factorised in place: at k = n (10K patches) each k x k copy is 800 MB.
-    Eigen::MatrixXd system = -(rho.asDiagonal() * W_PP);
-    system.diagonal().array() += 1.0;
-    const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(system);
-    const double rcond = lu.rcond();
-    st.condition_estimate = std::max(st.condition_estimate, rcond > 0.0 ? 1.0 / rcond : INFINITY);
     // Plain: (I - K) Bʳ_P = R D_P, every reflection through the sample. Refined
     // (luminaire columns): the first reflection B1 = R D is gathered exactly through
     // full rows, S = F(P,:) B1, and the sample carries bounces 2 and up:
@@ -644,12 +698,12 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     Eigen::MatrixXd rhs = rho.asDiagonal() * D_P;
     Eigen::MatrixXd first_at_goals;  // refined: F(G,:) B1
     if (refine) {
-      const Eigen::MatrixXd S = kept_scale_P.asDiagonal() * gather_first_reflection(scene, rows.F, hit_slot, D_hit, c);
-      first_at_goals = goals.kept_scale.asDiagonal() * gather_first_reflection(scene, goals.rows->F, hit_slot, D_hit, c);
+      const Eigen::MatrixXd S = kept_scale_P.asDiagonal() * gather_first_reflection(scene, rows.F, hit_slot, D_hit_rows, c);
+      first_at_goals = goals.kept_scale.asDiagonal() * gather_first_reflection(scene, goals.rows->F, hit_slot, D_hit_rows, c);
       for (Eigen::Index l = 0; l < L; ++l)
         if (table.emitting_index[l] < 0) rhs.col(l) = rho.asDiagonal() * S.col(l);
     }
-    const Eigen::MatrixXd reflected = lu.solve(rhs);  // Bʳ_P per lumen (refined columns: bounces 2+)
+    const Eigen::MatrixXd reflected = solve_interreflection(W_PP, rhs, st, solve_sweeps);  // Bʳ_P per lumen (refined: bounces 2+)
     require_finite(reflected, "interreflection solve (I - K)", scene, P, sources);
     solve_seconds += seconds_since(solve_start);
 
@@ -664,7 +718,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
       Eigen::MatrixXd at_points = W_QP * reflected + point_fallback_scale * (ambient.transpose() * reflected);
       if (refine && goals.point_rows) {
         const Eigen::MatrixXd first =
-            goals.point_kept_scale.asDiagonal() * gather_first_reflection(scene, goals.point_rows->F, hit_slot, D_hit, c);
+            goals.point_kept_scale.asDiagonal() * gather_first_reflection(scene, goals.point_rows->F, hit_slot, D_hit_rows, c);
         for (Eigen::Index l = 0; l < L; ++l)
           if (table.emitting_index[l] < 0) at_points.col(l) += first.col(l);
       }
@@ -710,8 +764,14 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   line << "; indirect: " << to_string(options.indirect);
   op.log.push_back(line.str());
   line.str("");
-  line << std::setprecision(3) << "I - K: " << k << " x " << k << ", condition estimate " << st.condition_estimate
-       << " (1-norm); largest row sum of K " << st.max_row_sum << ", so the infinity-norm condition is at most "
+  line << std::setprecision(3) << "I - K: " << k << " x " << k << " (" << W_PP.W.nonZeros() << " gathers, "
+       << st.sample_fallback_rows << " ambient rows), ";
+  if (solve_sweeps > 0)
+    line << "solved by iteration (" << solve_sweeps << " sweeps to a relative error bound of " << kSolveTolerance
+         << "), condition estimate " << st.condition_estimate << " (infinity-norm bound)";
+  else
+    line << "solved by LU, condition estimate " << st.condition_estimate << " (1-norm)";
+  line << "; largest row sum of K " << st.max_row_sum << ", so the infinity-norm condition is at most "
        << st.condition_bound_inf;
   op.log.push_back(line.str());
   if (st.point_fallback_rows > 0)

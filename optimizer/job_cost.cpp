@@ -27,7 +27,7 @@ VerificationPlan plan_verification(const JobConfig& job, std::size_t patches, st
     return plan;
   }
   // auto: exact up to max_exact_patches, or beyond while its sparse rows fit in half
-  // the budget; else a sample whose dense system fits and stays quick.
+  // the budget; else a sample that fits and stays quick.
   const double exact_bytes = exact_verification_bytes(patches, s.rays_per_patch);
   std::ostringstream why;
   if (patches <= s.max_exact_patches) {
@@ -41,7 +41,7 @@ VerificationPlan plan_verification(const JobConfig& job, std::size_t patches, st
     plan.method = VerificationMethod::sample;
     int k = std::min(configured_k, kAutoVerificationMaxSample);
     while (k > 1 && budget &&
-           dense_verification_bytes(static_cast<std::size_t>(k), goal_patches, static_cast<std::size_t>(luminaires) + 1,
+           sample_verification_bytes(static_cast<std::size_t>(k), goal_patches, static_cast<std::size_t>(luminaires) + 1,
                                     s.rays_per_patch) > 0.5 * *budget)
       k = k * 3 / 4;
     plan.sample_size = std::max(1, k);

@@ -1,6 +1,6 @@
 // The cost model: its phase estimates against the classroom bench measured on this
 // machine (docs/benchmarks.md), the refusal message, the byte parser, and the
-// automatic verification never choosing a dense system that does not fit.
+// automatic verification never choosing a sample that does not fit.
 #include "core/cost_model.h"
 
 #include <gtest/gtest.h>
@@ -40,11 +40,13 @@ double phase_seconds(const CostEstimate& e, const std::string& prefix) {
 
 TEST(CostModel, ReproducesTheClassroomBenchWithinAThird) {
   // Measured (ilp bench configs/classroom.yaml): goal rows 4.28 s, direct light 4.93 s,
-  // k x k solve 6.42 s, search 0.50 s, verification 4.71 s; peak 0.40 GB.
+  // search 0.50 s, verification 4.71 s; peak 0.40 GB. The interreflection solve by
+  // iteration (3 channels, 88 sweeps, with the first reflection's gathers): 1.78 s at
+  // k = 3,353 (it was 6.42 s as a dense LU).
   const CostEstimate e = estimate_job_cost(classroom());
   EXPECT_NEAR(phase_seconds(e, "goal rows"), 4.28, 0.33 * 4.28);
   EXPECT_NEAR(phase_seconds(e, "direct light"), 4.93, 0.33 * 4.93);
-  EXPECT_NEAR(phase_seconds(e, "k x k solve"), 6.42, 0.33 * 6.42);
+  EXPECT_NEAR(phase_seconds(e, "k x k solve"), 1.78, 0.33 * 1.78);
   EXPECT_NEAR(phase_seconds(e, "search"), 0.50, 0.33 * 0.50);
   EXPECT_NEAR(phase_seconds(e, "verification"), 4.71, 0.33 * 4.71);
   // Memory errs on the safe side here (rows are counted at one entry per ray; many rays
@@ -53,26 +55,26 @@ TEST(CostModel, ReproducesTheClassroomBenchWithinAThird) {
   EXPECT_LT(e.peak_bytes(), 1.6 * 0.42e9);
 }
 
-TEST(CostModel, TheLuGrowsAsKCubedAndItsMemoryAsKSquared) {
+TEST(CostModel, TheInterreflectionSolveGrowsAsK) {
   CostCounts a = classroom(), b = classroom();
   b.sample_size = 2 * a.sample_size;
   const CostEstimate ea = estimate_job_cost(a), eb = estimate_job_cost(b);
   const double ratio = phase_seconds(eb, "k x k solve") / phase_seconds(ea, "k x k solve");
-  EXPECT_GT(ratio, 6.0);  // 8 for the LU alone, less with the k^2 L solves
-  EXPECT_LT(ratio, 8.0);
+  EXPECT_NEAR(ratio, 2.0, 1e-9);  // sparse sweeps and gathers: linear in k (a dense LU: 8)
 }
 
-TEST(CostModel, ADenseSystemBeyondTheBudgetIsRefusedNamingTheSetting) {
-  // Issue 12: a 25 % sample of 398K patches, 79,000 x 79,000 in double.
+TEST(CostModel, ALargeSampleIsRefusedBeyondTheBudgetNamingTheSetting) {
+  // Issue 12: a 25 % sample of 398K patches. As a dense 79,000 x 79,000 system it was
+  // 100 GB; solved by iteration it is held as k x sources, a few GB.
   CostCounts c = classroom();
   c.patches = c.population = 398000;
   c.sample_size = 79000;
   const CostEstimate e = estimate_job_cost(c);
-  EXPECT_GT(e.peak_bytes(), 16.0 * 79000.0 * 79000.0);
-  const std::string msg = test::error_of<ConfigError>([&] { require_fits(e, 24e9, "conference.yaml"); });
+  EXPECT_LT(e.peak_bytes(), 0.1 * 16.0 * 79000.0 * 79000.0);
+  EXPECT_GT(e.peak_bytes(), 8.0 * 79000.0 * 185.0);
+  const std::string msg = test::error_of<ConfigError>([&] { require_fits(e, 0.5 * e.peak_bytes(), "conference.yaml"); });
   EXPECT_TRUE(Contains(msg, "conference.yaml: the job would need about"));
-  EXPECT_TRUE(Contains(msg, "k x k solve"));
-  EXPECT_TRUE(Contains(msg, "change solver.sample_fraction"));
+  EXPECT_TRUE(Contains(msg, "change "));
   EXPECT_NO_THROW(require_fits(e, std::nullopt, "x"));
   EXPECT_NO_THROW(require_fits(e, 2.0 * e.peak_bytes(), "x"));
 }
