@@ -1016,7 +1016,10 @@ void set_goal_parameter(JobConfig& job, const std::string& key, double value) {
 
 int SampleSettings::size_for(std::size_t population) const {
   if (size) return *size;
-  return std::max(1, static_cast<int>(std::lround(fraction * static_cast<double>(population))));
+  // A fraction of the patches, capped: the sample's error depends on how light moves in
+  // the room, not on how finely it is meshed, so a finer mesh needs no larger k.
+  const double k = std::min(fraction * static_cast<double>(population), static_cast<double>(max_size_for_target));
+  return std::max(1, static_cast<int>(std::lround(k)));
 }
 
 JobConfig load_job_config(const std::string& path) {

@@ -70,10 +70,11 @@ struct SampleSettings {
   FileLoc target_error_loc;
   int error_samples = 4;           // eta pilot samples behind the prediction
   double pilot_fraction = 0.02;    // their size, of the reflecting patches
-  int max_size_for_target = 4000;  // solver.max_sample_size: the largest k target_error may choose
+  int max_size_for_target = 4000;  // solver.max_sample_size: the largest k target_error or sample_fraction gives
   FileLoc max_size_loc;
 
-  // k for a population of reflecting patches (at least 1).
+  // k for a population of reflecting patches (at least 1): size, else fraction x
+  // population capped at max_size_for_target.
   int size_for(std::size_t population) const;
 };
 

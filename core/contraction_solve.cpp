@@ -51,6 +51,10 @@ std::optional<ContractionSolution> solve_contraction(const ContractionSystem& s,
   const double q = contraction_factor(s);
   if (!(q < 1.0)) return std::nullopt;
   ContractionSolution out;
+  if (B.size() == 0) {  // no source (or no sample): nothing to solve, and no max of nothing
+    out.X = B;
+    return out;
+  }
   const RowMajorMatrix b = B;
   RowMajorMatrix x = b, next(B.rows(), B.cols());
   const double factor = q / (1.0 - q);

@@ -32,8 +32,12 @@ SampleSizeChoice choose_sample_size(const JobConfig& job, const Scene& scene, co
                                     const SampleOperatorOptions& options, const ProgressCallback& progress) {
   const std::size_t population = reflecting_patches(scene).size();
   if (!job.sample.target_error || population == 0) return {job.sample.size_for(population), {}};
+  // Pilots of pilot_fraction, at most kLargestPilot patches: the spread they measure
+  // scales as 1 / sqrt(k) whatever their size, so a finer mesh needs no larger pilot.
+  constexpr double kLargestPilot = 1000.0;
   const int pilot = std::min(static_cast<int>(population),
-                             std::max(2, static_cast<int>(std::lround(job.sample.pilot_fraction * population))));
+                             std::max(2, static_cast<int>(std::lround(std::min(kLargestPilot, job.sample.pilot_fraction *
+                                                                                                  static_cast<double>(population))))));
   const ErrorPrediction prediction =
       predict_sample_error(scene, caster, goals, flux_lm, options, pilot, job.sample.error_samples, progress);
   const int wanted = prediction.recommended_sample_size(*job.sample.target_error);

@@ -327,6 +327,14 @@ TEST(SampleSettings, SizeForIsTheFractionOfThePopulationRounded) {
   EXPECT_EQ(s.size_for(9), 2);   // 2.25
   s.fraction = 1.0;
   EXPECT_EQ(s.size_for(777), 777);
+  // Capped by max_sample_size (default 4000), so a finer mesh does not grow k ...
+  s.fraction = 0.05;
+  EXPECT_EQ(s.size_for(398000), 4000);
+  s.max_size_for_target = 1000;
+  EXPECT_EQ(s.size_for(30000), 1000);
+  // ... but an explicit size is taken as given.
+  s.size = 5000;
+  EXPECT_EQ(s.size_for(398000), 5000);
 }
 
 TEST(SampleSettings, SizeForIsAtLeastOne) {

@@ -75,6 +75,14 @@ TEST(ContractionSolve, TheSameWhateverTheThreadCount) {
   EXPECT_EQ((one - many).cwiseAbs().maxCoeff(), 0.0);
 }
 
+TEST(ContractionSolve, NoColumnsIsNoWork) {
+  const ContractionSystem s = random_system(50, 0.9, 5);
+  const auto x = solve_contraction(s, Eigen::MatrixXd(50, 0), 1e-10, 10);
+  ASSERT_TRUE(x);
+  EXPECT_EQ(x->X.cols(), 0);
+  EXPECT_EQ(x->sweeps, 0);
+}
+
 TEST(ContractionSolve, RefusesWhatWouldNotConverge) {
   ContractionSystem s = random_system(50, 0.9, 5);
   const Eigen::MatrixXd B = Eigen::MatrixXd::Ones(50, 1);
