@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -301,14 +302,20 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, 
   out.maintenance_factor = job.maintenance_factor;
   out.floor_area_m2 = out.mounting_area_m2;
   out.floor_area_source = "plan area of the mounting surface '" + job.search->mounting_surface + "'";
+  // The floor: a grid's surface whose upward patches lie at the room's lowest level
+  // (a grid over a table top is a task area, not the floor).
+  constexpr double kFloorLevelTolerance_m = 0.2;
   for (const CalcGridSetting& g : job.grids)
     if (g.kind == GridKind::horizontal && !g.over_surface.empty()) {
       const Scene& scene = prepared.loaded.scene;
       const int surface = scene.find_surface(g.over_surface);
-      double area = 0.0;
+      double area = 0.0, highest_m = -std::numeric_limits<double>::infinity();
       for (const Patch& p : scene.patches)
-        if (p.surface == surface && p.normal.z() >= 0.9) area += p.area_m2;
-      if (area > 0.0) {
+        if (p.surface == surface && p.normal.z() >= 0.9) {
+          area += p.area_m2;
+          highest_m = std::max(highest_m, p.centroid_m.z());
+        }
+      if (area > 0.0 && highest_m <= scene.bounds_m.min().z() + kFloorLevelTolerance_m) {
         out.floor_area_m2 = area;
         out.floor_area_source = "floor '" + g.over_surface + "' (under grid '" + g.name + "')";
       }

@@ -374,6 +374,29 @@ TEST(LayoutSearch, ReflectedLightIsPredictedAsVerified) {
 // optimum is above the plane's centre; with a maintenance factor the design is for the
 // initial value target / MF, and the verification (each point's exact direct light and
 // gather) agrees with the prediction.
+TEST(LayoutSearch, PowerDensityIsPerFloorAreaNotPerTaskArea) {
+  // A grid over the floor gives the power density's area; a grid over a raised table
+  // (a task area) does not: the mounting surface's plan area stands in.
+  TempDir dir;
+  std::string obj = room_obj({{"table", {1.3, 1.7}}});
+  for (std::size_t at = obj.find(" 0.01\n"); at != std::string::npos; at = obj.find(" 0.01\n")) obj.replace(at, 6, " 0.7\n");
+  dir.write("room.obj", obj);
+  JobConfig base = load_job_config(dir.write(
+      "job.yaml", "grids:\n  - {name: plane, over_surface: floor, height_m: 0.8}\n" +
+                      room_job("0", kOneLuminaire, "  - {grid: plane, average_lux: 100}\n", kOptimizer)));
+  base.verification.method = VerificationMethod::none;
+  const JobOutcome on_floor = solve_prepared(prepare_job(base), base);
+  EXPECT_NEAR(on_floor.floor_area_m2, 16.0, 1e-6);
+  EXPECT_NE(on_floor.floor_area_source.find("floor 'floor'"), std::string::npos) << on_floor.floor_area_source;
+  JobConfig table = base;
+  table.grids[0].over_surface = "table";
+  table.grids[0].height_m = 0.01;
+  table.grids[0].border_m = 0.0;
+  const JobOutcome on_table = solve_prepared(prepare_job(table), table);
+  EXPECT_NE(on_table.floor_area_source.find("mounting surface"), std::string::npos) << on_table.floor_area_source;
+  EXPECT_GT(on_table.floor_area_m2, 10.0) << "not the 0.16 m2 table top";
+}
+
 TEST(LayoutSearch, GridGoalIsSearchedAndVerifiedAtItsPoints) {
   TempDir dir;
   dir.write("room.obj", room_obj({}));
