@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -215,6 +216,7 @@ LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std:
   const int rays = std::max(1, options.shadow_rays);
   const auto target_points = halton4_points(static_cast<std::uint32_t>(points_per_receiver * rays));
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  std::atomic<std::size_t> done{0};
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, receivers, 16), [&](const auto& range) {
       RayCaster::prepare_thread();
@@ -244,6 +246,8 @@ LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std:
           }
         }
       }
+      const std::size_t now = done.fetch_add(range.size()) + range.size();
+      if (options.progress) options.progress(options.progress_label, now, receivers);
     });
   });
   return out;

@@ -8,9 +8,11 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/form_factors.h"
+#include "core/progress.h"
 #include "core/ray_caster.h"
 #include "core/scene.h"
 
@@ -21,6 +23,10 @@ struct DirectLightOptions {
   int shadow_rays = 8;      // at most, from each point to a luminaire it sees partly (4 first)
   std::uint64_t seed = 1;
   int threads = 0;          // 0: all cores
+  // Called from worker threads as blocks of receivers finish (may be empty): a long
+  // phase (100K goal patches x candidates) says how far it is.
+  ProgressCallback progress;
+  std::string progress_label = "direct light";
 };
 
 // Unoccluded form factor from a differential area at `point` with unit `normal`

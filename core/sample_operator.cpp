@@ -385,10 +385,10 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
     sums = row_sums_by_counting(scene, caster, goal_patches, table, options.form_factors, progress);
     goals.rays_cast = static_cast<std::uint64_t>(goal_patches.size()) * options.form_factors.rays_per_patch;
   }
-  if (progress) progress("direct light (goals)", 0, 1);
-  DirectRows direct = direct_light(scene, caster, goal_patches, sources.size(), table, sums.gathered,
-                                   options.direct_light);
-  if (progress) progress("direct light (goals)", 1, 1);
+  DirectLightOptions goal_light = options.direct_light;
+  goal_light.progress = progress;
+  goal_light.progress_label = "direct light (goals)";
+  DirectRows direct = direct_light(scene, caster, goal_patches, sources.size(), table, sums.gathered, goal_light);
   goals.direct_lux_per_lm = std::move(direct.D);
   goals.luminaire_form_factor = std::move(direct.absorbed);
   goals.kept_scale = apply_closed_form_loss(sums, goals.direct_lux_per_lm, goals.luminaire_form_factor, table);
@@ -498,8 +498,10 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   Eigen::MatrixXd gathered_needed(static_cast<Eigen::Index>(need_direct.size()), sample_sums.gathered.cols());
   for (std::size_t m = 0; m < need_direct.size(); ++m)
     gathered_needed.row(static_cast<Eigen::Index>(m)) = sample_sums.gathered.row(need_direct_row[m]);
-  const DirectRows D_new =
-      direct_light(scene, caster, need_direct, sources.size(), table, gathered_needed, options.direct_light);
+  DirectLightOptions sample_light = options.direct_light;
+  sample_light.progress = progress;
+  sample_light.progress_label = "direct light (sample)";
+  const DirectRows D_new = direct_light(scene, caster, need_direct, sources.size(), table, gathered_needed, sample_light);
   Eigen::MatrixXd D_P(k, L), absorbed_P(k, L);
   for (Eigen::Index b = 0; b < k; ++b)
     if (goal_slot[P[b]] >= 0) {
@@ -551,6 +553,8 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     DirectLightOptions cheap_options = options.hit_direct_light;
     cheap_options.seed = options.direct_light.seed;
     cheap_options.threads = options.direct_light.threads;
+    cheap_options.progress = progress;
+    cheap_options.progress_label = "direct light (patches the rows hit)";
     const Eigen::MatrixXd D_cheap = direct_light(
         scene, caster, cheap, sources.size(), table,
         Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(cheap.size()), static_cast<Eigen::Index>(table.gathered.size())),
