@@ -273,7 +273,7 @@ std::string key_text(const JobConfig& job) {
   if (s.target_error) t << *s.target_error;
   else t << "none";
   t << " error samples " << s.error_samples << " pilot fraction " << s.pilot_fraction << "\n";
-  if (s.target_error) t << "max sample size " << s.max_size_for_target << "\n";  // caps the k it picks
+  t << "max sample size " << s.max_size_for_target << "\n";  // caps the k sample_fraction or target_error gives
   if (job.ignore_material_kd) t << "material Kd ignored\n";
   return t.str();
 }

@@ -20,7 +20,7 @@ namespace ilp {
 
 // Bump whenever the file layout, the key's canonical text or the way the operator
 // is computed changes: files of another version are not used (and the key differs).
-inline constexpr std::uint32_t kLightingModelCacheVersion = 4;  // 2: duplicate triangles dropped in meshing; 3: luminaire direct light by type; 4: grid points as goal rows
+inline constexpr std::uint32_t kLightingModelCacheVersion = 5;  // 2: duplicate triangles dropped in meshing; 3: luminaire direct light by type; 4: grid points as goal rows; 5: interreflection solved by iteration
 
 // 32 lowercase hex digits: XXH3-128 over the format version, the bytes of the mesh
 // file (and, for OBJ, of each mtllib file it names) and a canonical text of the
