@@ -649,7 +649,10 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
       for (Eigen::Index l = 0; l < L; ++l)
         if (table.emitting_index[l] < 0) rhs.col(l) = rho.asDiagonal() * S.col(l);
     }
-    const Eigen::MatrixXd reflected = lu.solve(rhs);  // Bʳ_P per lumen (refined columns: bounces 2+)
+    // No source (a scene without light) gives no column: Eigen's triangular solve of an
+    // empty right-hand side binds a reference to its null data (UBSan, the sanitizer job).
+    const Eigen::MatrixXd reflected =  // Bʳ_P per lumen (refined columns: bounces 2+)
+        rhs.cols() == 0 ? Eigen::MatrixXd(rhs.rows(), 0) : Eigen::MatrixXd(lu.solve(rhs));
     require_finite(reflected, "interreflection solve (I - K)", scene, P, sources);
     solve_seconds += seconds_since(solve_start);
 
