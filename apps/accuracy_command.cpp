@@ -75,9 +75,12 @@ std::map<std::string, std::vector<Point>> summarise(const AccuracyStudy& study) 
       p.fraction = rows.front()->sample_fraction;
       p.predicted = rows.front()->predicted_rms_error_total;
       p.runs = rows.size();
+      // A named reference, not the binding: clang before 16 cannot capture a structured
+      // binding in a lambda (the sanitizer build failed here).
+      const std::vector<const AccuracyRow*>& group = rows;
       auto med = [&](auto field) {
         std::vector<double> v;
-        for (const AccuracyRow* r : rows) v.push_back(field(*r));
+        for (const AccuracyRow* r : group) v.push_back(field(*r));
         return median(v);
       };
       p.build_seconds = med([](const AccuracyRow& r) { return r.build_seconds; });

@@ -19,9 +19,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Splits at white space, ignoring everything from a '#' on (a comment).
-std::vector<std::string_view> split_ws(std::string_view line) {
-  line = line.substr(0, line.find('#'));
+// Splits at white space only. PLY and OFF have no comments: OpenMesh reads a '#' as part
+// of a word ("end_header#" made its header parser loop for ever; found by ply_off_fuzz).
+std::vector<std::string_view> split_words(std::string_view line) {
   std::vector<std::string_view> out;
   std::size_t i = 0;
   while (i < line.size()) {
@@ -33,6 +33,9 @@ std::vector<std::string_view> split_ws(std::string_view line) {
   }
   return out;
 }
+
+// Splits at white space, ignoring everything from a '#' on (a comment): OBJ and MTL.
+std::vector<std::string_view> split_ws(std::string_view line) { return split_words(line.substr(0, line.find('#'))); }
 
 // The text after `keyword` up to a comment, trimmed: names may contain spaces.
 std::string rest_of_line(std::string_view line, std::string_view keyword) {
@@ -211,76 +214,198 @@ std::size_t ply_type_bytes(std::string_view type) {
   return 0;
 }
 
-// PLY: the header's element counts against the file's size (binary: the least bytes
-// they need; ASCII: one line per element with the tokens its properties call for).
-// OpenMesh would allocate whatever a header declares, and it makes up the rest of a
-// truncated ASCII file.
+// A whole number >= 0 spelled by all of `token` (no sign, no fraction, no trailing text).
+bool whole_number(std::string_view token, long long& out) {
+  out = -1;
+  auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), out);
+  return ec == std::errc() && end == token.data() + token.size() && out >= 0;
+}
+
+bool ply_integer_type(std::string_view type) {
+  return ply_type_bytes(type) > 0 && type != "float" && type != "float32" && type != "double" && type != "float64";
+}
+
+bool ply_signed_type(std::string_view type) {
+  return type == "char" || type == "int8" || type == "short" || type == "int16" || type == "int" || type == "int32";
+}
+
+// PLY. OpenMesh parses the header word by word and the ASCII body number by number (a
+// line ending means nothing to it), so any word it reads where this check expects
+// another shifts the rest of the file and a value becomes a face's vertex count (up to
+// 4e9: a loop that fills memory). The header is therefore held to a layout where the two
+// readings agree: one statement a line, end_header alone, lists only where OpenMesh reads
+// them (a face's vertex_indices first, then texcoord), one vertex and one face element.
+// Then the body: ASCII, one line per element with the values its properties call for;
+// binary, walked the way OpenMesh walks it, each list count within the bytes that follow.
 DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
+  struct Property {
+    bool list = false;
+    std::string type, count_type;  // count_type: lists only
+  };
   struct Element {
     std::string name;
     long long count = 0;
     int line = 0;
-    std::vector<std::pair<bool, std::size_t>> properties;  // (is a list, bytes of a value or of the list count)
+    std::vector<Property> properties;
   };
   DeclaredCounts out;
   std::ifstream in(path, std::ios::binary);
   std::string line, format;
   std::vector<Element> elements;
-  int line_no = 0;
+  int line_no = 0, first_face = -1;
   bool ended = false;
+  std::uintmax_t offset = 0;         // where the next line starts
+  std::uintmax_t openmesh_pos = 0;   // where OpenMesh's header parser stands before it reads end_header
+  std::uintmax_t header_end = 0;     // the byte after the end_header line
   while (std::getline(in, line)) {
+    const std::uintmax_t line_start = offset;
+    offset += line.size() + (in.eof() ? 0 : 1);
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    auto tokens = split_ws(line);
-    if (tokens.empty()) continue;
-    // OpenMesh loops for ever on a header it cannot finish: refuse what it would not know.
+    const auto tokens = split_words(line);
     const FileLoc loc{path.string(), line_no};
-    if (line_no == 1 && tokens[0] != "ply")
-      throw SceneError(path.string() + ": could not read the mesh: not a PLY file (no 'ply' on the first line)");
-    if (tokens[0] == "format") {
-      if (tokens.size() != 3 || tokens[2] != "1.0" || (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" &&
-                                 tokens[1] != "binary_big_endian"))
+    if (line_no == 1) {
+      if (tokens.size() != 1 || tokens[0] != "ply")
+        throw SceneError(path.string() + ": could not read the mesh: not a PLY file (no 'ply' on the first line)");
+      continue;
+    }
+    if (tokens.empty()) continue;
+    const std::string_view key = tokens[0];
+    if (key == "comment") {  // OpenMesh reads the rest of the line
+      openmesh_pos = offset;
+      continue;
+    }
+    if (key == "end_header") {
+      if (tokens.size() != 1) throw SceneError(located(loc, "end_header must stand alone on its line"));
+      ended = true;
+      header_end = offset;
+      break;
+    }
+    if (key == "format") {
+      if (!format.empty() || tokens.size() != 3 || tokens[2] != "1.0" ||
+          (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" && tokens[1] != "binary_big_endian"))
         throw SceneError(located(loc, "format must be ascii, binary_little_endian or binary_big_endian, then a version"));
       format = std::string(tokens[1]);
-    } else if (tokens[0] != "ply" && tokens[0] != "comment" && tokens[0] != "obj_info" && tokens[0] != "element" &&
-               tokens[0] != "property" && tokens[0] != "end_header") {
-      throw SceneError(located(loc, "unknown PLY header keyword '" + std::string(tokens[0]) + "'"));
-    }
-    if (tokens[0] == "element") {
-      if (tokens.size() != 3) throw SceneError(located({path.string(), line_no}, "element needs a name and a count"));
-      elements.push_back({std::string(tokens[1]), header_count(tokens[2], std::string(tokens[1]), path, line_no, file_bytes),
-                          line_no, {}});
-      if (tokens[1] == "vertex") out.vertices = elements.back().count;
-      if (tokens[1] == "face") out.faces = elements.back().count;
-    }
-    if (tokens[0] == "property") {
+    } else if (format.empty()) {
+      throw SceneError(located(loc, "the format line must follow the 'ply' line"));
+    } else if (key == "element") {
+      if (tokens.size() != 3) throw SceneError(located(loc, "element needs a name and a count"));
+      Element e{std::string(tokens[1]), header_count(tokens[2], std::string(tokens[1]), path, line_no, file_bytes),
+                line_no, {}};
+      if ((e.name == "vertex" && out.vertices >= 0) || (e.name == "face" && out.faces >= 0))
+        throw SceneError(located(loc, "a second '" + e.name + "' element (OpenMesh would read the first with the count of the second)"));
+      if (e.name == "vertex") out.vertices = e.count;
+      if (e.name == "face") {
+        out.faces = e.count;
+        first_face = static_cast<int>(elements.size());
+      }
+      elements.push_back(std::move(e));
+    } else if (key == "property") {
       const bool list = tokens.size() >= 2 && tokens[1] == "list";
       if (elements.empty() || tokens.size() != (list ? 5u : 3u) || ply_type_bytes(tokens[list ? 2 : 1]) == 0 ||
           (list && ply_type_bytes(tokens[3]) == 0))
         throw SceneError(located(loc, "property must follow an element and be 'property TYPE NAME' or 'property list "
                                       "COUNT_TYPE TYPE NAME' with PLY types (char, uchar, short, ..., float, double)"));
-      elements.back().properties.push_back({list, ply_type_bytes(tokens[list ? 2 : 1])});
+      Element& e = elements.back();
+      // Elements after the first face element are not read by OpenMesh: any list will do there.
+      const bool read_by_openmesh = first_face < 0 || static_cast<int>(elements.size()) - 1 <= first_face;
+      if (list && read_by_openmesh) {
+        const std::string_view name = tokens[4];
+        const bool indices = name == "vertex_indices" || name == "vertex_index";
+        if (e.name != "face" || (!indices && name != "texcoord"))
+          throw SceneError(located(loc, "list property '" + std::string(name) + "' of element '" + e.name +
+                                            "': only a face's vertex_indices and texcoord lists are read (OpenMesh "
+                                            "would misread the rest of the file)"));
+        if (indices && !e.properties.empty())
+          throw SceneError(located(loc, "vertex_indices must be the face element's first property (OpenMesh drops "
+                                        "the properties before it and misreads the faces)"));
+      }
+      if (list && !ply_integer_type(tokens[2]))
+        throw SceneError(located(loc, "a list's count type must be an integer type, not '" + std::string(tokens[2]) + "'"));
+      e.properties.push_back({list, std::string(tokens[list ? 3 : 1]), list ? std::string(tokens[2]) : std::string()});
+    } else if (key == "obj_info") {
+      // OpenMesh reads each word after obj_info as a header keyword.
+      for (std::size_t k = 1; k < tokens.size(); ++k)
+        if (tokens[k] == "element" || tokens[k] == "property" || tokens[k] == "end_header" || tokens[k] == "comment")
+          throw SceneError(located(loc, "obj_info holds the header keyword '" + std::string(tokens[k]) +
+                                            "' (OpenMesh would read it as one)"));
+    } else {
+      throw SceneError(located(loc, "unknown PLY header keyword '" + std::string(key) + "'"));
     }
-    if (tokens[0] == "end_header") {
-      ended = true;
-      break;
-    }
+    openmesh_pos = line_start + static_cast<std::uintmax_t>(tokens.back().data() + tokens.back().size() - line.data());
   }
   if (!ended) throw SceneError(path.string() + ": the PLY header has no end_header (a truncated or damaged file)");
   if (format.empty()) throw SceneError(path.string() + ": the PLY header has no format line");
   long double need = 0;
   for (const Element& e : elements) {
     std::size_t bytes = 0;
-    for (const auto& [list, size] : e.properties) bytes += size;
+    for (const Property& p : e.properties) bytes += ply_type_bytes(p.list ? p.count_type : p.type);
     need += static_cast<long double>(e.count) * static_cast<long double>(bytes);
   }
-  const auto header_end = static_cast<std::uintmax_t>(std::max<std::streamoff>(0, in.tellg()));
   const std::uintmax_t body = file_bytes > header_end ? file_bytes - header_end : 0;
   if (format != "ascii") {
     if (need > static_cast<long double>(body))
       throw SceneError(path.string() + ": the header declares elements needing at least " +
                        std::to_string(static_cast<unsigned long long>(need)) + " bytes but only " +
                        std::to_string(body) + " follow it (truncated?)");
+    // OpenMesh finds the binary body 12 bytes ("\nend_header\n", 14 with "\r\n") past the
+    // end of the last header statement: anything else there and it reads from the wrong byte.
+    std::ifstream at(path, std::ios::binary);
+    at.seekg(static_cast<std::streamoff>(openmesh_pos));
+    char c1 = 0, c2 = 0;
+    at.get(c1);
+    at.get(c2);
+    if (openmesh_pos + (c1 == '\r' && c2 == '\n' ? 14 : 12) != header_end)
+      throw SceneError(path.string() + ": a binary PLY's end_header must directly follow the last element or "
+                                       "property line (no comment, blank line or trailing space before or after it)");
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(header_end));
+    const bool little = format == "binary_little_endian";
+    std::uintmax_t left = body;
+    for (std::size_t ei = 0; ei < elements.size(); ++ei) {
+      const Element& e = elements[ei];
+      if (first_face >= 0 && static_cast<int>(ei) > first_face) break;  // OpenMesh stops after the faces
+      bool has_list = false;
+      std::uintmax_t row = 0;
+      for (const Property& p : e.properties) {
+        has_list = has_list || p.list;
+        row += ply_type_bytes(p.type);
+      }
+      if (!has_list) {
+        const std::uintmax_t bytes = static_cast<std::uintmax_t>(e.count) * row;  // <= need <= body
+        in.ignore(static_cast<std::streamsize>(bytes));
+        left -= bytes;
+        continue;
+      }
+      for (long long k = 0; k < e.count; ++k)
+        for (const Property& p : e.properties) {
+          const std::size_t count_bytes = p.list ? ply_type_bytes(p.count_type) : 0;
+          const std::size_t value_bytes = ply_type_bytes(p.type);
+          if (left < (p.list ? count_bytes : value_bytes))
+            throw SceneError(path.string() + ": the file ends in " + e.name + " " + std::to_string(k) + " of the " +
+                             std::to_string(e.count) + " its header declares (truncated?)");
+          if (!p.list) {
+            in.ignore(static_cast<std::streamsize>(value_bytes));
+            left -= value_bytes;
+            continue;
+          }
+          unsigned char b[8] = {};
+          in.read(reinterpret_cast<char*>(b), static_cast<std::streamsize>(count_bytes));
+          left -= count_bytes;
+          unsigned long long u = 0;
+          for (std::size_t i = 0; i < count_bytes; ++i)
+            u |= static_cast<unsigned long long>(b[little ? i : count_bytes - 1 - i]) << (8 * i);
+          long long n = static_cast<long long>(u);
+          if (ply_signed_type(p.count_type) && (u >> (8 * count_bytes - 1)) != 0)
+            n = static_cast<long long>(u) - (1LL << (8 * count_bytes));
+          if (n < 0 || static_cast<unsigned long long>(n) * value_bytes > left)
+            throw SceneError(path.string() + ": " + e.name + " " + std::to_string(k) + " has a list of " +
+                             std::to_string(n) + " values, more than the " + std::to_string(left) +
+                             " bytes left in the file (a damaged or truncated file)");
+          in.ignore(static_cast<std::streamsize>(static_cast<unsigned long long>(n) * value_bytes));
+          left -= static_cast<std::uintmax_t>(n) * value_bytes;
+        }
+    }
     return out;
   }
   for (const Element& e : elements)
@@ -292,17 +417,16 @@ DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
                                                                  std::to_string(e.count) + " " + e.name +
                                                                  " lines its header declares (truncated?)"));
         ++line_no;
-        tokens = split_ws(line);
+        tokens = split_words(line);
       }
       std::size_t at = 0;
-      for (const auto& [list, size] : e.properties) {
-        if (!list) {
+      for (const Property& p : e.properties) {
+        if (!p.list) {
           ++at;
           continue;
         }
         long long n = -1;
-        if (at < tokens.size()) std::from_chars(tokens[at].data(), tokens[at].data() + tokens[at].size(), n);
-        if (n < 0 || n > static_cast<long long>(tokens.size()))
+        if (at >= tokens.size() || !whole_number(tokens[at], n) || n > static_cast<long long>(tokens.size()))
           throw SceneError(located({path.string(), line_no}, e.name + " " + std::to_string(k) +
                                                                  ": the list count is missing or not a whole number"));
         at += 1 + static_cast<std::size_t>(n);
@@ -315,55 +439,92 @@ DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
   return out;
 }
 
-// OFF: the counts of the header against the file's size, and for ASCII files the
-// data lines against the counts (OpenMesh makes up faces a truncated file lacks).
+// OFF. OpenMesh reads the keyword line, then the counts and every value number by number
+// (line endings mean nothing to it), except that after a vertex's coordinates (and a
+// face's indices with a C prefix) it drops the rest of the line. A vertex line short of
+// values or a face line with values beyond its count shifts the rest of the file, and
+// a coordinate becomes a face's vertex count (up to 4e9: a loop that fills memory). So:
+// the keyword alone on line 1, the three counts alone on the next line, each vertex line
+// with its coordinates (and normal, N prefix), each face line with exactly its count of
+// indices (at least, with C), every index a vertex's.
 DeclaredCounts check_off(const fs::path& path, std::uintmax_t file_bytes) {
   DeclaredCounts out;
   std::ifstream in(path, std::ios::binary);
   std::string line;
-  std::vector<std::string> header;  // "OFF", vertex count, face count, edge count
-  int line_no = 0, counts_line = 0;
-  while (header.size() < 4 && std::getline(in, line)) {
-    ++line_no;
-    const std::size_t before = header.size();
-    for (auto t : split_ws(line)) {
-      header.emplace_back(t);
-      if (header.size() == 2) counts_line = line_no;
-    }
-    // OpenMesh reads the counts from the line after the keyword, whatever follows it.
-    if (before == 0 && header.size() > 1 && header[1] != "BINARY")
-      throw SceneError(located({path.string(), line_no}, "the OFF keyword must be alone on its line (the counts follow on the next)"));
-    if (header.size() >= 2 && header[1] == "BINARY")  // its counts cannot be checked as text
+  int line_no = 0;
+  if (!std::getline(in, line)) return out;  // an empty file: OpenMesh says it cannot read it
+  line_no = 1;
+  int vertex_values = 3;      // coordinates, and a normal with the N prefix
+  bool face_colours = false;  // C prefix: OpenMesh drops the rest of a face line
+  {
+    const auto keyword = split_words(line);
+    if (keyword.size() >= 2 && keyword[1] == "BINARY")  // its counts cannot be checked as text
       throw SceneError(path.string() + ": binary OFF is not read (convert it to ASCII OFF, PLY or OBJ)");
+    if (keyword.size() > 1)
+      throw SceneError(located({path.string(), 1}, "the OFF keyword must be alone on its line (the counts follow on the next)"));
+    // [ST][C][N][4][n]OFF, in this order, as OpenMesh reads it.
+    std::string_view k = keyword.empty() ? std::string_view() : keyword[0];
+    bool normals = false, colours = false, higher = false;
+    if (k.substr(0, 2) == "ST") k.remove_prefix(2);
+    if (k.substr(0, 1) == "C") k.remove_prefix(1), colours = true;
+    if (k.substr(0, 1) == "N") k.remove_prefix(1), normals = true;
+    if (k.substr(0, 1) == "4") k.remove_prefix(1), higher = true;
+    if (k.substr(0, 1) == "n") k.remove_prefix(1), higher = true;
+    if (k != "OFF" || keyword[0].data() != line.data())
+      throw SceneError(path.string() + ": could not read the mesh: not an OFF file (the first word is not OFF)");
+    if (higher)
+      throw SceneError(path.string() + ": an OFF file with 4 or n (vertices of other than 3 dimensions) is not read");
+    vertex_values = normals ? 6 : 3;
+    face_colours = colours;
   }
-  if (header.empty()) return out;  // an empty file: OpenMesh says it cannot read it
-  // OpenMesh parses whatever follows: "OFF" (with its S, T, C, N, 4, n prefixes), then
-  // whole-number counts, or it reserves what it made of garbage (found by ply_off_fuzz).
-  if (header[0].size() < 3 || header[0].compare(header[0].size() - 3, 3, "OFF") != 0 ||
-      header[0].find_first_not_of("STCN4n", 0) != header[0].size() - 3)
-    throw SceneError(path.string() + ": could not read the mesh: not an OFF file (the first word is not OFF)");
-  if (header.size() < 3)
-    throw SceneError(path.string() + ": the OFF header needs vertex, face and edge counts (a truncated file?)");
-  out.vertices = header_count(header[1], "vertex", path, counts_line, file_bytes);
-  out.faces = header_count(header[2], "face", path, counts_line, file_bytes);
-  if (header.size() > 3) header_count(header[3], "edge", path, counts_line, file_bytes);
+  std::vector<std::string_view> tokens;
+  while (tokens.empty()) {
+    if (!std::getline(in, line))
+      throw SceneError(path.string() + ": the OFF header needs vertex, face and edge counts (a truncated file?)");
+    ++line_no;
+    tokens = split_words(line);
+  }
+  const int counts_line = line_no;
+  if (tokens.size() != 3)
+    throw SceneError(located({path.string(), counts_line}, "the OFF counts line must hold the vertex, face and edge "
+                                                           "counts alone (found " + std::to_string(tokens.size()) +
+                                                           " values)"));
+  out.vertices = header_count(tokens[0], "vertex", path, counts_line, file_bytes);
+  out.faces = header_count(tokens[1], "face", path, counts_line, file_bytes);
+  header_count(tokens[2], "edge", path, counts_line, file_bytes);
   if (out.vertices + out.faces > static_cast<long long>(file_bytes))
     throw SceneError(located({path.string(), counts_line}, "the header declares " + std::to_string(out.vertices) +
                                                                " vertices and " + std::to_string(out.faces) +
                                                                " faces but the file holds only " +
                                                                std::to_string(file_bytes) + " bytes"));
   long long data_lines = 0;
-  while (std::getline(in, line)) {
+  while (data_lines < out.vertices + out.faces && std::getline(in, line)) {
     ++line_no;
-    auto tokens = split_ws(line);
+    tokens = split_words(line);
     if (tokens.empty()) continue;
     ++data_lines;
-    if (data_lines > out.vertices && data_lines <= out.vertices + out.faces) {
-      long long n = -1;
-      std::from_chars(tokens[0].data(), tokens[0].data() + tokens[0].size(), n);
-      if (n < 0 || static_cast<long long>(tokens.size()) < 1 + n)
-        throw SceneError(located({path.string(), line_no}, "face " + std::to_string(data_lines - out.vertices - 1) +
-                                                               " lists fewer vertex indices than its count (truncated?)"));
+    const FileLoc loc{path.string(), line_no};
+    if (data_lines <= out.vertices) {
+      if (tokens.size() < static_cast<std::size_t>(vertex_values))
+        throw SceneError(located(loc, "vertex " + std::to_string(data_lines - 1) + " has " +
+                                          std::to_string(tokens.size()) + " values, fewer than the " +
+                                          std::to_string(vertex_values) + " its keyword calls for"));
+      continue;
+    }
+    const std::string face = "face " + std::to_string(data_lines - out.vertices - 1);
+    long long n = -1;
+    if (!whole_number(tokens[0], n))
+      throw SceneError(located(loc, face + ": the vertex count '" + std::string(tokens[0]) + "' is not a whole number"));
+    if (static_cast<long long>(tokens.size()) < 1 + n)
+      throw SceneError(located(loc, face + " lists fewer vertex indices than its count (truncated?)"));
+    if (!face_colours && static_cast<long long>(tokens.size()) > 1 + n)
+      throw SceneError(located(loc, face + " has values after its " + std::to_string(n) +
+                                        " vertex indices (a face colour needs the COFF keyword)"));
+    for (long long i = 1; i <= n; ++i) {
+      long long index = -1;
+      if (!whole_number(tokens[static_cast<std::size_t>(i)], index) || index >= out.vertices)
+        throw SceneError(located(loc, face + ": vertex index '" + std::string(tokens[static_cast<std::size_t>(i)]) +
+                                          "' is not one of the " + std::to_string(out.vertices) + " vertices"));
     }
   }
   if (data_lines < out.vertices + out.faces)

@@ -292,6 +292,9 @@ constexpr Eigen::Index kLargestDenseSolve = 4000;  // 128 MB a copy
 
 Eigen::MatrixXd solve_interreflection(const ContractionSystem& system, const Eigen::MatrixXd& rhs,
                                       SampleOperatorStats& st, int& sweeps) {
+  // No source (a scene without light) gives no column: nothing to solve, and Eigen's
+  // triangular solve of an empty right-hand side binds a reference to null (UBSan).
+  if (rhs.cols() == 0) return rhs;
   const double q = contraction_factor(system);
   const Eigen::Index k = system.W.rows();
   const double needed = sweeps_needed(q, kSolveTolerance);

@@ -218,7 +218,57 @@ INSTANTIATE_TEST_SUITE_P(
         BadHeader{"OffHugeVertexCount", "big.off", "OFF\n3000000000 1 0\n0 0 0\n", {":2:", "3000000000", "bytes"}},
         BadHeader{"OffNegativeVertexCount", "neg.off", "OFF\n-5 1 0\n", {":2:", "'-5' is not a whole number >= 0"}},
         BadHeader{"OffTruncatedFace", "short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n",
-                  {":6:", "fewer vertex indices"}}),
+                  {":6:", "fewer vertex indices"}},
+        // OpenMesh reads PLY and OFF word by word, with no comments: a '#' glued to
+        // end_header left its header parser looping for ever (found by ply_off_fuzz; the
+        // check had dropped everything from '#' on, as in OBJ).
+        BadHeader{"PlyEndHeaderWithHash", "hash.ply", kPlyHead + "element vertex 3\n" + kPlyProps.substr(0, kPlyProps.size() - 11) +
+                                                          "end_header#\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                  {":9:", "unknown PLY header keyword 'end_header#'"}},
+        BadHeader{"PlyEndHeaderNotAlone", "tail.ply", kPlyHead + "element vertex 0\nend_header 7\n", {":4:", "alone"}},
+        // Where OpenMesh's word-by-word reading and the line-by-line check part ways, a
+        // later number becomes a face's vertex count: 4e9 push_backs, memory exhausted.
+        BadHeader{"PlyListInVertexElement", "vlist.ply",
+                  kPlyHead + "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                             "property list uchar int foo\nelement face 1\nproperty list uchar int vertex_indices\n"
+                             "end_header\n0 0 0 1 4000000000\n3 0 0 0\n",
+                  {":7:", "list property 'foo' of element 'vertex'"}},
+        BadHeader{"PlyFacePropertyBeforeVertexIndices", "flags.ply",
+                  kPlyHead + "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                             "element face 1\nproperty uchar flags\nproperty list uchar int vertex_indices\n"
+                             "end_header\n0 0 0\n1 0 0\n0 1 0\n4000000000 3 0 1 2\n",
+                  {":9:", "vertex_indices must be the face element's first property"}},
+        BadHeader{"PlySecondFaceElement", "faces2.ply",
+                  kPlyHead + "element vertex 3\n" + kPlyProps.substr(0, kPlyProps.size() - 11) +
+                      "element face 5\nproperty uint q\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n4000000000\n2\n3\n4\n5\n",
+                  {":9:", "a second 'face' element"}},
+        BadHeader{"BinaryPlyListCountBeyondTheFile", "count.ply",
+                  "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                  "property float z\nelement face 1\nproperty list int int vertex_indices\nend_header\n" +
+                      std::string(36, '\0') + std::string("\xff\xff\xff\x7f\0\0\0\0\x01\0\0\0\x02\0\0\0", 16),
+                  {"face 0 has a list of 2147483647 values", "bytes left"}},
+        BadHeader{"BinaryPlyNegativeListCount", "neg_count.ply",
+                  "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                  "property float z\nelement face 1\nproperty list int int vertex_indices\nend_header\n" +
+                      std::string(36, '\0') + std::string("\xff\xff\xff\xfd\0\0\0\0\0\0\0\x01\0\0\0\x02", 16),
+                  {"face 0 has a list of -3 values"}},
+        // OpenMesh takes the binary body to start 12 bytes after the last header word; a
+        // comment there moved it by a byte and the mesh was read from shifted bytes.
+        BadHeader{"BinaryPlyCommentBeforeEndHeader", "shifted.ply",
+                  "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                  "property float z\nelement face 1\nproperty list uchar int vertex_indices\ncomment last\nend_header\n" +
+                      std::string(36, '\0') + std::string("\x03\0\0\0\0\x01\0\0\0\x02\0\0\0", 13),
+                  {"end_header must directly follow"}},
+        BadHeader{"OffVertexLineShortOfValues", "vshort.off", "OFF\n2 1 0\n0 0\n0 1 0 0\n3 0 1 1\n4000000000\n",
+                  {":3:", "vertex 0 has 2 values, fewer than the 3"}},
+        BadHeader{"OffCountsWithoutTheEdgeCount", "noedge.off",
+                  "OFF\n3 2\n0 0 0 1\n1 0 0\n0 1 0\n4000000000 0 0\n3 0 1 2\n3 0 1 2\n",
+                  {":2:", "counts alone (found 2 values)"}},
+        BadHeader{"OffFaceColourWithoutCoff", "colour.off",
+                  "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 4000000000\n3 0 1 2\n",
+                  {":6:", "face 0 has values after its 3 vertex indices", "COFF"}},
+        BadHeader{"OffFaceIndexNotAVertex", "index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n",
+                  {":6:", "vertex index '7' is not one of the 3 vertices"}}),
     [](const ::testing::TestParamInfo<BadHeader>& info) { return std::string(info.param.name); });
 
 // A vertex at 5e11 made float ray origins and patch counts overflow without a word.
