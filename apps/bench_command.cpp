@@ -1,6 +1,5 @@
 // ilp bench: what a job costs on this machine, phase by phase, against what a full
 // radiosity solve per configuration would cost. Not part of the test suite.
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -27,12 +26,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// Peak resident memory of this process so far, GB (Linux reports KB).
-double peak_memory_gb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / (1024.0 * 1024.0);
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

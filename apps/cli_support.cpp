@@ -1,5 +1,7 @@
 #include "apps/cli_support.h"
 
+#include <sys/resource.h>
+
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
@@ -60,6 +62,12 @@ std::string output_directory(const JobConfig& job, const std::string& override_d
   if (!override_dir.empty()) return override_dir;
   if (!job.output.directory.empty()) return job.output.directory;
   return (std::filesystem::path("results") / std::filesystem::path(job.path).stem()).string();
+}
+
+double peak_memory_gb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / (1024.0 * 1024.0);  // Linux reports KB
 }
 
 }  // namespace ilp::cli

@@ -19,4 +19,7 @@ std::string csv_field(const std::string& text);
 // results/<config stem>.
 std::string output_directory(const JobConfig& job, const std::string& override_dir);
 
+// Peak resident memory of this process so far, GB.
+double peak_memory_gb();
+
 }  // namespace ilp::cli

@@ -457,6 +457,7 @@ int run_job(const RunArgs& args) {
   print_result(std::cout, record);
   for (const std::string& file : write_outputs(set, {prepared, job, outcome, record, grids}))
     std::cout << "wrote " << file << "\n";
+  std::cout << std::fixed << std::setprecision(2) << "peak memory " << peak_memory_gb() << " GB (resident)\n";
   return outcome.all_met ? 0 : 2;
 }
 

@@ -286,7 +286,8 @@ TEST(IlpRunProducts, APhotometricProductIsPlacedAndBilled) {
   const std::string out = dir.file("out");
   const RunResult r = run_ilp(dir, {"run", job, "--out", out, "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  for (const char* part : {"Bill of materials:", "1 x downlight (612 lm, 6.9 W each", "erco_iku_downlight.ldt", "product"})
+  for (const char* part : {"Bill of materials:", "1 x downlight (612 lm, 6.9 W each", "erco_iku_downlight.ldt", "product",
+                           "peak memory "})
     EXPECT_TRUE(OutputContains(r.out, part));
   const std::string json = read_file((fs::path(out) / "result.json").string());
   EXPECT_TRUE(OutputContains(json, "\"bill_of_materials\""));
