@@ -126,7 +126,7 @@ int run_bench(const BenchArgs& args) {
   table << "| goal rows (rays, row sums, direct light at goals) | " << st.goal_seconds << " |\n";
   table << "| sample rows | " << st.sample_row_seconds << " |\n";
   table << "| direct light at sample and hit patches | " << st.direct_seconds << " |\n";
-  table << "| k x k solve (LU per channel) | " << st.solve_seconds << " |\n";
+  table << "| k x k solve (per channel) | " << st.solve_seconds << " |\n";
   table << "| T | " << st.response_seconds << " |\n";
   table << "| operator build (total) | " << model.build_seconds << " |\n";
   table << "| search (" << search.evaluations << " evaluations, " << args.luminaires << " luminaires) | "

@@ -682,7 +682,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   int solve_sweeps = 0;  // 0: every channel by the dense LU
   const RowMajorMatrix D_hit_rows = refine ? RowMajorMatrix(D_hit) : RowMajorMatrix();
   for (int c = 0; c < scene.channels; ++c) {
-    if (progress) progress("k x k solve (LU)", static_cast<std::size_t>(c), static_cast<std::size_t>(scene.channels));
+    if (progress) progress("k x k solve", static_cast<std::size_t>(c), static_cast<std::size_t>(scene.channels));
     const auto solve_start = std::chrono::steady_clock::now();
     Eigen::VectorXd rho(k);
     for (Eigen::Index b = 0; b < k; ++b) rho[b] = scene.reflectance(P[b], c);
@@ -736,7 +736,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
     op.reflected_lm_per_m2_per_lm += weight * (rho_goal.asDiagonal() * (op.direct_lux_per_lm + channel_indirect));
     st.response_seconds += seconds_since(response_start);
   }
-  if (progress) progress("k x k solve (LU)", static_cast<std::size_t>(scene.channels), static_cast<std::size_t>(scene.channels));
+  if (progress) progress("k x k solve", static_cast<std::size_t>(scene.channels), static_cast<std::size_t>(scene.channels));
   st.solve_seconds = solve_seconds;
   st.condition_bound_inf = (1.0 + st.max_row_sum) / (1.0 - st.max_row_sum);
   op.total_lux_per_lm += indirect;
