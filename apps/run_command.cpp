@@ -2,6 +2,7 @@
 // layout table and the files of the output folder.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
@@ -111,7 +112,9 @@ Chosen solve_variants(const std::vector<PreparedJob>& prepared, const std::vecto
       std::ostringstream line;
       line << std::fixed << std::setprecision(1) << variants[v].variant->product << " at "
            << variants[v].variant->rotation_deg << " deg: ";
-      if (outcome.search.beaten)
+      if (outcome.search.beaten && !std::isfinite(least_w[v]))
+        line << "not searched: no count reaches an average target at full output";
+      else if (outcome.search.beaten)
         line << "not searched: at least " << least_w[v] << " W, no less than the " << to_beat << " W already found";
       else
         line << outcome.luminaires.size() << " luminaires, " << outcome.power_w << " W, "
