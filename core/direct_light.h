@@ -29,6 +29,14 @@ struct DirectLightOptions {
   std::string progress_label = "direct light";
 };
 
+// The cheap estimate where direct light matters little: 1 point, 2 shadow rays.
+inline DirectLightOptions cheap_direct_light_options() {
+  DirectLightOptions o;
+  o.receiver_points = 1;
+  o.shadow_rays = 2;
+  return o;
+}
+
 // Unoccluded form factor from a differential area at `point` with unit `normal`
 // to the triangle `emitter` (which emits from the side its normal faces); 0 when
 // either faces away. Exact for the triangle as clipped to the point's hemisphere.

@@ -22,7 +22,7 @@ struct ExactSolveOptions {
   // `other_direct_light`, a cheaper estimate that is read only through reflections
   // (for verifying a layout, whose goals are a few of the patches).
   std::vector<int> precise_patches;
-  DirectLightOptions other_direct_light{.receiver_points = 1, .shadow_rays = 2};
+  DirectLightOptions other_direct_light = cheap_direct_light_options();
 };
 
 struct ExactSolveSummary {

@@ -15,11 +15,7 @@
 namespace ilp {
 namespace {
 
-struct RowResult {
-  std::vector<std::pair<int, int>> hits;  // (patch, count), sorted by patch
-  int escaped = 0;
-  int back_hits = 0;
-};
+using RowResult = RayCounts;
 
 // Per-thread scratch: a hit counter per patch (all zero between rows) and the
 // patches a row touched. Counting beats sorting the hits of every row.
@@ -93,6 +89,26 @@ bool FormFactorOptions::is_valid(std::string* error) const {
   return true;
 }
 
+void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, int rays_per_row, FormFactorRows& out) {
+  const std::size_t rows = counts.size();
+  const double inv_rays = 1.0 / rays_per_row;
+  std::size_t nnz = 0;
+  for (const RayCounts& r : counts) nnz += r.hits.size();
+  out.F.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(patches));
+  out.F.reserve(static_cast<Eigen::Index>(nnz));
+  out.escaped_fraction.resize(static_cast<Eigen::Index>(rows));
+  out.back_hit_fraction.resize(static_cast<Eigen::Index>(rows));
+  for (std::size_t r = 0; r < rows; ++r) {
+    out.F.startVec(static_cast<Eigen::Index>(r));
+    for (const auto& [patch, count] : counts[r].hits)
+      out.F.insertBack(static_cast<Eigen::Index>(r), patch) = count * inv_rays;
+    out.escaped_fraction[static_cast<Eigen::Index>(r)] = counts[r].escaped * inv_rays;
+    out.back_hit_fraction[static_cast<Eigen::Index>(r)] = counts[r].back_hits * inv_rays;
+  }
+  out.F.finalize();
+  out.rays_cast = static_cast<std::uint64_t>(rows) * rays_per_row;
+}
+
 FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster,
                                         std::span<const int> patches, const FormFactorOptions& options,
                                         const ProgressCallback& progress) {
@@ -121,22 +137,7 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
   });
 
   // Assemble in row order, so the result is the same whatever ran where.
-  const double inv_rays = 1.0 / options.rays_per_patch;
-  std::size_t nnz = 0;
-  for (const RowResult& r : results) nnz += r.hits.size();
-  out.F.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(scene.patches.size()));
-  out.F.reserve(static_cast<Eigen::Index>(nnz));
-  out.escaped_fraction.resize(static_cast<Eigen::Index>(rows));
-  out.back_hit_fraction.resize(static_cast<Eigen::Index>(rows));
-  for (std::size_t r = 0; r < rows; ++r) {
-    out.F.startVec(static_cast<Eigen::Index>(r));
-    for (const auto& [patch, count] : results[r].hits)
-      out.F.insertBack(static_cast<Eigen::Index>(r), patch) = count * inv_rays;
-    out.escaped_fraction[static_cast<Eigen::Index>(r)] = results[r].escaped * inv_rays;
-    out.back_hit_fraction[static_cast<Eigen::Index>(r)] = results[r].back_hits * inv_rays;
-  }
-  out.F.finalize();
-  out.rays_cast = static_cast<std::uint64_t>(rows) * options.rays_per_patch;
+  assemble_rows(results, scene.patches.size(), options.rays_per_patch, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/progress.h"
@@ -36,6 +37,18 @@ struct FormFactorRows {
   std::uint64_t rays_cast = 0;
   double seconds = 0.0;
 };
+
+// One row's rays, counted: (patch, hits) sorted by patch, and the rays that left the
+// scene or struck a back face.
+struct RayCounts {
+  std::vector<std::pair<int, int>> hits;
+  int escaped = 0;
+  int back_hits = 0;
+};
+
+// Sets out's F (rows in `counts` order, `patches` columns), escaped and back-hit
+// fractions and rays_cast from each row's counts of `rays_per_row` rays.
+void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, int rays_per_row, FormFactorRows& out);
 
 // Rows for the given patches, in that order (scene.all_patches() for all of them).
 // A ray that hits the back of a one-sided patch is absorbed: counted in

@@ -19,11 +19,7 @@ namespace {
 // Point streams are kept apart from the patch streams of the same seed.
 constexpr std::uint64_t kPointStreamSalt = 0x50494E54ull << 32;
 
-struct PointRow {
-  std::vector<std::pair<int, int>> hits;  // (patch, count), sorted by patch
-  int escaped = 0;
-  int back_hits = 0;
-};
+using PointRow = RayCounts;
 
 }  // namespace
 
@@ -68,21 +64,7 @@ FormFactorRows compute_point_rows(const Scene& scene, const RayCaster& caster, s
       if (progress) progress("point rows", now, rows);
     });
   });
-  const double inv_rays = 1.0 / options.rays_per_patch;
-  std::size_t nnz = 0;
-  for (const PointRow& r : results) nnz += r.hits.size();
-  out.F.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(scene.patches.size()));
-  out.F.reserve(static_cast<Eigen::Index>(nnz));
-  out.escaped_fraction.resize(static_cast<Eigen::Index>(rows));
-  out.back_hit_fraction.resize(static_cast<Eigen::Index>(rows));
-  for (std::size_t r = 0; r < rows; ++r) {
-    out.F.startVec(static_cast<Eigen::Index>(r));
-    for (const auto& [patch, n] : results[r].hits) out.F.insertBack(static_cast<Eigen::Index>(r), patch) = n * inv_rays;
-    out.escaped_fraction[static_cast<Eigen::Index>(r)] = results[r].escaped * inv_rays;
-    out.back_hit_fraction[static_cast<Eigen::Index>(r)] = results[r].back_hits * inv_rays;
-  }
-  out.F.finalize();
-  out.rays_cast = static_cast<std::uint64_t>(rows) * options.rays_per_patch;
+  assemble_rows(results, scene.patches.size(), options.rays_per_patch, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

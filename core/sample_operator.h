@@ -74,7 +74,7 @@ struct SampleOperatorOptions {
   DirectLightOptions direct_light;
   // exact_second_bounce only: direct light at the patches the rows hit that are
   // neither goal nor sample patches, seen only through a row's average over its hits.
-  DirectLightOptions hit_direct_light{.receiver_points = 1, .shadow_rays = 2};
+  DirectLightOptions hit_direct_light = cheap_direct_light_options();
 };
 
 // Goal points' gather rows cast this many times form_factors.rays_per_patch rays.

@@ -374,7 +374,8 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
   std::optional<JobOutcome> best;
   const int rounds = job.verification.method == VerificationMethod::none ? 1 : job.verification.rounds;
   int searches = 0, evaluations = 0;
-  SearchBounds bounds{.power_to_beat_w = power_to_beat_w};
+  SearchBounds bounds;
+  bounds.power_to_beat_w = power_to_beat_w;
   double search_seconds = 0.0, verify_seconds = 0.0;
   for (int round = 0; round < rounds; ++round) {
     JobOutcome outcome = search_and_verify(prepared, job, search_job, progress, bounds);
