@@ -380,9 +380,13 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
   for (int round = 0; round < rounds; ++round) {
     JobOutcome outcome = search_and_verify(prepared, job, search_job, progress, bounds);
     if (outcome.search.beaten) return outcome;
-    // The next round's targets are no easier: what this one found infeasible stays so.
-    for (const CountAttempt& a : outcome.search.attempts)
-      if (a.evaluations > 0 && !a.feasible) bounds.infeasible_counts.push_back(a.luminaires);
+    // The next round's targets are no easier: what this one found infeasible stays so,
+    // and what it found feasible draws no less (optimizer/layout_search.h).
+    for (const CountAttempt& a : outcome.search.attempts) {
+      if (a.evaluations == 0) continue;
+      std::erase_if(bounds.easier, [&](const CountAttempt& e) { return e.luminaires == a.luminaires; });
+      bounds.easier.push_back(a);
+    }
     ++searches;
     evaluations += outcome.search.evaluations;
     search_seconds += outcome.search.seconds;

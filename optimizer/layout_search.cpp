@@ -174,21 +174,37 @@ class Evaluator {
         job_(job),
         areas_(goal_areas(model, job)),
         candidates_(model.candidate_lux_per_lm.cast<float>()),
-        arena_(std::make_unique<tbb::task_arena>(arena_threads(job))) {}
+        arena_(std::make_unique<tbb::task_arena>(arena_threads(job))),
+        column_weight_(static_cast<std::size_t>(candidates_.cols())),
+        column_used_(static_cast<std::size_t>(candidates_.cols())) {}
 
   LayoutEvaluation operator()(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& w) const {
     const LuminaireSearch& s = *job_.search;
     const std::size_t n = xy.size();
     LayoutEvaluation out;
     out.luminaires.resize(n);
-    std::vector<std::pair<Eigen::Index, double>> terms;  // (candidate column, weight) in a fixed order
+    // Each candidate column's weight, summed over the luminaires whose blends share it:
+    // neighbouring luminaires blend the same columns, so there are at most as many
+    // terms as candidates, whatever the count. In column order, a fixed order.
+    std::vector<double>& column_weight = column_weight_;
+    std::fill(column_weight.begin(), column_weight.end(), 0.0);
+    std::vector<char>& used = column_used_;
+    std::fill(used.begin(), used.end(), 0);
     for (std::size_t j = 0; j < n; ++j) {
       PlacedLuminaire& lum = out.luminaires[j];
       lum.blend = model_.grid.locate(xy[j]);
       lum.position_m = lum.blend.position_m;
-      for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
-        if (lum.blend.candidates[k] >= 0) terms.emplace_back(lum.blend.candidates[k], w[j] * lum.blend.weights[k]);
+      for (int k = 0; k < GridPoint::kMaxCandidates; ++k) {
+        const int c = lum.blend.candidates[k];
+        if (c < 0) continue;
+        column_weight[static_cast<std::size_t>(c)] += w[j] * lum.blend.weights[k];
+        used[static_cast<std::size_t>(c)] = 1;
+      }
     }
+    std::vector<std::pair<Eigen::Index, double>>& terms = terms_;  // (candidate column, weight)
+    terms.clear();
+    for (std::size_t c = 0; c < column_weight.size(); ++c)
+      if (used[c]) terms.emplace_back(static_cast<Eigen::Index>(c), column_weight[c]);
     // a = sum of weight x column. Blocks of rows in parallel; each row adds its terms in
     // the same order whatever the threads, so the result is bit for bit the same.
     const Eigen::Index rows = candidates_.rows();
@@ -283,6 +299,11 @@ class Evaluator {
   // 1e-6 of itself, far below the operator's own error.
   Eigen::MatrixXf candidates_;
   std::unique_ptr<tbb::task_arena> arena_;
+  // Scratch of one evaluation, kept to spare an allocation each (an Evaluator is used
+  // by one search at a time).
+  mutable std::vector<double> column_weight_;
+  mutable std::vector<char> column_used_;
+  mutable std::vector<std::pair<Eigen::Index, double>> terms_;
 };
 
 std::string stop_reason(nlopt::result r) {
@@ -370,6 +391,50 @@ std::string watts(double w) {
   return out.str();
 }
 
+// The earlier round's attempt at n luminaires, if it searched that count.
+const CountAttempt* easier_attempt(const SearchBounds& bounds, int n) {
+  for (const CountAttempt& a : bounds.easier)
+    if (a.luminaires == n) return &a;
+  return nullptr;
+}
+
+// The counts in the order they are searched: for min_power, those an earlier round
+// found feasible, least power first (the likeliest best, whose power then bounds the
+// rest), then the others; else, and among the others, from the fewest luminaires up.
+std::vector<int> search_order(const std::vector<int>& counts, const SearchBounds& bounds, Objective objective) {
+  if (objective != Objective::min_power) return counts;
+  auto earlier_power_w = [&](int n) {
+    const CountAttempt* a = easier_attempt(bounds, n);
+    return a && a->feasible ? a->power_w : kNoPowerToBeat;
+  };
+  std::vector<int> order = counts;
+  std::ranges::stable_sort(order, [&](int a, int b) { return earlier_power_w(a) < earlier_power_w(b); });
+  return order;
+}
+
+// Why n luminaires are not searched (min_power), or empty: to_beat is the least power
+// of a layout already found with every goal met (here or given).
+std::string skip_reason(int n, const std::vector<int>& counts, const CountBound& bound, const SearchBounds& bounds,
+                        double to_beat) {
+  // A count whose luminaires, all at full output where each lights the goal best,
+  // cannot reach an average target is not searched (the largest count always is,
+  // unless a power to beat is given) ...
+  const bool may_skip = n != counts.back() || bounds.power_to_beat_w < kNoPowerToBeat;
+  if (!bound.reaches_averages && may_skip) return "not searched: cannot reach an average target at full output";
+  const CountAttempt* easier = easier_attempt(bounds, n);
+  if (easier && !easier->feasible && may_skip)
+    return "not searched: infeasible as searched at the easier targets of an earlier round";
+  // ... nor one that cannot draw less than a layout already found, nor one that drew
+  // no less at the easier targets of an earlier round.
+  if (bound.least_power_w >= to_beat)
+    return "not searched: needs at least " + watts(bound.least_power_w) + ", no less than the " + watts(to_beat) +
+           " of a layout already found";
+  if (easier && easier->feasible && easier->power_w >= to_beat)
+    return "not searched: drew " + watts(easier->power_w) + " at the easier targets of an earlier round, no less than the " +
+           watts(to_beat) + " of a layout already found";
+  return {};
+}
+
 }  // namespace
 
 double goal_tolerance(const JobConfig& job, GoalMetric metric) {
@@ -433,37 +498,118 @@ double least_layout_power_w(const LightingModel& model, const JobConfig& job) {
   return least;
 }
 
+namespace {
+
+struct CountSearch {
+  CountAttempt record;
+  LayoutEvaluation found;
+  bool time_limited = false;
+};
+
+// NLopt's global stage, then its local stage from the best point, over the layouts of
+// n luminaires; every evaluation counts, so the best point is kept even when NLopt
+// stops on an exception or returns a point it did not evaluate last.
+CountSearch search_count(const LightingModel& model, const JobConfig& job, const Evaluator& evaluate, int n,
+                         Clock::time_point deadline, const ProgressCallback& progress) {
+  const OptimizerSettings& opt = job.optimizer;
+  const LayoutCoding coding(model, job, n);
+  const auto start = Clock::now();
+  std::vector<Eigen::Vector2d> xy;
+  std::vector<double> w;
+  std::vector<double> best_x = coding.initial();
+  double best_f = std::numeric_limits<double>::infinity();
+  int evaluations = 0;
+  auto objective = [&](const double* x) {
+    coding.decode(x, xy, w);
+    const double f = evaluate(xy, w).objective;
+    ++evaluations;
+    if (f < best_f) {
+      best_f = f;
+      best_x.assign(x, x + coding.dimension());
+    }
+    if (progress && evaluations % 256 == 0)
+      progress("search " + std::to_string(n) + " luminaires", static_cast<std::size_t>(evaluations),
+               static_cast<std::size_t>(opt.max_evaluations + opt.local_max_evaluations));
+    return f;
+  };
+  CountSearch out;
+  out.record.luminaires = n;
+  if (coding.dimension() == 0) {
+    objective(nullptr);
+    out.record.global_stop = out.record.local_stop = "nothing to search (layout fixed)";
+  } else {
+    auto run_stage = [&](const std::string& algorithm, int budget, bool local) -> Stage {
+      if (algorithm == "none") return {"skipped", false};
+      const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
+      if (remaining <= 0.0) return {"no time left", true};
+      nlopt::opt stage(algorithm.c_str(), static_cast<unsigned>(coding.dimension()));
+      stage.set_lower_bounds(coding.lower());
+      stage.set_upper_bounds(coding.upper());
+      auto trampoline = [](unsigned, const double* x, double*, void* data) {
+        return (*static_cast<decltype(objective)*>(data))(x);
+      };
+      stage.set_min_objective(trampoline, &objective);
+      stage.set_maxeval(budget);
+      stage.set_maxtime(remaining);
+      if (local) {
+        stage.set_xtol_rel(1e-7);
+        stage.set_ftol_rel(1e-10);
+        std::vector<double> step(static_cast<std::size_t>(coding.dimension()));
+        for (std::size_t i = 0; i < step.size(); ++i) step[i] = 0.05 * (coding.upper()[i] - coding.lower()[i]);
+        stage.set_initial_step(step);
+      }
+      std::vector<double> x = best_x;
+      double f = 0.0;
+      try {
+        const nlopt::result r = stage.optimize(x, f);
+        return {stop_reason(r), r == nlopt::MAXTIME_REACHED};
+      } catch (const nlopt::roundoff_limited&) {
+        return {"round-off limited", false};
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("optimizer: NLopt rejected " + algorithm + ": " + e.what());
+      }
+    };
+    // NLopt's stochastic algorithms draw from one global generator: seeding it
+    // before each stage makes the layout a function of the seed alone.
+    nlopt::srand(opt.seed * 1000003ull + static_cast<unsigned long>(n));
+    objective(coding.initial().data());
+    const Stage global = run_stage(opt.global_algorithm, opt.max_evaluations, false);
+    nlopt::srand(opt.seed * 1000003ull + static_cast<unsigned long>(n) + 7919ull);
+    const Stage local = run_stage(opt.local_algorithm, opt.local_max_evaluations, true);
+    out.record.global_stop = global.stop;
+    out.record.local_stop = local.stop;
+    out.time_limited = global.time_limited || local.time_limited;
+  }
+  coding.decode(best_x.data(), xy, w);
+  if (job.search->ceiling_module_m > 0.0)  // the module's cell centres (the grid's nodes)
+    for (Eigen::Vector2d& p : xy) p = model.grid.nearest_candidate_m(p);
+  out.found = evaluate(xy, w);
+  out.record.evaluations = evaluations;
+  out.record.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  out.record.feasible = out.found.feasible;
+  out.record.power_w = out.found.power_w;
+  out.record.objective = out.found.objective;
+  return out;
+}
+
+}  // namespace
+
 SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress,
                            const SearchBounds& bounds) {
   if (!job.search) throw std::invalid_argument("the job places no luminaires (no luminaires.mounting_surface)");
-  const LuminaireSearch& s = *job.search;
-  const OptimizerSettings& opt = job.optimizer;
   const auto start = Clock::now();
-  const auto deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(opt.max_seconds));
+  const auto deadline =
+      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(job.optimizer.max_seconds));
   const std::vector<int> counts = searched_counts(job);
-
   const Evaluator evaluate(model, job);
+  const double least_flux_lm = least_total_flux_lm(model, job);
   SearchResult result;
   std::optional<LayoutEvaluation> best;
-  const double least_flux_lm = least_total_flux_lm(model, job);
-  for (std::size_t attempt = 0; attempt < counts.size(); ++attempt) {
-    const int n = counts[attempt];
-    const CountBound bound = count_bound(s, n, least_flux_lm);
-    std::string skip;
-    if (job.objective == Objective::min_power) {
-      // A count whose luminaires, all at full output where each lights the goal best,
-      // cannot reach an average target is not searched (the largest count always is,
-      // unless a power to beat is given) ...
-      const bool may_skip = attempt + 1 < counts.size() || bounds.power_to_beat_w < kNoPowerToBeat;
-      if (!bound.reaches_averages && may_skip) skip = "not searched: cannot reach an average target at full output";
-      if (skip.empty() && may_skip && std::ranges::find(bounds.infeasible_counts, n) != bounds.infeasible_counts.end())
-        skip = "not searched: infeasible as searched at the easier targets of an earlier round";
-      // ... nor one that cannot draw less than a layout already found (here, or given).
-      const double to_beat = std::min(bounds.power_to_beat_w, best && best->feasible ? best->power_w : kNoPowerToBeat);
-      if (skip.empty() && bound.least_power_w >= to_beat)
-        skip = "not searched: needs at least " + watts(bound.least_power_w) + ", no less than the " + watts(to_beat) +
-               " of a layout already found";
-    }
+  for (const int n : search_order(counts, bounds, job.objective)) {
+    const double to_beat = std::min(bounds.power_to_beat_w, best && best->feasible ? best->power_w : kNoPowerToBeat);
+    const std::string skip = job.objective == Objective::min_power
+                                 ? skip_reason(n, counts, count_bound(*job.search, n, least_flux_lm), bounds, to_beat)
+                                 : std::string();
     if (!skip.empty()) {
       CountAttempt skipped;
       skipped.luminaires = n;
@@ -471,89 +617,13 @@ SearchResult search_layout(const LightingModel& model, const JobConfig& job, con
       result.attempts.push_back(skipped);
       continue;
     }
-    const LayoutCoding coding(model, job, n);
-    const auto attempt_start = Clock::now();
-    std::vector<Eigen::Vector2d> xy;
-    std::vector<double> w;
-    std::vector<double> best_x = coding.initial();
-    double best_f = std::numeric_limits<double>::infinity();
-    int evaluations = 0;
-    // Every evaluation goes through here, so the best point is kept even when NLopt
-    // stops on an exception or returns a point it did not evaluate last.
-    auto objective = [&](const double* x) {
-      coding.decode(x, xy, w);
-      const double f = evaluate(xy, w).objective;
-      ++evaluations;
-      if (f < best_f) {
-        best_f = f;
-        best_x.assign(x, x + coding.dimension());
-      }
-      if (progress && evaluations % 256 == 0)
-        progress("search " + std::to_string(n) + " luminaires", static_cast<std::size_t>(evaluations),
-                 static_cast<std::size_t>(opt.max_evaluations + opt.local_max_evaluations));
-      return f;
-    };
-    CountAttempt record;
-    record.luminaires = n;
-    if (coding.dimension() == 0) {
-      objective(nullptr);
-      record.global_stop = record.local_stop = "nothing to search (layout fixed)";
-    } else {
-      auto run_stage = [&](const std::string& algorithm, int budget, bool local) -> Stage {
-        if (algorithm == "none") return {"skipped", false};
-        const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
-        if (remaining <= 0.0) return {"no time left", true};
-        nlopt::opt stage(algorithm.c_str(), static_cast<unsigned>(coding.dimension()));
-        stage.set_lower_bounds(coding.lower());
-        stage.set_upper_bounds(coding.upper());
-        auto trampoline = [](unsigned, const double* x, double*, void* data) {
-          return (*static_cast<decltype(objective)*>(data))(x);
-        };
-        stage.set_min_objective(trampoline, &objective);
-        stage.set_maxeval(budget);
-        stage.set_maxtime(remaining);
-        if (local) {
-          stage.set_xtol_rel(1e-7);
-          stage.set_ftol_rel(1e-10);
-          std::vector<double> step(static_cast<std::size_t>(coding.dimension()));
-          for (std::size_t i = 0; i < step.size(); ++i) step[i] = 0.05 * (coding.upper()[i] - coding.lower()[i]);
-          stage.set_initial_step(step);
-        }
-        std::vector<double> x = best_x;
-        double f = 0.0;
-        try {
-          const nlopt::result r = stage.optimize(x, f);
-          return {stop_reason(r), r == nlopt::MAXTIME_REACHED};
-        } catch (const nlopt::roundoff_limited&) {
-          return {"round-off limited", false};
-        } catch (const std::invalid_argument& e) {
-          throw std::invalid_argument("optimizer: NLopt rejected " + algorithm + ": " + e.what());
-        }
-      };
-      // NLopt's stochastic algorithms draw from one global generator: seeding it
-      // before each stage makes the layout a function of the seed alone.
-      nlopt::srand(opt.seed * 1000003ull + static_cast<unsigned long>(n));
-      objective(coding.initial().data());
-      const Stage global = run_stage(opt.global_algorithm, opt.max_evaluations, false);
-      nlopt::srand(opt.seed * 1000003ull + static_cast<unsigned long>(n) + 7919ull);
-      const Stage local = run_stage(opt.local_algorithm, opt.local_max_evaluations, true);
-      record.global_stop = global.stop;
-      record.local_stop = local.stop;
-      result.time_limited = result.time_limited || global.time_limited || local.time_limited;
-    }
-    coding.decode(best_x.data(), xy, w);
-    if (s.ceiling_module_m > 0.0)  // the module's cell centres (the grid's nodes)
-      for (Eigen::Vector2d& p : xy) p = model.grid.nearest_candidate_m(p);
-    LayoutEvaluation found = evaluate(xy, w);
-    record.evaluations = evaluations;
-    record.seconds = std::chrono::duration<double>(Clock::now() - attempt_start).count();
-    record.feasible = found.feasible;
-    record.power_w = found.power_w;
-    record.objective = found.objective;
-    result.attempts.push_back(record);
-    result.evaluations += evaluations;
-    if (!best || better(found, *best, job.objective)) best = std::move(found);
+    CountSearch searched = search_count(model, job, evaluate, n, deadline, progress);
+    result.attempts.push_back(searched.record);
+    result.evaluations += searched.record.evaluations;
+    result.time_limited = result.time_limited || searched.time_limited;
+    if (!best || better(searched.found, *best, job.objective)) best = std::move(searched.found);
   }
+  std::ranges::stable_sort(result.attempts, {}, &CountAttempt::luminaires);
   result.beaten = !best;
   if (best) result.best = std::move(*best);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -83,9 +83,12 @@ inline constexpr double kNoPowerToBeat = std::numeric_limits<double>::infinity()
 // What is known before a search that lets it leave counts out (min_power only).
 struct SearchBounds {
   double power_to_beat_w = kNoPowerToBeat;  // a layout already found with every goal met (another product's)
-  // Counts a search of the same job at targets no harder than these found infeasible
-  // (an earlier verification round: its targets only rise): not searched again.
-  std::vector<int> infeasible_counts;
+  // What a search of the same job at targets no harder than these found (an earlier
+  // verification round: its targets only rise), the latest attempt of each count
+  // searched. A count found infeasible there is not searched again; one found feasible
+  // is searched first when it drew the least power, and not at all when it drew no
+  // less than a layout already found: harder targets do not lower its power.
+  std::vector<CountAttempt> easier;
 };
 
 // Searches job.search's layout family for job.objective under job.goals and
@@ -94,12 +97,15 @@ struct SearchBounds {
 //
 // min_power: a count is not searched when it cannot draw less than
 // bounds.power_to_beat_w (e.g. a layout of another product already found) nor less
-// than a feasible layout found at a smaller count: its least power is bounded from
+// than a feasible layout found at another count: its least power is bounded from
 // below by each luminaire's minimum output and by the total flux the best-lit
 // candidate needs to reach each average target (with the blend's margin), so the skip
 // never loses a better layout. A count that cannot reach an average target even at
-// full output is not searched either, nor one of bounds.infeasible_counts, except
-// the largest count when no power to beat is given.
+// full output is not searched either. Nor, taking the earlier search as the best that
+// count can do, is one that bounds.easier found infeasible (except the largest count
+// when no power to beat is given), or found to draw no less than a layout already
+// found. Counts bounds.easier found feasible are searched first, least power first,
+// then the rest from the fewest luminaires up; result.attempts are in count order.
 SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress = {},
                            const SearchBounds& bounds = {});
 
@@ -108,7 +114,8 @@ SearchResult search_layout(const LightingModel& model, const JobConfig& job, con
 double least_layout_power_w(const LightingModel& model, const JobConfig& job);
 
 // Evaluates layouts as the search does, reusing its set-up (goal areas, a thread
-// arena) across calls: for measuring and for many evaluations of one model.
+// arena, scratch space) across calls: for measuring and for many evaluations of one
+// model. One call at a time: its scratch space is shared by the calls.
 class LayoutEvaluator {
  public:
   LayoutEvaluator(const LightingModel& model, const JobConfig& job);

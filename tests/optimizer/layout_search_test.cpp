@@ -84,23 +84,36 @@ TEST(LayoutSearch, CountsThatCannotDrawLessThanALayoutFoundAreNotSearched) {
   }
   EXPECT_NEAR(least_layout_power_w(prepared.model, job), 30.0, 1e-9);
 
-  const SearchResult beaten = search_layout(prepared.model, job, {}, {.power_to_beat_w = 29.9});
+  const SearchResult beaten = search_layout(prepared.model, job, {}, {.power_to_beat_w = 29.9, .easier = {}});
   EXPECT_TRUE(beaten.beaten);
   EXPECT_EQ(beaten.evaluations, 0);
   const JobOutcome outcome = solve_prepared(prepared, job, {}, 29.9);
   EXPECT_TRUE(outcome.search.beaten);
   EXPECT_EQ(outcome.verification.method, "none") << "nothing searched, nothing verified";
 
-  const SearchResult not_beaten = search_layout(prepared.model, job, {}, {.power_to_beat_w = 30.1});
+  const SearchResult not_beaten = search_layout(prepared.model, job, {}, {.power_to_beat_w = 30.1, .easier = {}});
   ASSERT_FALSE(not_beaten.beaten);
   EXPECT_EQ(not_beaten.best.power_w, all.best.power_w);
+}
+
+// What an earlier round found of these counts: infeasible after a search.
+SearchBounds found_infeasible(std::initializer_list<int> counts) {
+  SearchBounds bounds;
+  for (const int n : counts) {
+    CountAttempt a;
+    a.luminaires = n;
+    a.evaluations = 100;
+    a.feasible = false;
+    bounds.easier.push_back(a);
+  }
+  return bounds;
 }
 
 TEST(LayoutSearch, CountsFoundInfeasibleAtEasierTargetsAreNotSearchedAgain) {
   TempDir dir;
   const JobConfig job = mat_job(dir, 100.0, "0", kFixedPackage);
   const PreparedJob prepared = prepare_job(job);
-  const SearchResult again = search_layout(prepared.model, job, {}, {.infeasible_counts = {1, 2}});
+  const SearchResult again = search_layout(prepared.model, job, {}, found_infeasible({1, 2}));
   ASSERT_EQ(again.attempts.size(), 4u);
   EXPECT_EQ(again.attempts[0].evaluations, 0);
   EXPECT_NE(again.attempts[0].global_stop.find("earlier round"), std::string::npos) << again.attempts[0].global_stop;
@@ -109,9 +122,44 @@ TEST(LayoutSearch, CountsFoundInfeasibleAtEasierTargetsAreNotSearchedAgain) {
   ASSERT_TRUE(again.best.feasible);
   EXPECT_EQ(again.best.luminaires.size(), 3u);
   // The largest count is searched even when listed, unless another layout is to be beaten.
-  const SearchResult last = search_layout(prepared.model, job, {}, {.infeasible_counts = {1, 2, 3, 4}});
+  const SearchResult last = search_layout(prepared.model, job, {}, found_infeasible({1, 2, 3, 4}));
   EXPECT_GT(last.attempts[3].evaluations, 0);
   EXPECT_FALSE(last.beaten);
+}
+
+// Dimmable panels over the mat: the bound on power is the same for every count, so
+// only what an earlier round found can leave counts unsearched. Given the attempts
+// of a search at the same targets, the count that drew least is searched first and
+// finds the same layout (each count's search is seeded by its count), and the counts
+// that drew more are not searched at all.
+TEST(LayoutSearch, CountsThatDrewMoreAtEasierTargetsThanALayoutFoundAreNotSearched) {
+  TempDir dir;
+  const JobConfig job = mat_job(dir, 300.0, "0.5",
+                                "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n"
+                                "  mounting_surface: ceiling\n  mount_offset_m: 0.02\n  candidate_spacing_m: 0.5\n"
+                                "  count: [1, 3]\n");
+  const PreparedJob prepared = prepare_job(job);
+  const SearchResult first = search_layout(prepared.model, job);
+  ASSERT_TRUE(first.best.feasible);
+  ASSERT_EQ(first.attempts.size(), 3u);
+  for (const CountAttempt& a : first.attempts) ASSERT_GT(a.evaluations, 0) << a.luminaires << ": searched the first time";
+  const int least = static_cast<int>(first.best.luminaires.size());
+
+  const SearchResult again = search_layout(prepared.model, job, {}, {.power_to_beat_w = kNoPowerToBeat, .easier = first.attempts});
+  ASSERT_EQ(again.attempts.size(), 3u);
+  for (std::size_t a = 0; a < 3; ++a) {
+    const CountAttempt& attempt = again.attempts[a];
+    EXPECT_EQ(attempt.luminaires, static_cast<int>(a) + 1) << "attempts in count order";
+    if (attempt.luminaires == least) {
+      EXPECT_EQ(attempt.evaluations, first.attempts[a].evaluations);
+    } else {
+      EXPECT_EQ(attempt.evaluations, 0) << attempt.luminaires;
+      EXPECT_NE(attempt.global_stop.find("at the easier targets of an earlier round"), std::string::npos)
+          << attempt.global_stop;
+    }
+  }
+  EXPECT_EQ(again.best.power_w, first.best.power_w);
+  EXPECT_LT(again.evaluations, first.evaluations);
 }
 
 TEST(LayoutSearch, TheBoundOnPowerNeverExceedsThePowerFound) {
@@ -352,6 +400,37 @@ TEST(LayoutSearch, EvaluationIsBitForBitTheSameWhateverTheThreads) {
   ASSERT_EQ(one.lux.size(), two.lux.size());
   EXPECT_TRUE((one.lux.array() == two.lux.array()).all());
   EXPECT_EQ(one.objective, two.objective);
+}
+
+// Luminaires close enough that their blends share candidate columns: the light
+// evaluated is each luminaire's own blend of columns at its flux, summed in double
+// precision here one luminaire at a time (the evaluation sums a weight per column).
+TEST(LayoutSearch, LuminairesSharingCandidateColumnsEachAddTheirOwnLight) {
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"mat", {1.3, 1.7}}}));
+  const std::string luminaires = std::string(kOneLuminaire).replace(std::string(kOneLuminaire).find("count: 1"), 8, "count: 3");
+  const JobConfig job = load_job_config(
+      dir.write("job.yaml", room_job("0.5", luminaires, "  - surface: [floor, walls]\n    average_lux: 100\n", kOptimizer)));
+  const PreparedJob prepared = prepare_job(job);
+  const LightingModel& model = prepared.model;
+  const std::vector<Eigen::Vector2d> xy{{1.2, 1.6}, {1.45, 1.75}, {3.4, 1.3}};
+  const std::vector<double> w{1.0, 0.6, 0.8};
+  const LayoutEvaluation found = evaluate_layout(model, job, xy, w);
+  ASSERT_EQ(found.luminaires.size(), 3u);
+  int shared = 0;
+  for (const int a : found.luminaires[0].blend.candidates)
+    for (const int b : found.luminaires[1].blend.candidates) shared += a >= 0 && a == b;
+  ASSERT_GT(shared, 0) << "the first two blends share columns";
+  Eigen::VectorXd expected = model.fixed_lux;
+  Eigen::VectorXd light = Eigen::VectorXd::Zero(model.fixed_lux.size());
+  for (const PlacedLuminaire& l : found.luminaires)
+    for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
+      if (l.blend.candidates[k] >= 0)
+        light += l.flux_lm * l.blend.weights[k] * model.candidate_lux_per_lm.col(l.blend.candidates[k]);
+  expected += light.cwiseMax(0.0);
+  ASSERT_EQ(found.lux.size(), expected.size());
+  EXPECT_LT((found.lux - expected).cwiseAbs().maxCoeff(), 1e-5 * expected.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(found.lux.mean(), expected.mean(), 1e-5 * expected.mean());
 }
 
 TEST(LayoutSearch, ReflectedLightIsPredictedAsVerified) {
