@@ -157,6 +157,11 @@ int run_accuracy(const AccuracyArgs& args) {
   const JobScene loaded = load_job_scene(job);
   const Scene& scene = loaded.scene;
   for (const std::string& line : loaded.log) std::cerr << line << "\n";
+  double emitted_lm = 0.0;
+  for (const Patch& p : scene.patches) emitted_lm += p.area_m2 * p.exitance_lm_per_m2;
+  if (!(emitted_lm > 0.0))
+    throw ConfigError(args.config + ": nothing emits light, so there is no error to measure (every value is 0 lx); "
+                                    "add luminaires.placed or scene.emitting_surfaces");
 
   AccuracyStudyOptions options;
   options.sample_fractions = args.fractions;

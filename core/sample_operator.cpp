@@ -460,6 +460,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   if (Q > 0 && goals.point_direct_lux_per_lm.rows() != Q)
     throw std::invalid_argument("build_sample_operator: goal points without their direct light");
   st.rays_cast = goals.rays_cast;
+  st.goal_seconds = goals.seconds;  // computed before, once for every build on these rows
   st.direct_rows = goals.patches.size();
 
   const std::vector<int> population = reflecting_patches(scene);

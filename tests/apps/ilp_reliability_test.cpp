@@ -68,6 +68,20 @@ TEST(IlpReliability, SolveWithoutAnyLightSourceGivesZeroLux) {
   expect_exit(run_ilp(dir, {"solve", dark, "-q"}), 0);
 }
 
+// ilp accuracy with nothing lit measured errors of 0 lx against 0 lx and failed late
+// on plotting them on a log axis ("render_svg_plot: ... not > 0"); now it refuses
+// the job before any work, naming it, and writes nothing.
+TEST(IlpReliability, AccuracyWithoutAnyLightSourceIsRefusedAtOnce) {
+  TempDir dir;
+  const std::string job = write_job(dir, "a", "", kReport);
+  const std::string out = dir.file("acc");
+  const RunResult r = run_ilp(dir, {"accuracy", job, "--fractions", "0.5", "--seeds", "1", "--out", out, "-q"});
+  expect_exit(r, 1);
+  EXPECT_TRUE(OutputContains(r.err, job + ": nothing emits light"));
+  EXPECT_FALSE(OutputContains(r.err, "render_svg_plot"));
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // A reported surface that is also excluded: no goal patch (SIGSEGV).
 TEST(IlpReliability, ReportedSurfaceThatIsExcludedIsAnError) {
   TempDir dir;

@@ -127,6 +127,22 @@ TEST(SampleOperator, StatsAndLogDescribeTheBuild) {
   EXPECT_NE(log.find("infinity-norm condition is at most"), std::string::npos) << log;
 }
 
+// The goal rows' time is part of the build's phases (it was left at 0: `ilp bench` and
+// the run log printed "goal rows 0.000 s" while the rows took most of the build).
+TEST(SampleOperator, TheBuildsPhasesIncludeTheGoalRows) {
+  const Scene scene = coarse_office();
+  const std::vector<int> goals = scene.patches_of({"desk_1", "desk_2", "floor"});
+  const RayCaster caster(scene);
+  const SampleOperatorOptions o = options_with(100);
+  const GoalRows rows = compute_goal_rows(scene, caster, goals, scene_light_sources(scene), o);
+  ASSERT_GT(rows.seconds, 0.0);
+  const SampleOperator op = build_sample_operator(scene, caster, rows, o);
+  EXPECT_EQ(op.stats.goal_seconds, rows.seconds);
+  const SampleOperatorStats& st = op.stats;
+  EXPECT_DOUBLE_EQ(st.build_seconds(),
+                   st.goal_seconds + st.sample_row_seconds + st.direct_seconds + st.solve_seconds + st.response_seconds);
+}
+
 TEST(SampleError, ComparesAreaWeightedAndSkipsZeroReferences) {
   const Scene scene = coarse_office();
   const std::vector<int> goals = {0, 1, 2};
