@@ -4,6 +4,7 @@
 #include <Eigen/SparseCore>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -425,8 +426,25 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
   return goals;
 }
 
+namespace {
+SampleOperator build_in_arena(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                              const SampleOperatorOptions& options, const ProgressCallback& progress);
+}  // namespace
+
+// The phases that do not open their own arena (the first-reflection gathers, the
+// interreflection solve) run in one of options.form_factors.threads threads, as the
+// ray casting does.
 SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
                                      const SampleOperatorOptions& options, const ProgressCallback& progress) {
+  const int threads = options.form_factors.threads;
+  tbb::task_arena arena(threads > 0 ? threads : static_cast<int>(tbb::task_arena::automatic));
+  return arena.execute([&] { return build_in_arena(scene, caster, goals, options, progress); });
+}
+
+namespace {
+
+SampleOperator build_in_arena(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                              const SampleOperatorOptions& options, const ProgressCallback& progress) {
   if (options.sample_size < 1)
     throw std::invalid_argument("sample_size = " + std::to_string(options.sample_size) + ": must be >= 1");
   require_valid_materials(scene);
@@ -793,5 +811,7 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   }
   return op;
 }
+
+}  // namespace
 
 }  // namespace ilp

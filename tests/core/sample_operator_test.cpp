@@ -2,6 +2,10 @@
 #include "core/sample_operator.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <string_view>
 
 #include "core/config.h"
 #include "core/error.h"
@@ -125,6 +129,24 @@ TEST(SampleOperator, StatsAndLogDescribeTheBuild) {
   EXPECT_GT(op.stats.max_row_sum, 0.6);
   EXPECT_DOUBLE_EQ(op.stats.condition_bound_inf, (1 + op.stats.max_row_sum) / (1 - op.stats.max_row_sum));
   EXPECT_NE(log.find("infinity-norm condition is at most"), std::string::npos) << log;
+}
+
+// The k x k solve and the first-reflection gathers ran on TBB's default arena, so
+// solver.threads = 1 still used every core there; they now run in the build's own
+// arena of form_factors.threads (seen from the solve's progress callback).
+TEST(SampleOperator, TheSolveHonoursTheThreadCount) {
+  const Scene scene = coarse_office();
+  const std::vector<int> goals = scene.patches_of({"desk_1", "desk_2"});
+  SampleOperatorOptions o = options_with(100);
+  o.form_factors.threads = o.direct_light.threads = 1;
+  const RayCaster caster(scene, 1);
+  const GoalRows rows = compute_goal_rows(scene, caster, goals, scene_light_sources(scene), o);
+  int solve_concurrency = 0;
+  const ProgressCallback progress = [&](std::string_view phase, std::size_t, std::size_t) {
+    if (phase == "k x k solve") solve_concurrency = std::max(solve_concurrency, tbb::this_task_arena::max_concurrency());
+  };
+  build_sample_operator(scene, caster, rows, o, progress);
+  EXPECT_EQ(solve_concurrency, 1);
 }
 
 // The goal rows' time is part of the build's phases (it was left at 0: `ilp bench` and
