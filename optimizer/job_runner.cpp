@@ -17,6 +17,7 @@
 #include "core/sample_operator.h"
 #include "optimizer/job_cost.h"
 #include "optimizer/model_cache.h"
+#include "optimizer/round_calibration.h"
 
 namespace ilp {
 namespace {
@@ -397,21 +398,15 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
     for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
       const GoalOutcome& o = outcome.goals[g];
       if (round + 1 == rounds) break;  // no search follows
-      if (!o.fails_only_on_verification || !(o.verified->value > 0.0) || !(o.predicted.value > 0.0)) continue;
+      if (!o.fails_only_on_verification) continue;
       if (job.objective == Objective::closest_to_target && o.predicted.metric == GoalMetric::average) continue;
       GoalSetting& goal = search_job.goals[g];
-      constexpr double kMargin = 0.002;  // aim just past the target, not at it
-      const double ratio = o.predicted.value / o.verified->value;
-      const double next = o.predicted.metric == GoalMetric::maximum
-                              ? std::min(goal.target, job.goals[g].target * ratio * (1.0 - kMargin))
-                              : std::max(goal.target, job.goals[g].target * ratio * (1.0 + kMargin));
-      if (next == goal.target) continue;
-      goal.target = o.predicted.metric == GoalMetric::uniformity ? std::min(next, 1.0) : next;
-      std::ostringstream line;
-      line << std::setprecision(4) << "round " << round + 1 << ": " << goal.name << " " << to_string(goal.metric)
-           << " predicted " << o.predicted.value << ", verified " << o.verified->value << "; the next search aims at "
-           << goal.target << " for " << job.goals[g].target;
-      outcome.calibration.push_back(line.str());
+      const std::optional<double> next =
+          next_search_target(goal.metric, job.goals[g].target, goal.target, o.predicted.value, o.verified->value);
+      if (!next) continue;
+      goal.target = *next;
+      outcome.calibration.push_back(
+          calibration_line(round, job, job.goals[g], o.predicted.value, o.verified->value, goal.target));
       recalibrated = true;
     }
     std::vector<std::string> calibration = best ? best->calibration : std::vector<std::string>{};

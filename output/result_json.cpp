@@ -271,11 +271,16 @@ void print_result(std::ostream& os, const ResultRecord& r) {
   if (r.time_limited) os << " (the time budget ended a stage: the layout may depend on machine speed)";
   os << "\n";
   for (const std::string& line : r.calibration) os << "  " << line << "\n";
-  for (const AttemptRecord& a : r.attempts)
+  for (const AttemptRecord& a : r.attempts) {
+    if (a.evaluations == 0 && a.global_stop == a.local_stop) {  // left out before any search: why
+      os << "  " << a.luminaires << " luminaires: " << a.global_stop << "\n";
+      continue;
+    }
     os << "  " << a.luminaires << " luminaires: "
        << (a.feasible ? fixed(a.power_w, 1) + " W as searched" : std::string("infeasible as searched"))
        << ", " << a.evaluations << " evaluations in " << fixed(a.seconds, 2) << " s (global: " << a.global_stop
        << "; local: " << a.local_stop << ")\n";
+  }
   os << "timings:";
   for (std::size_t k = 0; k < r.timings_s.size(); ++k)
     os << (k ? ", " : " ") << r.timings_s[k].first << " " << fixed(r.timings_s[k].second, 2) << " s";

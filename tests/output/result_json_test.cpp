@@ -102,6 +102,20 @@ TEST(ResultJson, PrintShowsLayoutGoalsAndMisses) {
     EXPECT_TRUE(test::Contains(text, part, "report")) << part;
 }
 
+// A count left out before any search reads as its reason alone; it printed as
+// "infeasible as searched, 0 evaluations" though it was never searched.
+TEST(ResultJson, ACountNotSearchedSaysWhyNotThatItWasInfeasible) {
+  ResultRecord r = sample_record();
+  const std::string why = "not searched: drew 205.3 W at the easier targets of an earlier round";
+  r.attempts.push_back({5, 0, 0.0, false, 0.0, why, why});
+  std::ostringstream os;
+  print_result(os, r);
+  const std::string text = os.str();
+  EXPECT_TRUE(test::Contains(text, "  5 luminaires: " + why + "\n", "report"));
+  EXPECT_FALSE(test::Contains(text, "5 luminaires: infeasible", "report"));
+  EXPECT_TRUE(test::Contains(text, "4 luminaires: 123.4 W as searched, 6643 evaluations", "report"));
+}
+
 TEST(ResultJson, NotAResultIsAClearError) {
   test::TempDir dir;
   const std::string missing = dir.file("none.json");
