@@ -325,7 +325,34 @@ struct Token {
   int line = 0;
 };
 
-class TokenReader {
+// The range checks both readers share, on a Reader with line(), number(field) and
+// path(): a number within [lo, hi], a whole number within [lo, hi].
+template <class Reader>
+class BoundedNumbers {
+ public:
+  template <class Name>
+  double number_in(const Name& field, double lo, double hi) {
+    Reader& r = static_cast<Reader&>(*this);
+    const int at = r.line();
+    const double v = r.number(field);
+    if (v < lo || v > hi) fail(r.path(), at, name_of(field), fmt(v) + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
+    return v;
+  }
+  template <class Name>
+  long integer_in(const Name& field, long lo, long hi) {
+    Reader& r = static_cast<Reader&>(*this);
+    const int at = r.line();
+    const double v = r.number(field);
+    if (!is_integer(v)) fail(r.path(), at, name_of(field), fmt(v) + " is not a whole number");
+    if (v < static_cast<double>(lo) || v > static_cast<double>(hi)) {
+      fail(r.path(), at, name_of(field),
+           fmt(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    }
+    return std::lround(v);
+  }
+};
+
+class TokenReader : public BoundedNumbers<TokenReader> {
  public:
   TokenReader(std::vector<Token> tokens, std::string path, int last_line)
       : tokens_(std::move(tokens)), path_(std::move(path)), last_line_(last_line) {}
@@ -333,6 +360,7 @@ class TokenReader {
   std::size_t remaining() const { return tokens_.size() - pos_; }
   int line() const { return pos_ < tokens_.size() ? tokens_[pos_].line : last_line_; }
   int line_of_last() const { return pos_ > 0 ? tokens_[pos_ - 1].line : line(); }
+  const std::string& path() const { return path_; }
 
   template <class Name>
   double number(const Name& field) {
@@ -344,23 +372,6 @@ class TokenReader {
     }
     ++pos_;
     return v;
-  }
-  template <class Name>
-  double number_in(const Name& field, double lo, double hi) {
-    const int at = line();
-    const double v = number(field);
-    if (v < lo || v > hi) fail(path_, at, name_of(field), fmt(v) + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
-    return v;
-  }
-  template <class Name>
-  long integer_in(const Name& field, long lo, long hi) {
-    const int at = line();
-    const double v = number(field);
-    if (!is_integer(v)) fail(path_, at, name_of(field), fmt(v) + " is not a whole number");
-    if (v < static_cast<double>(lo) || v > static_cast<double>(hi)) {
-      fail(path_, at, name_of(field), fmt(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    }
-    return std::lround(v);
   }
   const Token* peek() const { return pos_ < tokens_.size() ? &tokens_[pos_] : nullptr; }
 
@@ -622,12 +633,13 @@ Photometry parse_ies(std::string_view raw, const std::string& path) {
 
 namespace {
 
-class FieldReader {
+class FieldReader : public BoundedNumbers<FieldReader> {
  public:
   FieldReader(std::vector<std::string_view> lines, std::string path) : lines_(std::move(lines)), path_(std::move(path)) {}
 
   std::size_t remaining() const { return lines_.size() - pos_; }
   int line() const { return static_cast<int>(pos_) + 1; }
+  const std::string& path() const { return path_; }
 
   template <class Name>
   std::string_view raw(const Name& field) {
@@ -646,23 +658,6 @@ class FieldReader {
       fail(path_, at, name_of(field), "'" + std::string(t.substr(0, 40)) + "' is not a finite number");
     }
     return v;
-  }
-  template <class Name>
-  double number_in(const Name& field, double lo, double hi) {
-    const int at = line();
-    const double v = number(field);
-    if (v < lo || v > hi) fail(path_, at, name_of(field), fmt(v) + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
-    return v;
-  }
-  template <class Name>
-  long integer_in(const Name& field, long lo, long hi) {
-    const int at = line();
-    const double v = number(field);
-    if (!is_integer(v)) fail(path_, at, name_of(field), fmt(v) + " is not a whole number");
-    if (v < static_cast<double>(lo) || v > static_cast<double>(hi)) {
-      fail(path_, at, name_of(field), fmt(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    }
-    return std::lround(v);
   }
   // The first non-blank line left, or -1.
   int next_non_blank() const {
