@@ -380,7 +380,13 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
   double search_seconds = 0.0, verify_seconds = 0.0;
   for (int round = 0; round < rounds; ++round) {
     JobOutcome outcome = search_and_verify(prepared, job, search_job, progress, bounds);
-    if (outcome.search.beaten) return outcome;
+    if (outcome.search.beaten) {
+      if (!best) return outcome;  // nothing could beat the power given: nothing searched
+      // A later round whose every count drew no less at the easier targets than the
+      // power given: the earlier rounds' best stands.
+      search_seconds += outcome.search.seconds;
+      break;
+    }
     // The next round's targets are no easier: what this one found infeasible stays so,
     // and what it found feasible draws no less (optimizer/layout_search.h).
     for (const CountAttempt& a : outcome.search.attempts) {

@@ -160,6 +160,17 @@ TEST(LayoutSearch, CountsThatDrewMoreAtEasierTargetsThanALayoutFoundAreNotSearch
   }
   EXPECT_EQ(again.best.power_w, first.best.power_w);
   EXPECT_LT(again.evaluations, first.evaluations);
+
+  // Given a power to beat above the bound but below what every count drew: nothing
+  // is searched, each count for what it drew.
+  const double bound_w = least_layout_power_w(prepared.model, job);
+  ASSERT_LT(bound_w, first.best.power_w);
+  const double to_beat_w = 0.5 * (bound_w + first.best.power_w);
+  const SearchResult beaten = search_layout(prepared.model, job, {}, {.power_to_beat_w = to_beat_w, .easier = first.attempts});
+  EXPECT_TRUE(beaten.beaten);
+  EXPECT_EQ(beaten.evaluations, 0);
+  for (const CountAttempt& attempt : beaten.attempts)
+    EXPECT_NE(attempt.global_stop.find("earlier round"), std::string::npos) << attempt.global_stop;
 }
 
 TEST(LayoutSearch, TheBoundOnPowerNeverExceedsThePowerFound) {
