@@ -432,7 +432,7 @@ SampleOperator build_in_arena(const Scene& scene, const RayCaster& caster, const
 }  // namespace
 
 // The phases that do not open their own arena (the first-reflection gathers, the
-// interreflection solve) run in one of options.form_factors.threads threads, as the
+// interreflection solve) run in an arena of options.form_factors.threads threads, as the
 // ray casting does.
 SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
                                      const SampleOperatorOptions& options, const ProgressCallback& progress) {
