@@ -129,9 +129,17 @@ LuminaireSearch search_with(std::vector<ProductSetting> products) {
   return s;
 }
 
+// A product of a name and a photometric file, every other setting at its default.
+ProductSetting product(const std::string& name, const std::string& path) {
+  ProductSetting p;
+  p.name = name;
+  p.photometry_path = path;
+  return p;
+}
+
 TEST(ProductVariants, RotationsWattsAndFluxComeFromTheFileUnlessGiven) {
-  ProductSetting iku{.name = "iku", .photometry_path = kData + "erco_iku_downlight.ldt"};
-  ProductSetting linear{.name = "linear", .photometry_path = kData + "linear_led_2112lm.ldt"};
+  ProductSetting iku = product("iku", kData + "erco_iku_downlight.ldt");
+  ProductSetting linear = product("linear", kData + "linear_led_2112lm.ldt");
   linear.flux_lm = 4222.4;  // twice the file's: the watts scale with it
   linear.dim_min = 0.3;
   const std::vector<ProductVariant> v = product_variants(search_with({iku, linear}));
@@ -157,7 +165,7 @@ TEST(ProductVariants, RotationsWattsAndFluxComeFromTheFileUnlessGiven) {
 }
 
 TEST(ProductVariants, AProductsMaintenanceFactorAndMountOffsetReplaceTheJobsOnlyWhenGiven) {
-  ProductSetting clean{.name = "clean", .photometry_path = kData + "erco_iku_downlight.ldt"};
+  ProductSetting clean = product("clean", kData + "erco_iku_downlight.ldt");
   ProductSetting dusty = clean;
   dusty.name = "dusty";
   dusty.maintenance_factor = 0.67;
@@ -177,7 +185,8 @@ TEST(ProductVariants, AProductsMaintenanceFactorAndMountOffsetReplaceTheJobsOnly
 TEST(ProductVariants, AFileThatCannotBeReadNamesTheConfigAndTheFile) {
   const std::string bad = ::testing::TempDir() + "/ilp_truncated.ies";
   std::ofstream(bad) << "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3 1 1 2 0.5 0.5 0\n";
-  ProductSetting p{.name = "broken", .photometry_path = bad, .photometry_loc = {"job.yaml", 12, 5}};
+  ProductSetting p = product("broken", bad);
+  p.photometry_loc = {"job.yaml", 12, 5};
   try {
     product_variants(search_with({p}));
     FAIL() << "no error";

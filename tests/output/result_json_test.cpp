@@ -15,10 +15,10 @@ ResultRecord sample_record() {
   r.program_version = "ilp 0.1.0";
   r.config = "configs/office.yaml";
   r.objective = "min_power";
-  r.luminaires = {{"L1", 1.5, 1.0, 2.95, 3400.26, 27.202}, {"L2", 4.5, 3.0, 2.95, 1234.5, 9.876}};
-  GoalRecord desks{"desks", {"desk_1", "desk_2"}, "average", "lx", 500.0, 508.6, 500.0, true, false, 1e-4};
-  GoalRecord floor{"floor", {"floor"}, "minimum", "lx", 100.0, 100.0, 88.66, false, true, 1e-4};
-  GoalRecord unverified{"desks", {"desk_1", "desk_2"}, "uniformity", "", 0.6, 0.7, std::nullopt, true, false, 1e-4};
+  r.luminaires = {{"L1", 1.5, 1.0, 2.95, 3400.26, 27.202, "", 0.0}, {"L2", 4.5, 3.0, 2.95, 1234.5, 9.876, "", 0.0}};
+  GoalRecord desks{"desks", {"desk_1", "desk_2"}, "average", "lx", 500.0, 508.6, 500.0, true, false, 1e-4, ""};
+  GoalRecord floor{"floor", {"floor"}, "minimum", "lx", 100.0, 100.0, 88.66, false, true, 1e-4, ""};
+  GoalRecord unverified{"desks", {"desk_1", "desk_2"}, "uniformity", "", 0.6, 0.7, std::nullopt, true, false, 1e-4, ""};
   r.goals = {desks, floor, unverified};
   r.power_w = 37.078;
   r.mounting_area_m2 = 24.0;
