@@ -67,6 +67,12 @@ const char* kFixedPackage =
     "  size_m: 0.3\n  flux_lm: 3000\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
     "  mount_offset_m: 0.02\n  candidate_spacing_m: 0.5\n  count: [1, 4]\n";
 
+// Dimmable panels (10 to 20,000 lm), 1 to 3 of them: the bound on power comes from the
+// best candidate's gain and is the same for every count.
+const char* kDimmablePanels =
+    "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+    "  mount_offset_m: 0.02\n  candidate_spacing_m: 0.5\n  count: [1, 3]\n";
+
 TEST(LayoutSearch, CountsThatCannotDrawLessThanALayoutFoundAreNotSearched) {
   TempDir dir;
   const JobConfig job = mat_job(dir, 100.0, "0", kFixedPackage);
@@ -134,10 +140,7 @@ TEST(LayoutSearch, CountsFoundInfeasibleAtEasierTargetsAreNotSearchedAgain) {
 // that drew more are not searched at all.
 TEST(LayoutSearch, CountsThatDrewMoreAtEasierTargetsThanALayoutFoundAreNotSearched) {
   TempDir dir;
-  const JobConfig job = mat_job(dir, 300.0, "0.5",
-                                "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n"
-                                "  mounting_surface: ceiling\n  mount_offset_m: 0.02\n  candidate_spacing_m: 0.5\n"
-                                "  count: [1, 3]\n");
+  const JobConfig job = mat_job(dir, 300.0, "0.5", kDimmablePanels);
   const PreparedJob prepared = prepare_job(job);
   const SearchResult first = search_layout(prepared.model, job);
   ASSERT_TRUE(first.best.feasible);
@@ -176,10 +179,7 @@ TEST(LayoutSearch, CountsThatDrewMoreAtEasierTargetsThanALayoutFoundAreNotSearch
 TEST(LayoutSearch, TheBoundOnPowerNeverExceedsThePowerFound) {
   // Dimmable panels in a grey room: the bound comes from the best candidate's gain.
   TempDir dir;
-  const JobConfig job = mat_job(dir, 300.0, "0.5",
-                                "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n"
-                                "  mounting_surface: ceiling\n  mount_offset_m: 0.02\n  candidate_spacing_m: 0.5\n"
-                                "  count: [1, 3]\n");
+  const JobConfig job = mat_job(dir, 300.0, "0.5", kDimmablePanels);
   const PreparedJob prepared = prepare_job(job);
   const SearchResult found = search_layout(prepared.model, job);
   ASSERT_TRUE(found.best.feasible);
