@@ -8,12 +8,12 @@
 
 #include "apps/cli_support.h"
 #include "apps/commands.h"
-#include "core/accuracy_study.h"
-#include "core/calc_grid.h"
-#include "core/ray_caster.h"
-#include "core/config.h"
-#include "core/error.h"
-#include "core/job.h"
+#include "core/operator/accuracy_study.h"
+#include "core/grid/calc_grid.h"
+#include "core/rays/ray_caster.h"
+#include "job/config.h"
+#include "core/base/error.h"
+#include "job/job_scene.h"
 #include "output/atomic_file.h"
 #include "output/svg_plot.h"
 

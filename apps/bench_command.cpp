@@ -13,11 +13,11 @@
 
 #include "apps/cli_support.h"
 #include "apps/commands.h"
-#include "core/config.h"
-#include "core/cost_model.h"
-#include "core/exact_solver.h"
-#include "core/operator_setup.h"
-#include "optimizer/job_runner.h"
+#include "job/config.h"
+#include "core/operator/cost_model.h"
+#include "core/exact/exact_solver.h"
+#include "job/operator_setup.h"
+#include "job/job_runner.h"
 
 namespace ilp::cli {
 namespace {

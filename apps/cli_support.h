@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "core/config.h"
-#include "core/progress.h"
+#include "job/config.h"
+#include "core/base/progress.h"
 
 namespace ilp::cli {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "core/calc_grid.h"
-#include "core/config.h"
-#include "core/scene.h"
+#include "core/grid/calc_grid.h"
+#include "job/config.h"
+#include "core/scene/scene.h"
 #include "output/atomic_file.h"
 #include "output/grid_report.h"
 #include "output/result_record.h"

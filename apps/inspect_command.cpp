@@ -10,12 +10,12 @@
 #include <sstream>
 
 #include "apps/commands.h"
-#include "core/config.h"
-#include "core/cost_model.h"
-#include "core/job.h"
-#include "core/ray_caster.h"
-#include "core/scene_inspect.h"
-#include "optimizer/job_cost.h"
+#include "job/config.h"
+#include "core/operator/cost_model.h"
+#include "job/job_scene.h"
+#include "core/rays/ray_caster.h"
+#include "core/scene/scene_inspect.h"
+#include "job/job_cost.h"
 #include "optimizer/lighting_model.h"
 
 namespace ilp::cli {

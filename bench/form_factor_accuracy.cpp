@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/form_factors.h"
-#include "core/ray_caster.h"
-#include "core/reference_scenes.h"
+#include "core/rays/form_factors.h"
+#include "core/rays/ray_caster.h"
+#include "core/scene/reference_scenes.h"
 
 int main() {
   using V = Eigen::Vector3d;

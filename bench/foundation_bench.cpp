@@ -19,14 +19,14 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/config.h"
-#include "core/exact_solver.h"
-#include "core/operator_setup.h"
-#include "core/form_factors.h"
-#include "core/job.h"
-#include "core/ray_caster.h"
-#include "core/sample_operator.h"
-#include "core/sampling.h"
+#include "job/config.h"
+#include "core/exact/exact_solver.h"
+#include "job/operator_setup.h"
+#include "core/rays/form_factors.h"
+#include "job/job_scene.h"
+#include "core/rays/ray_caster.h"
+#include "core/operator/sample_operator.h"
+#include "core/rays/sampling.h"
 
 namespace {
 

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "core/config.h"
-#include "optimizer/job_runner.h"
+#include "job/config.h"
+#include "job/job_runner.h"
 
 namespace {
 

@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/config.h"
-#include "core/exact_solver.h"
-#include "core/operator_setup.h"
-#include "core/job.h"
+#include "job/config.h"
+#include "core/exact/exact_solver.h"
+#include "job/operator_setup.h"
+#include "job/job_scene.h"
 
 int main(int argc, char** argv) {
   try {

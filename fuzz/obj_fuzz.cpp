@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/error.h"
-#include "core/mesh.h"
+#include "core/base/error.h"
+#include "core/scene/mesh.h"
 #include "fuzz/fuzz_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "core/photometry.h"
+#include "core/light/photometry.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <string_view>
 
-#include "core/config.h"
+#include "job/config.h"
 #include "optimizer/lighting_model.h"
 
 namespace ilp {

@@ -15,7 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/error.h"
+#include "core/base/error.h"
 #include "optimizer/goal_metrics.h"
 
 namespace ilp {

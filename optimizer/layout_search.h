@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "core/config.h"
-#include "core/progress.h"
+#include "job/config.h"
+#include "core/base/progress.h"
 #include "optimizer/lighting_model.h"
 
 namespace ilp {

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/error.h"
-#include "core/operator_setup.h"
+#include "core/base/error.h"
+#include "job/operator_setup.h"
 
 namespace ilp {
 

@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "core/calc_grid.h"
-#include "core/config.h"
-#include "core/progress.h"
-#include "core/ray_caster.h"
-#include "core/sample_operator.h"
-#include "core/scene.h"
+#include "core/grid/calc_grid.h"
+#include "job/config.h"
+#include "core/base/progress.h"
+#include "core/rays/ray_caster.h"
+#include "core/operator/sample_operator.h"
+#include "core/scene/scene.h"
 #include "optimizer/candidate_grid.h"
 
 namespace ilp {

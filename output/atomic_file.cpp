@@ -19,7 +19,7 @@
 #include <system_error>
 #include <thread>
 
-#include "core/error.h"
+#include "core/base/error.h"
 
 namespace ilp {
 namespace {

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/error.h"
+#include "core/base/error.h"
 #include "output/atomic_file.h"
 #include "output/svg_plan_parts.h"
 

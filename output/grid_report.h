@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/calc_grid.h"
-#include "core/luminaire.h"
+#include "core/grid/calc_grid.h"
+#include "core/light/luminaire.h"
 #include "output/grid_csv.h"
 #include "output/isolux_plan.h"
 

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "output/colour_map.h"
 
 namespace ilp {

@@ -7,7 +7,7 @@
 #include <memory>
 #include <ostream>
 
-#include "core/error.h"
+#include "core/base/error.h"
 #include "output/atomic_file.h"
 
 namespace ilp {

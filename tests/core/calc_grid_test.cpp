@@ -2,7 +2,7 @@
 // points inside solids, the direct light at a point under a Lambertian disc (closed
 // form), a luminous ceiling over a floor (the infinite-room limit), and the operator
 // at points against the exact solve with the same rays (census).
-#include "core/calc_grid.h"
+#include "core/grid/calc_grid.h"
 
 #include <gtest/gtest.h>
 
@@ -10,15 +10,15 @@
 #include <iostream>
 #include <numbers>
 
-#include "core/config.h"
-#include "core/error.h"
-#include "core/exact_solver.h"
-#include "core/job.h"
-#include "core/operator_setup.h"
-#include "core/direct_light.h"
-#include "core/point_gather.h"
-#include "core/reference_scenes.h"
-#include "core/sample_operator.h"
+#include "job/config.h"
+#include "core/base/error.h"
+#include "core/exact/exact_solver.h"
+#include "job/job_scene.h"
+#include "job/operator_setup.h"
+#include "core/light/direct_light.h"
+#include "core/rays/point_gather.h"
+#include "core/scene/reference_scenes.h"
+#include "core/operator/sample_operator.h"
 
 namespace ilp {
 namespace {

@@ -1,6 +1,6 @@
 // The iterative interreflection solve against an independent dense LU of the same
 // system, its a-posteriori error bound against the true error, and its refusals.
-#include "core/contraction_solve.h"
+#include "core/operator/contraction_solve.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

@@ -1,11 +1,11 @@
 // The cost model: its phase estimates against the classroom bench measured on this
 // machine (docs/benchmarks.md), the refusal message, the byte parser, and the
 // automatic verification never choosing a sample that does not fit.
-#include "core/cost_model.h"
+#include "core/operator/cost_model.h"
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "core/base/error.h"
 #include "tests/test_support.h"
 
 namespace ilp {

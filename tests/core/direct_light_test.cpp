@@ -1,6 +1,6 @@
 // The closed-form direct term against Howell's point-to-rectangle factor, and its
 // shadow rays against blockers of known size.
-#include "core/direct_light.h"
+#include "core/light/direct_light.h"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <numbers>
 #include <optional>
 
-#include "core/ray_caster.h"
-#include "core/reference_scenes.h"
+#include "core/rays/ray_caster.h"
+#include "core/scene/reference_scenes.h"
 
 namespace ilp {
 namespace {

@@ -1,13 +1,13 @@
 // Form-factor rows against closed forms, reciprocity, closure and determinism.
-#include "core/form_factors.h"
+#include "core/rays/form_factors.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "core/ray_caster.h"
-#include "core/reference_scenes.h"
+#include "core/rays/ray_caster.h"
+#include "core/scene/reference_scenes.h"
 
 namespace ilp {
 namespace {

@@ -1,7 +1,8 @@
 // Real products: photometric luminaires in the direct light and the radiosity solve
 // (against the inverse-square law, the file's own interpolant and conservation of
 // flux), and the variants a job's products give.
-#include "core/luminaire_product.h"
+#include "core/light/luminaire_product.h"
+#include "job/products.h"
 
 #include <gtest/gtest.h>
 
@@ -9,10 +10,10 @@
 #include <fstream>
 #include <numbers>
 
-#include "core/direct_light.h"
-#include "core/exact_solver.h"
-#include "core/ray_caster.h"
-#include "core/reference_scenes.h"
+#include "core/light/direct_light.h"
+#include "core/exact/exact_solver.h"
+#include "core/rays/ray_caster.h"
+#include "core/scene/reference_scenes.h"
 
 namespace ilp {
 namespace {

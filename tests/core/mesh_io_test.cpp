@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.h"
+#include "core/scene/mesh.h"
 #include "tests/test_support.h"
 
 namespace fs = std::filesystem;

@@ -1,12 +1,12 @@
 // Drawing the patch sample: sizes, determinism, and inclusion probabilities against
 // what each strategy promises (frequencies over many seeds).
-#include "core/patch_sample.h"
+#include "core/operator/patch_sample.h"
 
 #include <gtest/gtest.h>
 
 #include <map>
 
-#include "core/reference_scenes.h"
+#include "core/scene/reference_scenes.h"
 
 namespace ilp {
 namespace {

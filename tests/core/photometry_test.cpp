@@ -2,7 +2,7 @@
 // ../shared/photometry (flux figures from its README, produced independently by summarize.py),
 // closed forms (Lambertian pi I0, isotropic 4 pi I0), the symmetry rules, and every class of
 // malformed file (table-driven over mutated copies of real files).
-#include "core/photometry.h"
+#include "core/light/photometry.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

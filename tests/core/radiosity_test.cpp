@@ -1,17 +1,17 @@
 // The exact reference solver against conservation laws and closed forms.
-#include "core/radiosity.h"
+#include "core/exact/radiosity.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
 
-#include "core/error.h"
-#include "core/exact_solver.h"
-#include "core/config.h"
-#include "core/job.h"
-#include "core/direct_light.h"
-#include "core/ray_caster.h"
-#include "core/reference_scenes.h"
+#include "core/base/error.h"
+#include "core/exact/exact_solver.h"
+#include "job/config.h"
+#include "job/job_scene.h"
+#include "core/light/direct_light.h"
+#include "core/rays/ray_caster.h"
+#include "core/scene/reference_scenes.h"
 
 namespace ilp {
 namespace {

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "core/config.h"
-#include "core/error.h"
-#include "core/job.h"
-#include "core/mesh.h"
-#include "core/scene.h"
+#include "job/config.h"
+#include "core/base/error.h"
+#include "job/job_scene.h"
+#include "core/scene/mesh.h"
+#include "core/scene/scene.h"
 #include "tests/test_support.h"
 
 namespace {

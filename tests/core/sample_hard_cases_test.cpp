@@ -4,7 +4,7 @@
 // colour channel, only the rows needed). Every yardstick is independent of the code
 // under test: the exact solve with the same rays, closed forms built from the
 // form-factor rows and the exact direct light, or conservation of flux.
-#include "core/sample_operator.h"
+#include "core/operator/sample_operator.h"
 
 #include <gtest/gtest.h>
 
@@ -21,11 +21,11 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.h"
-#include "core/exact_solver.h"
-#include "core/form_factors.h"
-#include "core/mesh.h"
-#include "core/reference_scenes.h"
+#include "core/base/error.h"
+#include "core/exact/exact_solver.h"
+#include "core/rays/form_factors.h"
+#include "core/scene/mesh.h"
+#include "core/scene/reference_scenes.h"
 #include "tests/test_support.h"
 
 namespace ilp {

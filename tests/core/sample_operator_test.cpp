@@ -1,5 +1,5 @@
 // The sample-based operator against the exact solve, conservation and its own shortcuts.
-#include "core/sample_operator.h"
+#include "core/operator/sample_operator.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
@@ -7,12 +7,12 @@
 #include <algorithm>
 #include <string_view>
 
-#include "core/config.h"
-#include "core/error.h"
-#include "core/exact_solver.h"
-#include "core/job.h"
-#include "core/reference_scenes.h"
-#include "core/sample_error.h"
+#include "job/config.h"
+#include "core/base/error.h"
+#include "core/exact/exact_solver.h"
+#include "job/job_scene.h"
+#include "core/scene/reference_scenes.h"
+#include "core/operator/sample_error.h"
 
 namespace ilp {
 namespace {

@@ -1,13 +1,13 @@
 // ilp inspect's diagnosis: geometry, topology, winding and openings, on rooms whose
 // defects are known by construction.
-#include "core/scene_inspect.h"
+#include "core/scene/scene_inspect.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "core/ray_caster.h"
-#include "core/scene.h"
+#include "core/rays/ray_caster.h"
+#include "core/scene/scene.h"
 #include "tests/test_support.h"
 
 namespace ilp {

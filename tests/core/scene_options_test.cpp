@@ -5,9 +5,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/config.h"
-#include "core/exact_solver.h"
-#include "core/job.h"
+#include "job/config.h"
+#include "core/exact/exact_solver.h"
+#include "job/job_scene.h"
 #include "tests/test_support.h"
 
 namespace ilp {

@@ -1,5 +1,5 @@
 // Meshing: units and axes, degenerate faces, subdivision, luminaires.
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 #include <gtest/gtest.h>
 
@@ -7,11 +7,11 @@
 
 #include <algorithm>
 
-#include "core/config.h"
-#include "core/form_factors.h"
-#include "core/job.h"
-#include "core/ray_caster.h"
-#include "core/reference_scenes.h"
+#include "job/config.h"
+#include "core/rays/form_factors.h"
+#include "job/job_scene.h"
+#include "core/rays/ray_caster.h"
+#include "core/scene/reference_scenes.h"
 
 namespace ilp {
 namespace {

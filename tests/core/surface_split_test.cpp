@@ -1,13 +1,13 @@
 // scene.surfaces_from: connected and scene.regions: surfaces from a one-group mesh,
 // checked on small synthetic meshes whose pieces are known by construction.
-#include "core/surface_split.h"
+#include "core/scene/surface_split.h"
 
 #include <gtest/gtest.h>
 
 #include <map>
 
-#include "core/config.h"
-#include "core/job.h"
+#include "job/config.h"
+#include "job/job_scene.h"
 #include "tests/test_support.h"
 
 namespace ilp {

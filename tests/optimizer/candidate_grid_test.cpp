@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace ilp {
 namespace {

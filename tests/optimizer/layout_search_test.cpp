@@ -6,10 +6,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/config.h"
-#include "core/job.h"
-#include "optimizer/job_runner.h"
-#include "optimizer/model_cache.h"
+#include "job/config.h"
+#include "job/job_scene.h"
+#include "job/job_runner.h"
+#include "job/model_cache.h"
 #include "tests/optimizer/optimizer_test_scenes.h"
 
 namespace ilp {

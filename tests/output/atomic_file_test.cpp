@@ -9,7 +9,7 @@
 #include <vector>
 #include <stdexcept>
 
-#include "core/error.h"
+#include "core/base/error.h"
 #include "tests/test_support.h"
 
 namespace ilp {

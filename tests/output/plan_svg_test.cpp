@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/reference_scenes.h"
+#include "core/scene/reference_scenes.h"
 #include "output/colour_map.h"
 #include "tests/output/svg_checks.h"
 #include "tests/test_support.h"

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/mesh.h"
+#include "core/base/error.h"
+#include "core/scene/mesh.h"
 #include "tests/test_support.h"
 
 namespace ilp {

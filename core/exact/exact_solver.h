@@ -1,0 +1,56 @@
+// The whole exact reference pipeline for one scene: BVH, every form-factor row by
+// ray casting, luminaire columns from the closed-form direct term, then the
+// Gauss-Seidel radiosity solve. Timings and ray counts come back in the summary.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+
+#include "core/light/direct_light.h"
+#include "core/rays/form_factors.h"
+#include "core/base/progress.h"
+#include "core/exact/radiosity.h"
+#include "core/scene/scene.h"
+
+namespace ilp {
+
+struct ExactSolveOptions {
+  FormFactorOptions form_factors;
+  DirectLightOptions direct_light;
+  RadiosityOptions radiosity;
+  // When not empty, only these patches get `direct_light`; the others get
+  // `other_direct_light`, a cheaper estimate that is read only through reflections
+  // (for verifying a layout, whose goals are a few of the patches).
+  std::vector<int> precise_patches;
+  DirectLightOptions other_direct_light = cheap_direct_light_options();
+};
+
+struct ExactSolveSummary {
+  std::size_t patches = 0;
+  double bvh_seconds = 0.0;
+  double ray_offset_m = 0.0;             // how far ray origins are pushed off their patch
+  double form_factor_seconds = 0.0;
+  double direct_light_seconds = 0.0;
+  double solve_seconds = 0.0;
+  std::uint64_t rays_cast = 0;           // form-factor rays (not counting shadow rays)
+  double rays_per_second = 0.0;          // form-factor rays / form_factor_seconds
+  double mean_escaped_fraction = 0.0;    // area-weighted: light leaving the scene
+  double mean_back_hit_fraction = 0.0;   // area-weighted: light absorbed by back faces
+  int iterations = 0;
+  double relative_residual = 0.0;
+  // Where the light goes (photometric lm): emitted = absorbed + lost up to ray noise.
+  double emitted_lm = 0.0;
+  double absorbed_lm = 0.0;              // sum A_i (1 - rho_i) H_i
+  double lost_lm = 0.0;                  // struck back faces or left the scene
+};
+
+struct ExactSolution {
+  RadiositySolution radiosity;
+  ExactSolveSummary summary;
+};
+
+ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, const ProgressCallback& progress = {});
+
+std::ostream& operator<<(std::ostream& os, const ExactSolveSummary& summary);
+
+}  // namespace ilp

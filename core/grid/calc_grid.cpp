@@ -1,0 +1,253 @@
+#include "core/grid/calc_grid.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace ilp {
+namespace {
+
+std::string metres(double v) {
+  std::ostringstream os;
+  os << std::setprecision(4) << v << " m";
+  return os.str();
+}
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Proper or touching intersection of closed segments ab and cd.
+bool segments_meet(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                   const Eigen::Vector2d& d) {
+  const double scale = std::max({(b - a).norm(), (d - c).norm(), 1e-300});
+  const double eps = 1e-12 * scale * scale;
+  const double d1 = cross2(b - a, c - a), d2 = cross2(b - a, d - a);
+  const double d3 = cross2(d - c, a - c), d4 = cross2(d - c, b - c);
+  auto on = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {  // r on pq, collinear
+    return std::min(p.x(), q.x()) - 1e-12 * scale <= r.x() && r.x() <= std::max(p.x(), q.x()) + 1e-12 * scale &&
+           std::min(p.y(), q.y()) - 1e-12 * scale <= r.y() && r.y() <= std::max(p.y(), q.y()) + 1e-12 * scale;
+  };
+  if (((d1 > eps && d2 < -eps) || (d1 < -eps && d2 > eps)) && ((d3 > eps && d4 < -eps) || (d3 < -eps && d4 > eps)))
+    return true;
+  return (std::abs(d1) <= eps && on(a, b, c)) || (std::abs(d2) <= eps && on(a, b, d)) ||
+         (std::abs(d3) <= eps && on(c, d, a)) || (std::abs(d4) <= eps && on(c, d, b));
+}
+
+// Crossing-number test of a point against a polygon.
+bool inside_polygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Eigen::Vector2d& a = poly[i];
+    const Eigen::Vector2d& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+  }
+  return inside;
+}
+
+bool inside_triangle(const std::array<Eigen::Vector2d, 3>& t, const Eigen::Vector2d& p) {
+  const double d1 = cross2(t[1] - t[0], p - t[0]), d2 = cross2(t[2] - t[1], p - t[1]), d3 = cross2(t[0] - t[2], p - t[2]);
+  const bool negative = d1 < 0 || d2 < 0 || d3 < 0, positive = d1 > 0 || d2 > 0 || d3 > 0;
+  return !(negative && positive);
+}
+
+// The area a horizontal grid covers: a polygon, or the union of a surface's patches facing up.
+struct Outline {
+  std::vector<Eigen::Vector2d> polygon;
+  std::vector<std::array<Eigen::Vector2d, 3>> triangles;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = Eigen::Vector2d::Constant(-INFINITY);
+  bool contains(const Eigen::Vector2d& p) const {
+    if (!polygon.empty()) return inside_polygon(polygon, p);
+    return std::any_of(triangles.begin(), triangles.end(), [&](const auto& t) { return inside_triangle(t, p); });
+  }
+  void extend(const Eigen::Vector2d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+};
+
+// Inside the outline and at least `band` from its edge (checked in 8 directions).
+bool inside_less_band(const Outline& outline, const Eigen::Vector2d& p, double band) {
+  if (!outline.contains(p)) return false;
+  if (band <= 0.0) return true;
+  for (int k = 0; k < 8; ++k) {
+    const double a = k * 0.25 * 3.14159265358979323846;
+    if (!outline.contains(p + band * Eigen::Vector2d(std::cos(a), std::sin(a)))) return false;
+  }
+  return true;
+}
+
+// A point inside a solid object sees the backs of its faces: the first hit is a back
+// face in at least 4 of the 6 axis directions.
+bool inside_solid(const RayCaster& caster, const Eigen::Vector3d& p) {
+  static const std::array<Eigen::Vector3d, 6> kDirections{Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitX(),
+                                                          Eigen::Vector3d::UnitY(), -Eigen::Vector3d::UnitY(),
+                                                          Eigen::Vector3d::UnitZ(), -Eigen::Vector3d::UnitZ()};
+  int back = 0;
+  for (const Eigen::Vector3d& d : kDirections) {
+    const RayHit hit = caster.first_hit(p, d);
+    if (hit.patch >= 0 && !hit.front) ++back;
+  }
+  return back >= 4;
+}
+
+}  // namespace
+
+double en12464_grid_spacing_m(double longer_side_m) {
+  if (!(longer_side_m > 0.0)) return 0.0;
+  return std::min(10.0, 0.2 * std::pow(5.0, std::log10(longer_side_m)));
+}
+
+Eigen::Vector2i grid_cell_counts(double side_u_m, double side_v_m, double spacing_m) {
+  auto count = [&](double side) { return static_cast<int>(std::max(1.0, std::min(1e9, std::round(side / spacing_m)))); };
+  Eigen::Vector2i n(count(side_u_m), count(side_v_m));
+  while (side_u_m / n.x() > 2.0 * side_v_m / n.y()) ++n.x();
+  while (side_v_m / n.y() > 2.0 * side_u_m / n.x()) ++n.y();
+  return n;
+}
+
+bool polygon_is_simple(const std::vector<Eigen::Vector2d>& poly) {
+  const std::size_t n = poly.size();
+  if (n < 3) return false;
+  double area = 0.0;
+  for (std::size_t i = 0; i < n; ++i) area += cross2(poly[i], poly[(i + 1) % n]);
+  if (!(std::abs(area) > 0.0)) return false;
+  for (std::size_t i = 0; i < n; ++i) {
+    if ((poly[i] - poly[(i + 1) % n]).norm() == 0.0) return false;
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const bool adjacent = j == i + 1 || (i == 0 && j == n - 1);
+      const Eigen::Vector2d &a = poly[i], &b = poly[(i + 1) % n], &c = poly[j], &d = poly[(j + 1) % n];
+      if (!adjacent) {
+        if (segments_meet(a, b, c, d)) return false;
+      } else {
+        // Adjacent edges share one vertex; they must not fold back over each other.
+        const Eigen::Vector2d shared = j == i + 1 ? b : a;
+        const Eigen::Vector2d p = j == i + 1 ? a : b, q = j == i + 1 ? d : c;
+        const Eigen::Vector2d e1 = p - shared, e2 = q - shared;
+        if (std::abs(cross2(e1, e2)) <= 1e-12 * e1.norm() * e2.norm() && e1.dot(e2) > 0.0) return false;
+      }
+    }
+  }
+  return true;
+}
+
+CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcGridSetting& s) {
+  CalcGrid grid;
+  grid.name = s.name;
+  grid.kind = s.kind;
+  const Eigen::AlignedBox3d& bounds = scene.bounds_m;
+  const double tolerance = 1e-6 * (1.0 + bounds.diagonal().norm());
+  const std::string label = "grids." + s.name;
+  Outline outline;
+  double lu = 0.0, lv = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  if (s.kind == GridKind::horizontal) {
+    double z = s.height_m;
+    if (!s.over_surface.empty()) {
+      const int surface = scene.find_surface(s.over_surface);
+      if (surface < 0)
+        throw ConfigError(located(s.shape_loc, label + ".over_surface: unknown surface '" + s.over_surface + "'"));
+      double area = 0.0, weighted_z = 0.0;
+      for (const Patch& p : scene.patches) {
+        if (p.surface != surface || p.normal.z() < 0.9) continue;
+        outline.triangles.push_back({p.vertices_m[0].head<2>(), p.vertices_m[1].head<2>(), p.vertices_m[2].head<2>()});
+        for (const auto& v : p.vertices_m) outline.extend(v.head<2>());
+        area += p.area_m2;
+        weighted_z += p.area_m2 * p.centroid_m.z();
+      }
+      if (!(area > 0.0))
+        throw ConfigError(located(s.shape_loc, label + ".over_surface: '" + s.over_surface +
+                                                   "' has no patch facing up to lay a work plane over"));
+      z += weighted_z / area;
+    } else {
+      outline.polygon = s.polygon_m;
+      for (const auto& p : s.polygon_m) outline.extend(p);
+      if ((outline.lo.array() < bounds.min().head<2>().array() - tolerance).any() ||
+          (outline.hi.array() > bounds.max().head<2>().array() + tolerance).any())
+        throw ConfigError(located(s.shape_loc, label + ": the grid reaches outside the scene (x " +
+                                                   metres(bounds.min().x()) + " to " + metres(bounds.max().x()) +
+                                                   ", y " + metres(bounds.min().y()) + " to " + metres(bounds.max().y()) + ")"));
+    }
+    if (!(z > bounds.min().z() + tolerance && z < bounds.max().z() - tolerance))
+      throw ConfigError(located(s.height_loc, label + ".height_m: the plane at z = " + metres(z) +
+                                                  " is outside the scene (z " + metres(bounds.min().z()) + " to " +
+                                                  metres(bounds.max().z()) + ")"));
+    lu = outline.hi.x() - outline.lo.x() - 2.0 * s.border_m;
+    lv = outline.hi.y() - outline.lo.y() - 2.0 * s.border_m;
+    grid.origin_m = Eigen::Vector3d(outline.lo.x() + s.border_m, outline.lo.y() + s.border_m, z);
+    grid.u_axis = Eigen::Vector3d::UnitX();
+    grid.v_axis = Eigen::Vector3d::UnitY();
+  } else {
+    const Eigen::Vector2d along = s.to_m - s.from_m;
+    const double length = along.norm();
+    if (!(length > 0.0)) throw ConfigError(located(s.shape_loc, label + ": from_m and to_m are the same point"));
+    for (const Eigen::Vector2d& p : {s.from_m, s.to_m})
+      if ((p.array() < bounds.min().head<2>().array() - tolerance).any() ||
+          (p.array() > bounds.max().head<2>().array() + tolerance).any())
+        throw ConfigError(located(s.shape_loc, label + ": the segment reaches outside the scene"));
+    if (s.bottom_m < bounds.min().z() - tolerance || s.top_m > bounds.max().z() + tolerance || !(s.top_m > s.bottom_m))
+      throw ConfigError(located(s.height_loc, label + ": bottom_m to top_m must lie within the scene's heights (z " +
+                                                  metres(bounds.min().z()) + " to " + metres(bounds.max().z()) +
+                                                  ") with top above bottom"));
+    const Eigen::Vector2d u = along / length;
+    normal = s.facing_left ? Eigen::Vector3d(-u.y(), u.x(), 0.0) : Eigen::Vector3d(u.y(), -u.x(), 0.0);
+    grid.u_axis = Eigen::Vector3d(u.x(), u.y(), 0.0);
+    grid.v_axis = Eigen::Vector3d::UnitZ();
+    lu = length - 2.0 * s.border_m;
+    lv = s.top_m - s.bottom_m - 2.0 * s.border_m;
+    grid.origin_m = Eigen::Vector3d(s.from_m.x(), s.from_m.y(), s.bottom_m) + s.border_m * (grid.u_axis + grid.v_axis);
+  }
+  if (!(lu > 0.0 && lv > 0.0))
+    throw ConfigError(located(s.border_loc, label + ".border_m: a band of " + metres(s.border_m) +
+                                                " leaves nothing of the grid's area (the band is wider than the room)"));
+  grid.spacing_m = s.spacing_m ? *s.spacing_m : en12464_grid_spacing_m(std::max(lu, lv));
+  const Eigen::Vector2i n = grid_cell_counts(lu, lv, grid.spacing_m);
+  const double cells = static_cast<double>(n.x()) * static_cast<double>(n.y());
+  if (cells > s.max_points)
+    throw ConfigError(located(s.spacing_m ? s.spacing_loc : s.loc,
+                              label + ": a spacing of " + metres(grid.spacing_m) + " over " + metres(lu) + " x " +
+                                  metres(lv) + " makes " + std::to_string(static_cast<long long>(cells)) +
+                                  " points, more than max_points (" + std::to_string(s.max_points) + ")"));
+  grid.cells_u = n.x();
+  grid.cells_v = n.y();
+  grid.cell_u_m = lu / n.x();
+  grid.cell_v_m = lv / n.y();
+  std::size_t no_floor = 0;
+  for (int j = 0; j < n.y(); ++j)
+    for (int i = 0; i < n.x(); ++i) {
+      const Eigen::Vector3d p =
+          grid.origin_m + (i + 0.5) * grid.cell_u_m * grid.u_axis + (j + 0.5) * grid.cell_v_m * grid.v_axis;
+      if (s.kind == GridKind::horizontal && !inside_less_band(outline, p.head<2>(), s.border_m)) {
+        ++grid.outside_outline;
+        continue;
+      }
+      if (inside_solid(caster, p + normal * caster.ray_offset_m())) {
+        ++grid.inside_solid;
+        continue;
+      }
+      // A ray straight down can slip through an edge between two floor triangles
+      // (points on a regular grid often lie on one): no floor only if a second ray,
+      // from a point 1 mm aside, misses too.
+      if (s.kind == GridKind::horizontal && caster.first_hit(p, -Eigen::Vector3d::UnitZ()).patch < 0 &&
+          caster.first_hit(p + Eigen::Vector3d(0.37e-3, 0.61e-3, 0.0), -Eigen::Vector3d::UnitZ()).patch < 0)
+        ++no_floor;
+      grid.points.push_back({p, normal});
+      grid.cell_of_point.emplace_back(i, j);
+    }
+  if (no_floor > 0)
+    throw ConfigError(located(s.loc, label + ": " + std::to_string(no_floor) + " of " +
+                                         std::to_string(grid.points.size()) +
+                                         " points have no floor under them (the grid lies outside the room)"));
+  if (grid.points.empty())
+    throw ConfigError(located(s.loc, label + ": no point is left (" + std::to_string(grid.outside_outline) +
+                                         " outside the outline less its band, " + std::to_string(grid.inside_solid) +
+                                         " inside solid objects)"));
+  grid.area_m2 = static_cast<double>(grid.points.size()) * grid.cell_u_m * grid.cell_v_m;
+  grid.border_m = s.border_m;
+  grid.outline_polygon_m = std::move(outline.polygon);
+  grid.outline_triangles_m = std::move(outline.triangles);
+  return grid;
+}
+
+}  // namespace ilp

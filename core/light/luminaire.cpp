@@ -1,0 +1,80 @@
+#include "core/light/luminaire.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <numbers>
+#include <sstream>
+
+namespace ilp {
+namespace {
+
+constexpr int kDiscSides = 24;
+
+}  // namespace
+
+double LambertianDistribution::cd_per_lm(const Eigen::Vector3d& direction_local) const {
+  return std::max(0.0, -direction_local.z()) / std::numbers::pi;
+}
+
+bool LuminaireType::lambertian() const {
+  return dynamic_cast<const LambertianDistribution*>(distribution.get()) != nullptr;
+}
+
+double LuminaireType::opening_area_m2() const {
+  if (shape == OutlineShape::rectangle) return length_m * width_m;
+  return 0.25 * std::numbers::pi * length_m * width_m;
+}
+
+std::vector<Eigen::Vector3d> LuminaireType::outline_local() const {
+  std::vector<Eigen::Vector3d> out;
+  if (shape == OutlineShape::rectangle) {
+    const double a = 0.5 * length_m, b = 0.5 * width_m;
+    out = {{-a, -b, 0.0}, {a, -b, 0.0}, {a, b, 0.0}, {-a, b, 0.0}};
+    return out;
+  }
+  // A regular polygon whose area equals the ellipse's: radius scaled by
+  // sqrt((pi / n) / sin(pi / n) / cos(pi / n)).
+  const double n = kDiscSides;
+  const double scale = std::sqrt((std::numbers::pi / n) / (std::sin(std::numbers::pi / n) * std::cos(std::numbers::pi / n)));
+  for (int k = 0; k < kDiscSides; ++k) {
+    const double t = 2.0 * std::numbers::pi * k / n;
+    out.emplace_back(0.5 * length_m * scale * std::cos(t), 0.5 * width_m * scale * std::sin(t), 0.0);
+  }
+  return out;
+}
+
+Eigen::Vector2d LuminaireType::half_footprint_m(double rotation_deg) const {
+  const Eigen::Matrix3d r = luminaire_rotation(rotation_deg);
+  Eigen::Vector2d half = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector3d& v : outline_local()) half = half.cwiseMax((r * v).head<2>().cwiseAbs());
+  return half;
+}
+
+std::string LuminaireType::key() const {
+  std::ostringstream os;
+  os << std::setprecision(17) << "luminaire " << name << " " << (shape == OutlineShape::rectangle ? "rect" : "disc")
+     << " " << length_m << " x " << width_m << " " << distribution->key();
+  return os.str();
+}
+
+LuminaireType LuminaireType::square_lambertian(double size_m) {
+  LuminaireType t;
+  t.length_m = t.width_m = size_m;
+  return t;
+}
+
+Eigen::Matrix3d luminaire_rotation(double rotation_deg) {
+  return Eigen::AngleAxisd(rotation_deg * std::numbers::pi / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+std::vector<Eigen::Vector3d> luminaire_outline_m(const LuminaireType& type, const LuminairePlacement& at) {
+  const Eigen::Matrix3d r = luminaire_rotation(at.rotation_deg);
+  std::vector<Eigen::Vector3d> out = type.outline_local();
+  for (Eigen::Vector3d& v : out) v = at.position_m + r * v;
+  return out;
+}
+
+}  // namespace ilp

@@ -1,0 +1,54 @@
+// A luminaire one can buy, as the search and the verification use it: its luminaire
+// type (a photometric file's distribution and opening, or the square Lambertian
+// panel) at one rotation, its rated lumens and watts, its dimming range and its own
+// maintenance factor and suspension.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/base/error.h"
+#include "core/light/luminaire.h"
+#include "core/light/photometry.h"
+
+namespace ilp {
+
+// A photometric file's candela web as a luminaire distribution, per lumen of its flux.
+// The file's smooth interpolant (Photometry::intensity_cd) is sampled once on a fine
+// table (every 0.5 degree of C, 0.125 degree of gamma, 8 MB) that lookups read bilinearly: the
+// direct light asks millions of times, and the table is ~20x cheaper than the cubic.
+class PhotometricDistribution final : public IntensityDistribution {
+ public:
+  explicit PhotometricDistribution(std::shared_ptr<const Photometry> photometry);
+  double cd_per_lm(const Eigen::Vector3d& direction_local) const override;
+  std::string key() const override;
+  const Photometry& photometry() const { return *photometry_; }
+
+ private:
+  static constexpr int kCSteps = 720, kGammaSteps = 1440;
+  std::shared_ptr<const Photometry> photometry_;
+  std::vector<double> table_;  // (kCSteps + 1) x (kGammaSteps + 1), cd per lm
+};
+
+// The luminaire type of a photometric file: its distribution and its luminous opening
+// (a rectangle, or a disc for round, cylindrical and point openings; a point source
+// gets a 0.1 m disc so that it has an outline that shades and can be drawn).
+LuminaireType photometric_luminaire_type(const std::string& name, std::shared_ptr<const Photometry> photometry);
+
+struct ProductVariant {
+  std::string product;     // the product's name
+  std::string source;      // the photometric file, or "square_lambertian"
+  LuminaireType type;
+  double rotation_deg = 0.0;
+  double rated_flux_lm = 0.0;  // at full output
+  double power_w = 0.0;        // at full output
+  double dim_min = 1.0, dim_max = 1.0;  // the output range, fractions of rated_flux_lm
+  std::optional<double> maintenance_factor;  // the product's own; replaces the job's when given
+  std::optional<double> mount_offset_m;      // the product's own suspension; replaces the job's when given
+  FileLoc mount_offset_loc;
+  std::vector<std::string> notes;  // the file's warnings, what was taken from where
+};
+
+}  // namespace ilp

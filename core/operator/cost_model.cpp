@@ -1,0 +1,235 @@
+#include "core/operator/cost_model.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "core/base/error.h"
+
+namespace ilp {
+namespace {
+
+// Bytes per patch of the scene (Patch is 168 bytes) held twice (the job scene and
+// the model's copy with the candidates), its BVH (float vertices and nodes, about
+// 100 bytes a triangle) and the per-patch index tables of a build.
+constexpr double kPatchBytes = 168.0;
+constexpr double kBvhBytesPerPatch = 100.0;
+constexpr double kIndexBytesPerPatch = 40.0;
+constexpr double kProcessBytes = 50e6;  // the program, its libraries and thread pools
+// A non-zero of a form-factor row while rows are assembled: the (patch, count) pair
+// of the row result and the sparse matrix entry (double + int).
+constexpr double kRowNnzPeakBytes = 20.0;
+constexpr double kRowNnzBytes = 12.0;
+
+double d(std::size_t v) { return static_cast<double>(v); }
+
+// Non-zeros of `rows` rows of `rays` rays in a scene of n patches (at most one per ray).
+double row_nnz(double rows, int rays, std::size_t n) { return rows * std::min<double>(rays, d(n)); }
+
+// The interreflection solve (core/contraction_solve.h): per channel, the first
+// reflection gathered through the sample rows (rays x sources each), then sweeps
+// over k rows of about 2 gathers (one sampled hit, the ambient term) x sources.
+double interreflection_flops(double k, double sources, int channels, int rays_per_patch, const MachineCosts& m) {
+  return channels * (2.0 * k * rays_per_patch * sources + m.interreflection_sweeps * 2.0 * 3.0 * k * sources);
+}
+
+}  // namespace
+
+double expected_hit_patches(double rows, double rays, double population, const MachineCosts& costs) {
+  if (!(population > 0.0)) return 0.0;
+  return population * (1.0 - std::exp(-costs.hit_coverage * rows * rays / population));
+}
+
+double exact_verification_bytes(std::size_t patches, int rays_per_patch) {
+  const double n = d(patches);
+  return n * (kPatchBytes + kBvhBytesPerPatch + kIndexBytesPerPatch) + row_nnz(n, rays_per_patch, patches) * kRowNnzPeakBytes;
+}
+
+double sample_verification_bytes(std::size_t k, std::size_t goal_patches, std::size_t sources, int rays_per_patch) {
+  const double kk = d(k);
+  return row_nnz(kk + d(goal_patches), rays_per_patch, k + goal_patches) * kRowNnzPeakBytes +
+         8.0 * 4.0 * (kk + d(goal_patches)) * d(sources);
+}
+
+double CostEstimate::peak_bytes() const {
+  const PhaseEstimate* p = largest_phase();
+  return scene_bytes + (p ? p->bytes : 0.0);
+}
+
+double CostEstimate::total_seconds() const {
+  double s = 0.0;
+  for (const PhaseEstimate& p : phases) s += p.seconds;
+  return s;
+}
+
+const PhaseEstimate* CostEstimate::largest_phase() const {
+  const PhaseEstimate* best = nullptr;
+  for (const PhaseEstimate& p : phases)
+    if (!best || p.bytes > best->bytes) best = &p;
+  return best;
+}
+
+CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
+  CostEstimate out;
+  const double n = d(c.patches), G = d(c.goal_patches), L = d(c.sources), k = d(c.sample_size);
+  const double pop = d(c.population);
+  out.scene_bytes = kProcessBytes + n * (2.0 * kPatchBytes + kBvhBytesPerPatch + kIndexBytesPerPatch);
+  const bool reflecting = c.population > 0 && c.sample_size > 0;
+  const double goal_nnz = reflecting && c.exact_second_bounce ? row_nnz(G, c.rays_per_patch, c.patches) : 0.0;
+  const double D_goal = 8.0 * G * L;
+
+  out.phases.push_back({"goal rows and direct light at goal patches",
+                        G * c.rays_per_patch * m.gather_ray_s + G * L * c.direct_rays * m.precise_pair_ray_s,
+                        goal_nnz * kRowNnzPeakBytes + 2.0 * D_goal,
+                        "scene.max_patch_edge_m (fewer goal patches) or luminaires.candidate_spacing_m (fewer candidates)"});
+  // One sample-based build of size kk on top of the goal rows.
+  auto build = [&](double kk, const std::string& label, const std::string& setting) {
+    const double hits = c.exact_second_bounce
+                            ? std::max(0.0, expected_hit_patches(kk + G, c.rays_per_patch, pop, m) - kk - G)
+                            : 0.0;
+    const double sample_nnz = row_nnz(kk, c.rays_per_patch, c.patches);
+    const double held = goal_nnz * kRowNnzBytes + D_goal;
+    std::vector<PhaseEstimate> phases;
+    phases.push_back({label + "sample rows (k = " + std::to_string(static_cast<long long>(kk)) + ")",
+                      kk * c.rays_per_patch * m.gather_ray_s, held + sample_nnz * kRowNnzPeakBytes, setting});
+    phases.push_back({label + "direct light at sample and hit patches (" + std::to_string(static_cast<long long>(hits)) +
+                          " cheap)",
+                      kk * L * c.direct_rays * m.precise_pair_ray_s + hits * L * m.cheap_pair_s,
+                      held + 2.0 * sample_nnz * kRowNnzBytes + 3.0 * 8.0 * kk * L + 2.0 * 8.0 * hits * L,
+                      "luminaires.candidate_spacing_m (fewer candidates) or " + setting});
+    phases.push_back({label + "k x k solve (" + std::to_string(c.channels) + (c.channels == 1 ? " channel)" : " channels)"),
+                      interreflection_flops(kk, L, c.channels, c.rays_per_patch, m) * m.sparse_flop_s,
+                      held + 2.0 * sample_nnz * kRowNnzBytes + 6.0 * 8.0 * kk * L + 16.0 * hits * L + 4.0 * D_goal,
+                      setting});
+    return phases;
+  };
+  const std::string k_setting = "solver.sample_fraction, solver.sample_size or solver.target_error (k)";
+  if (reflecting && c.pilot_builds > 0 && c.pilot_size > 0) {
+    PhaseEstimate pilot{"pilot samples (" + std::to_string(c.pilot_builds) + " x k = " + std::to_string(c.pilot_size) + ")",
+                        0.0, 0.0, "solver.pilot_fraction or solver.error_samples"};
+    for (const PhaseEstimate& p : build(d(c.pilot_size), "", pilot.setting)) {
+      pilot.seconds += c.pilot_builds * p.seconds;
+      pilot.bytes = std::max(pilot.bytes, p.bytes);
+    }
+    out.phases.push_back(pilot);
+  }
+  if (reflecting)
+    for (PhaseEstimate& p : build(k, "", k_setting)) out.phases.push_back(std::move(p));
+  out.phases.push_back({"T (goal patches x sources)",
+                        c.channels * G * std::min<double>(k, c.rays_per_patch) * L * 2.0 * m.dense_flop_s,
+                        5.0 * D_goal, "luminaires.candidate_spacing_m (fewer candidates)"});
+  const double model_bytes = 2.0 * D_goal;  // the candidate columns, total and direct
+  if (c.evaluations > 0)
+    out.phases.push_back({"search (" + std::to_string(c.evaluations) + " evaluations)",
+                          [&] {
+                            const double s = d(static_cast<std::size_t>(c.evaluations)) * c.luminaires * 16.0 * G *
+                                             m.blend_mac_s;
+                            return c.search_max_seconds > 0.0 ? std::min(s, c.search_max_seconds) : s;
+                          }() * c.verify_rounds,
+                          model_bytes + 4.0 * G * L, "optimizer.max_evaluations"});
+  const double Lv = c.luminaires + 1.0;
+  if (c.verify == CostCounts::Verify::exact) {
+    const double per = n * c.verify_rays * m.gather_ray_s + G * Lv * c.direct_rays * m.precise_pair_ray_s +
+                       n * Lv * m.cheap_pair_s +
+                       m.gauss_seidel_sweeps * row_nnz(n, c.verify_rays, c.patches) * m.gauss_seidel_nnz_s;
+    out.phases.push_back({"verification (exact, " + std::to_string(c.verify_rays) + " rays per patch, up to " +
+                              std::to_string(c.verify_rounds) + " rounds)",
+                          c.verify_rounds * per, model_bytes + exact_verification_bytes(c.patches, c.verify_rays),
+                          "verification.rays_per_patch or verification.method"});
+  } else if (c.verify == CostCounts::Verify::sample) {
+    const double kv = d(c.verify_sample_size);
+    const double hits = std::max(0.0, expected_hit_patches(kv + G, c.verify_rays, pop, m) - kv - G);
+    const double per = (kv + G) * c.verify_rays * m.gather_ray_s + (kv + G) * Lv * c.direct_rays * m.precise_pair_ray_s +
+                       hits * Lv * m.cheap_pair_s + interreflection_flops(kv, Lv, c.channels, c.verify_rays, m) * m.sparse_flop_s;
+    out.phases.push_back({"verification (sample, k = " + std::to_string(c.verify_sample_size) + ", up to " +
+                              std::to_string(c.verify_rounds) + " rounds)",
+                          c.verify_rounds * per,
+                          model_bytes + n * (kPatchBytes + kBvhBytesPerPatch) +
+                              sample_verification_bytes(c.verify_sample_size, c.goal_patches, c.luminaires + 1,
+                                                       c.verify_rays),
+                          "verification.sample_fraction or verification.method"});
+  }
+  return out;
+}
+
+std::string format_bytes(double bytes) {
+  std::ostringstream os;
+  os << std::fixed;
+  if (bytes >= 1e9) os << std::setprecision(2) << bytes / 1e9 << " GB";
+  else os << std::setprecision(0) << bytes / 1e6 << " MB";
+  return os.str();
+}
+
+std::vector<std::string> format_estimate(const CostEstimate& e) {
+  std::vector<std::string> lines;
+  for (const PhaseEstimate& p : e.phases) {
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(1) << "estimate: " << p.name << ": " << p.seconds << " s, "
+       << format_bytes(e.scene_bytes + p.bytes);
+    lines.push_back(os.str());
+  }
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(1) << "estimate: in all about " << e.total_seconds() << " s, peak "
+     << format_bytes(e.peak_bytes()) << " (scene and BVH " << format_bytes(e.scene_bytes) << ")";
+  lines.push_back(os.str());
+  return lines;
+}
+
+std::optional<double> available_memory_bytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double value = 0.0;
+  std::string unit;
+  while (in >> key >> value) {
+    std::getline(in, unit);
+    if (key == "MemAvailable:") return value * 1024.0;  // kB
+  }
+  return std::nullopt;
+}
+
+std::optional<double> memory_budget_bytes(std::optional<double> max_memory_bytes) {
+  std::optional<double> available = available_memory_bytes();
+  if (available && max_memory_bytes) return std::min(*available, *max_memory_bytes);
+  return max_memory_bytes ? max_memory_bytes : available;
+}
+
+void require_fits(const CostEstimate& e, std::optional<double> budget, const std::string& where) {
+  if (!budget || e.peak_bytes() <= *budget) return;
+  const PhaseEstimate* p = e.largest_phase();
+  std::ostringstream os;
+  os << where << ": the job would need about " << format_bytes(e.peak_bytes()) << " of memory";
+  if (p) os << " (" << p->name << ": " << format_bytes(e.scene_bytes + p->bytes) << ")";
+  os << ", more than the " << format_bytes(*budget)
+     << " it may use (the machine's available memory or --max-memory); refused before any work";
+  if (p) os << ": change " << p->setting;
+  throw ConfigError(os.str());
+}
+
+double parse_bytes(const std::string& text) {
+  std::size_t i = 0;
+  while (i < text.size() && (std::isdigit(static_cast<unsigned char>(text[i])) || text[i] == '.')) ++i;
+  const std::string number = text.substr(0, i);
+  std::string unit;
+  for (std::size_t j = i; j < text.size(); ++j)
+    if (!std::isspace(static_cast<unsigned char>(text[j]))) unit += static_cast<char>(std::toupper(static_cast<unsigned char>(text[j])));
+  char* end = nullptr;
+  const double v = number.empty() ? -1.0 : std::strtod(number.c_str(), &end);
+  if (number.empty() || end != number.c_str() + number.size() || !(v > 0.0))
+    throw ConfigError("--max-memory " + text + ": must be a positive size such as 4G, 512M or 2000000000");
+  if (!unit.empty() && unit.back() == 'B') unit.pop_back();
+  if (!unit.empty() && unit.back() == 'I') unit.pop_back();
+  double scale = 1.0;
+  if (unit == "K") scale = 1024.0;
+  else if (unit == "M") scale = 1024.0 * 1024.0;
+  else if (unit == "G") scale = 1024.0 * 1024.0 * 1024.0;
+  else if (unit == "T") scale = 1024.0 * 1024.0 * 1024.0 * 1024.0;
+  else if (!unit.empty())
+    throw ConfigError("--max-memory " + text + ": unknown unit (use K, M, G or T)");
+  return v * scale;
+}
+
+}  // namespace ilp

@@ -1,0 +1,181 @@
+#include "core/rays/form_factors.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+
+#include "core/rays/sampling.h"
+
+namespace ilp {
+namespace {
+
+using RowResult = RayCounts;
+
+// Per-thread scratch: a hit counter per patch (all zero between rows) and the
+// patches a row touched. Counting beats sorting the hits of every row.
+struct RowScratch {
+  std::vector<int> count;
+  std::vector<int> touched;
+};
+
+// Casts the rays of patch `patch`'s row and calls on_hit(RayHit) for each: the
+// same rays, in the same order, for full rows and for bin counts.
+template <class OnHit>
+void cast_row(const Scene& scene, const RayCaster& caster, int patch, const std::vector<std::array<double, 4>>& halton,
+              const FormFactorOptions& options, OnHit&& on_hit) {
+  const Patch& p = scene.patches[patch];
+  Eigen::Vector3d t, s;
+  orthonormal_basis(p.normal, t, s);
+  const RotatedHalton4 sequence(options.seed, static_cast<std::uint64_t>(patch));
+  const Eigen::Vector3d offset = p.normal * caster.ray_offset_m();
+  for (int r = 0; r < options.rays_per_patch; ++r) {
+    const auto u = sequence.rotate(halton[static_cast<std::size_t>(r)]);
+    const Eigen::Vector3d origin = sample_triangle(p.vertices_m[0], p.vertices_m[1], p.vertices_m[2], u[0], u[1]);
+    const Eigen::Vector3d direction = sample_cosine_hemisphere(p.normal, t, s, u[2], u[3]);
+    on_hit(caster.first_hit(origin + offset, direction));
+  }
+}
+
+RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch,
+                    const std::vector<std::array<double, 4>>& halton, const FormFactorOptions& options,
+                    RowScratch& scratch) {
+  RowResult row;
+  cast_row(scene, caster, patch, halton, options, [&](const RayHit& hit) {
+    if (hit.patch < 0) {
+      ++row.escaped;
+    } else if (!hit.front) {
+      ++row.back_hits;
+    } else if (scratch.count[hit.patch]++ == 0) {
+      scratch.touched.push_back(hit.patch);
+    }
+  });
+  std::sort(scratch.touched.begin(), scratch.touched.end());
+  row.hits.reserve(scratch.touched.size());
+  for (int j : scratch.touched) {
+    row.hits.emplace_back(j, scratch.count[j]);
+    scratch.count[j] = 0;
+  }
+  scratch.touched.clear();
+  return row;
+}
+
+void check_request(const Scene& scene, std::span<const int> patches, const FormFactorOptions& options,
+                   const char* function) {
+  std::string error;
+  if (!options.is_valid(&error)) throw std::invalid_argument("FormFactorOptions::" + error);
+  for (int patch : patches)
+    if (patch < 0 || patch >= static_cast<int>(scene.patches.size()))
+      throw std::invalid_argument(std::string(function) + ": patch " + std::to_string(patch) +
+                                  " is not in the scene (" + std::to_string(scene.patches.size()) + " patches)");
+}
+
+}  // namespace
+
+bool FormFactorOptions::is_valid(std::string* error) const {
+  if (rays_per_patch < 1) {
+    if (error) *error = "rays_per_patch = " + std::to_string(rays_per_patch) + ": must be >= 1";
+    return false;
+  }
+  if (threads < 0) {
+    if (error) *error = "threads = " + std::to_string(threads) + ": must be >= 0 (0 = all cores)";
+    return false;
+  }
+  return true;
+}
+
+void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, int rays_per_row, FormFactorRows& out) {
+  const std::size_t rows = counts.size();
+  const double inv_rays = 1.0 / rays_per_row;
+  std::size_t nnz = 0;
+  for (const RayCounts& r : counts) nnz += r.hits.size();
+  out.F.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(patches));
+  out.F.reserve(static_cast<Eigen::Index>(nnz));
+  out.escaped_fraction.resize(static_cast<Eigen::Index>(rows));
+  out.back_hit_fraction.resize(static_cast<Eigen::Index>(rows));
+  for (std::size_t r = 0; r < rows; ++r) {
+    out.F.startVec(static_cast<Eigen::Index>(r));
+    for (const auto& [patch, count] : counts[r].hits)
+      out.F.insertBack(static_cast<Eigen::Index>(r), patch) = count * inv_rays;
+    out.escaped_fraction[static_cast<Eigen::Index>(r)] = counts[r].escaped * inv_rays;
+    out.back_hit_fraction[static_cast<Eigen::Index>(r)] = counts[r].back_hits * inv_rays;
+  }
+  out.F.finalize();
+  out.rays_cast = static_cast<std::uint64_t>(rows) * rays_per_row;
+}
+
+FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster,
+                                        std::span<const int> patches, const FormFactorOptions& options,
+                                        const ProgressCallback& progress) {
+  check_request(scene, patches, options, "compute_form_factor_rows");
+  const auto start = std::chrono::steady_clock::now();
+  FormFactorRows out;
+  out.row_patches.assign(patches.begin(), patches.end());
+  const std::size_t rows = out.row_patches.size();
+  std::vector<RowResult> results(rows);
+  const auto halton = halton4_points(static_cast<std::uint32_t>(options.rays_per_patch));
+  tbb::enumerable_thread_specific<RowScratch> scratches;
+  std::atomic<std::size_t> done{0};
+  constexpr std::size_t kChunk = 64;
+
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, kChunk), [&](const tbb::blocked_range<std::size_t>& range) {
+      RayCaster::prepare_thread();
+      RowScratch& scratch = scratches.local();
+      if (scratch.count.empty()) scratch.count.assign(scene.patches.size(), 0);
+      for (std::size_t r = range.begin(); r != range.end(); ++r)
+        results[r] = trace_row(scene, caster, out.row_patches[r], halton, options, scratch);
+      const std::size_t now = done.fetch_add(range.size()) + range.size();
+      if (progress) progress("form factors", now, rows);
+    });
+  });
+
+  // Assemble in row order, so the result is the same whatever ran where.
+  assemble_rows(results, scene.patches.size(), options.rays_per_patch, out);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+Eigen::MatrixXd compute_row_bin_fractions(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
+                                          std::span<const int> bin_of_patch, int bins,
+                                          const FormFactorOptions& options, const ProgressCallback& progress) {
+  check_request(scene, patches, options, "compute_row_bin_fractions");
+  if (bin_of_patch.size() != scene.patches.size() || bins < 0)
+    throw std::invalid_argument("compute_row_bin_fractions: need one bin per patch (" +
+                                std::to_string(scene.patches.size()) + "), got " + std::to_string(bin_of_patch.size()));
+  for (int b : bin_of_patch)
+    if (b < -1 || b >= bins) throw std::invalid_argument("compute_row_bin_fractions: bin " + std::to_string(b) + " out of range");
+  const std::size_t rows = patches.size();
+  Eigen::MatrixXd fractions = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows), bins + 2);
+  const auto halton = halton4_points(static_cast<std::uint32_t>(options.rays_per_patch));
+  const double inv_rays = 1.0 / options.rays_per_patch;
+  std::atomic<std::size_t> done{0};
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 64), [&](const tbb::blocked_range<std::size_t>& range) {
+      RayCaster::prepare_thread();
+      std::vector<int> count(static_cast<std::size_t>(bins) + 2);
+      for (std::size_t r = range.begin(); r != range.end(); ++r) {
+        std::fill(count.begin(), count.end(), 0);
+        cast_row(scene, caster, patches[r], halton, options, [&](const RayHit& hit) {
+          if (hit.patch < 0) ++count[static_cast<std::size_t>(bins)];
+          else if (!hit.front) ++count[static_cast<std::size_t>(bins) + 1];
+          else if (const int b = bin_of_patch[static_cast<std::size_t>(hit.patch)]; b >= 0) ++count[static_cast<std::size_t>(b)];
+        });
+        for (int b = 0; b < bins + 2; ++b)
+          fractions(static_cast<Eigen::Index>(r), b) = count[static_cast<std::size_t>(b)] * inv_rays;
+      }
+      const std::size_t now = done.fetch_add(range.size()) + range.size();
+      if (progress) progress("row sums", now, rows);
+    });
+  });
+  return fractions;
+}
+
+}  // namespace ilp

@@ -1,0 +1,70 @@
+// Form-factor rows by ray casting: F(i, :) for chosen patches i, the fraction of
+// the light leaving patch i diffusely that reaches each patch j directly.
+// Rays leave low-discrepancy points on patch i in cosine-weighted directions, so
+// F_ij ~ hits_j / rays. Invariants (tested): F_ij >= 0, row sum = 1 - escaped -
+// back-hit fractions <= 1, A_i F_ij ~ A_j F_ji.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/base/progress.h"
+#include "core/rays/ray_caster.h"
+#include "core/scene/scene.h"
+
+namespace ilp {
+
+using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+struct FormFactorOptions {
+  int rays_per_patch = 256;  // per row; the noise of F_ij falls like 1/sqrt(rays)
+  std::uint64_t seed = 1;    // same seed, same rows, whatever the thread count
+  int threads = 0;           // 0: all cores
+
+  bool is_valid(std::string* error) const;
+};
+
+struct FormFactorRows {
+  std::vector<int> row_patches;        // row r of F is patch row_patches[r]
+  SparseRows F;                        // #rows by #patches, columns sorted
+  Eigen::VectorXd escaped_fraction;    // per row: rays that left the scene
+  Eigen::VectorXd back_hit_fraction;   // per row: rays that struck a patch's back side (absorbed)
+  std::uint64_t rays_cast = 0;
+  double seconds = 0.0;
+};
+
+// One row's rays, counted: (patch, hits) sorted by patch, and the rays that left the
+// scene or struck a back face.
+struct RayCounts {
+  std::vector<std::pair<int, int>> hits;
+  int escaped = 0;
+  int back_hits = 0;
+};
+
+// Sets out's F (rows in `counts` order, `patches` columns), escaped and back-hit
+// fractions and rays_cast from each row's counts of `rays_per_row` rays.
+void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, int rays_per_row, FormFactorRows& out);
+
+// Rows for the given patches, in that order (scene.all_patches() for all of them).
+// A ray that hits the back of a one-sided patch is absorbed: counted in
+// back_hit_fraction, not in F. Throws std::invalid_argument on bad options or a
+// patch index outside the scene.
+FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster,
+                                        std::span<const int> patches, const FormFactorOptions& options,
+                                        const ProgressCallback& progress = {});
+
+// The same rays as compute_form_factor_rows, counted instead of stored: for each
+// row, the fraction of its rays that struck the front of a patch j in bin
+// bin_of_patch[j] (in [0, bins); -1: not counted), then two more columns, the
+// escaped and the back-hit fractions: #rows by bins + 2. What gives a gather's
+// row sums (METHOD section 3) without keeping n rows in memory.
+Eigen::MatrixXd compute_row_bin_fractions(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
+                                          std::span<const int> bin_of_patch, int bins,
+                                          const FormFactorOptions& options, const ProgressCallback& progress = {});
+
+}  // namespace ilp

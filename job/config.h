@@ -1,0 +1,302 @@
+// The job configuration (YAML), parsed and checked before any work starts. Every
+// value keeps the file location it came from, so later checks (a surface name the
+// mesh lacks) can point at it. Unknown keys are errors: a typo must not silently
+// fall back to a default. The schema is documented in docs/config.md.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/grid/calc_grid.h"
+#include "core/light/direct_light.h"
+#include "core/base/error.h"
+#include "core/rays/form_factors.h"
+#include "core/scene/mesh.h"
+#include "core/operator/patch_sample.h"
+#include "core/exact/radiosity.h"
+#include "core/operator/sample_operator.h"
+#include "core/scene/scene.h"
+#include "core/scene/surface_split.h"
+
+namespace ilp {
+
+struct ReflectanceSetting {
+  std::string surface;
+  Eigen::Vector3d rgb;  // each channel in [0, 1); equal channels when given as one number
+  FileLoc loc;
+};
+
+// scene.add_floor: a horizontal rectangle added to the mesh as its own surface, facing
+// up (a real floor where a model has only a ground plane around it, or none).
+struct FloorSetting {
+  std::string name;
+  Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Zero();  // x, y corners, scene frame (m)
+  double z_m = 0.0;
+  Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.3);
+  FileLoc loc;
+};
+
+struct EmitterSetting {
+  std::string surface;
+  double exitance_lm_per_m2 = 0.0;
+  FileLoc loc;
+};
+
+struct LuminaireSetting {
+  std::string name;
+  Eigen::Vector3d position_m;  // centre of the emitting face, scene frame (z up, m)
+  double flux_lm = 0.0;
+  FileLoc loc;
+};
+
+// How `ilp solve` computes illuminance: through the sample-based operator, or the
+// exact reference (every form-factor row, Gauss-Seidel).
+enum class SolveMethod { sample, exact };
+
+// The sample-based operator's settings (solver section).
+struct SampleSettings {
+  std::optional<int> size;         // k; when absent, fraction of the reflecting patches
+  double fraction = 0.05;
+  FileLoc size_loc;                // where size or fraction was set
+  SampleStrategy strategy = SampleStrategy::stratified;
+  std::uint64_t seed = 1;          // which patches are drawn
+  IndirectMethod indirect = IndirectMethod::exact_second_bounce;
+  std::optional<double> target_error;  // choose k so the predicted RMS relative error is at most this
+  FileLoc target_error_loc;
+  int error_samples = 4;           // eta pilot samples behind the prediction
+  double pilot_fraction = 0.02;    // their size, of the reflecting patches
+  int max_size_for_target = 4000;  // solver.max_sample_size: the largest k target_error or sample_fraction gives
+  FileLoc max_size_loc;
+
+  // k for a population of reflecting patches (at least 1): size, else fraction x
+  // population capped at max_size_for_target.
+  int size_for(std::size_t population) const;
+};
+
+// ---- The inverse problem (`ilp run`, `ilp sweep`): where luminaires may go, what the
+// goal surfaces must receive, and how to search. docs/config.md gives the schema, docs/user-guide.md a walk through it.
+
+enum class LayoutFamily {
+  free,   // each luminaire anywhere on the mounting surface, each its own flux
+  array,  // a regular rows x columns array, one flux for all
+};
+
+// luminaires.products: a luminaire one can buy. Photometric (an IES LM-63 or EULUMDAT
+// file) or the square Lambertian test panel; lumens and watts from the file unless
+// given; a fixed lumen package unless a dimming range is given.
+struct ProductSetting {
+  std::string name;
+  FileLoc loc;
+  std::string photometry_path;         // resolved against the config's folder; empty: square_lambertian
+  FileLoc photometry_loc;
+  double size_m = 0.6;                 // square_lambertian only: the panel's side
+  std::optional<double> flux_lm;       // rated output; default: the file's luminaire flux
+  std::optional<double> power_w;       // electric power at the rated output; default: the file's input watts
+  FileLoc power_loc;
+  double dim_min = 1.0, dim_max = 1.0; // dimming: [min, max] as fractions of the rated output
+  std::optional<double> maintenance_factor;
+  std::vector<double> rotations_deg;   // empty: 0 for rotationally symmetric distributions, else 0 and 90
+  std::optional<double> mount_offset_m;  // its opening this far below the mounting surface (a pendant's
+  FileLoc mount_offset_loc;              // suspension); default: luminaires.mount_offset_m
+};
+
+// luminaires: the luminaires the search places (present when mounting_surface is given).
+struct LuminaireSearch {
+  std::string model = "square_lambertian";  // the only model: a square Lambertian panel facing down
+  double flux_min_lm = 0.0;                 // flux_lm: [min, max]; 0 <= min < max
+  double flux_max_lm = 0.0;
+  FileLoc flux_loc;
+  double efficacy_lm_per_w = 100.0;         // > 0; electric power = flux / efficacy
+  std::string mounting_surface;             // a surface of the scene facing down (a ceiling)
+  FileLoc mounting_loc;
+  double mount_offset_m = 0.02;             // the emitting face hangs this far below the mounting surface, > 0
+  FileLoc offset_loc;  // where mount_offset_m was set (if it was)
+  double candidate_spacing_m = 0.5;         // grid of precomputed positions; T is interpolated between them
+  FileLoc spacing_loc;
+  int count_min = 1;                        // count: N or [min, max]: how many luminaires (free layout)
+  int count_max = 1;
+  FileLoc count_loc;
+  std::vector<ProductSetting> products;     // luminaires.products; empty: the model/flux_lm/efficacy keys
+  double wall_distance_m = 0.0;             // a luminaire's outline keeps at least this from the mounting surface's edges
+  double ceiling_module_m = 0.0;            // > 0: centres snap to the module's cell centres (a 0.6 m grid ceiling)
+  // The variant a search runs for (set from a product by the job runner; defaults: the
+  // square panel of luminaires.size_m): its type and rotation, and whether every
+  // luminaire of a layout gives the same output (products) or each its own (the panel).
+  LuminaireType type = LuminaireType::square_lambertian(0.6);
+  double rotation_deg = 0.0;
+  std::string product;                      // the product's name; empty for the plain panel
+  bool uniform_output = false;
+  LayoutFamily layout = LayoutFamily::free;
+  // layout: array. rows x columns; spacing and offset (the first luminaire's centre,
+  // from the mounting surface's lower x, y corner) fixed when given, else searched.
+  int array_rows = 0;
+  int array_columns = 0;
+  std::optional<Eigen::Vector2d> array_spacing_m;
+  std::optional<Eigen::Vector2d> array_offset_m;
+  FileLoc layout_loc;
+};
+
+enum class GoalMetric {
+  average,     // area-weighted average illuminance >= target lux (closest_to_target: = target)
+  minimum,     // lowest patch illuminance >= target lux
+  maximum,     // highest patch illuminance <= target lux
+  uniformity,  // U0 = Emin / Eavg >= target (a ratio in (0, 1])
+};
+std::string_view to_string(GoalMetric metric);
+// The metric's key in a goals entry and in sweep keys: average_lux, min_lux, max_lux, uniformity.
+std::string_view goal_key(GoalMetric metric);
+
+// One line of goals: a metric over the union of some surfaces. A goals entry with
+// several metrics (average_lux and uniformity) becomes several GoalSettings with the
+// same name.
+// Which patches of a goal's surfaces count: all, or only those facing up (a desk's top
+// without its edges and underside) or down, within about 25 degrees of vertical.
+enum class GoalFacing { any, up, down };
+
+struct GoalSetting {
+  std::string name;                   // `name:`, else the surfaces joined with '+' (or the grid's name)
+  std::vector<std::string> surfaces;  // surface: NAME or [NAME, ...]; empty for a grid goal
+  std::string grid;                   // grid: NAME, a calculation grid of `grids` (instead of surface)
+  FileLoc surfaces_loc;
+  GoalFacing facing = GoalFacing::any;  // facing: any, up or down
+  GoalMetric metric = GoalMetric::average;
+  double target = 0.0;                // lux, or the U0 ratio: a maintained value (see maintenance_factor)
+  FileLoc loc;                        // of the metric's key (or the preset's)
+};
+
+// EN 12464-1 task areas (../shared/LIGHTING.md): `preset: office_writing` gives the
+// row's Em (average_lux) and U0 (uniformity), maintained values.
+struct GoalPreset {
+  const char* key;       // office_writing, ...
+  const char* standard;  // the row as the standard names it
+  double average_lux;
+  double uniformity;
+};
+std::span<const GoalPreset> goal_presets();
+
+struct SearchConstraints {
+  std::optional<int> max_luminaires;    // caps luminaires.count (free) or rows x columns (array: error if more)
+  FileLoc max_luminaires_loc;
+  double min_distance_m = 0.0;          // between luminaire centres, >= 0
+};
+
+enum class Objective {
+  min_power,          // least electric power meeting every goal
+  closest_to_target,  // average goals hit their targets (least squared relative deviation); others are constraints
+};
+
+// optimizer: NLopt names (nlopt::algorithm as text, e.g. GN_CRS2_LM, LN_SBPLX) or "none".
+struct OptimizerSettings {
+  std::string global_algorithm = "GN_CRS2_LM";
+  std::string local_algorithm = "LN_SBPLX";
+  int max_evaluations = 20000;     // global stage, per luminaire count tried
+  int local_max_evaluations = 4000;
+  double max_seconds = 60.0;       // wall-clock budget of the whole search
+  std::uint64_t seed = 1;          // NLopt's random seed: same seed, same layout
+};
+
+enum class VerificationMethod { automatic, exact, sample, none };
+
+// verification: the layout found, placed as real luminaires and solved again.
+struct VerificationSettings {
+  VerificationMethod method = VerificationMethod::automatic;  // auto: exact up to max_exact_patches, else sample
+  int rays_per_patch = 1024;
+  // Searches at most: when a goal fails only on verification, the search runs again
+  // with that goal's target scaled by predicted / verified (a defect correction).
+  int rounds = 3;
+  std::size_t max_exact_patches = 30000;
+  double sample_fraction = 0.25;  // method sample: k as a fraction of the reflecting patches
+};
+
+struct OutputSettings {
+  std::string directory;  // as written in the file (relative to the working directory); empty: "results/<config stem>"
+  // formats: [json, csv, svg, ply, grid_csv, isolux_svg, isolux_png]; the grid formats
+  // write one file per job (grid.csv) or per grid (isolux_<grid>.svg, .png) and nothing
+  // for a job without grids (listing one there is an error).
+  bool json = true, csv = true, svg = true, ply = true;
+  bool grid_csv = true, isolux_svg = true, isolux_png = true;
+};
+
+// sweep: run the job once per value of one goal parameter, e.g.
+// key "goals.desks.average_lux" with values [300, 500, 750].
+struct SweepSetting {
+  std::string key;
+  std::vector<double> values;
+  FileLoc loc;
+};
+
+struct JobConfig {
+  std::string path;                     // the YAML file
+  // scene
+  std::string mesh_path;                // resolved against the config's folder
+  FileLoc mesh_loc;
+  MeshReadOptions mesh_read;
+  SceneOptions scene;
+  SurfaceSplitOptions surface_split;    // surfaces_from: connected, weld_tolerance_m, regions
+  FileLoc max_patch_edge_loc;           // where max_patch_edge_m was set (if it was)
+  std::vector<ReflectanceSetting> reflectance;
+  std::optional<Eigen::Vector3d> default_reflectance;
+  std::vector<EmitterSetting> emitting_surfaces;
+  std::vector<FloorSetting> add_floors;
+  // Surfaces left out of the scene (a ground plane around a room, outdoor objects).
+  std::vector<std::string> exclude_surfaces;
+  std::vector<FileLoc> exclude_surface_locs;
+  // Surfaces that reflect on both sides (patches doubled back to back); all of them
+  // with `two_sided: all`. Others are one-sided: light striking a back face is absorbed.
+  std::vector<std::string> two_sided_surfaces;
+  std::vector<FileLoc> two_sided_locs;
+  bool two_sided_all = false;
+  // luminaires
+  double luminaire_size_m = 0.6;
+  std::vector<LuminaireSetting> luminaires;
+  // solver
+  FormFactorOptions form_factors;
+  DirectLightOptions direct_light;
+  RadiosityOptions radiosity;
+  SolveMethod method = SolveMethod::sample;
+  SampleSettings sample;
+  // report
+  std::vector<std::string> report_surfaces;  // empty: every surface
+  std::vector<FileLoc> report_surface_locs;
+  // the inverse problem
+  std::optional<LuminaireSearch> search;  // luminaires.mounting_surface and its companions
+  std::vector<GoalSetting> goals;
+  std::vector<CalcGridSetting> grids;     // calculation grids goals can name
+  // Targets are maintained values; the search and the verification work on initial
+  // values = target / maintenance_factor (lux metrics; U0 is a ratio and unchanged).
+  double maintenance_factor = 1.0;
+  FileLoc maintenance_loc;
+  SearchConstraints constraints;
+  Objective objective = Objective::min_power;
+  OptimizerSettings optimizer;
+  VerificationSettings verification;
+  OutputSettings output;
+  std::optional<SweepSetting> sweep;
+  // Not from the file: a memory budget set on the command line (--max-memory); the
+  // cost model refuses a job whose estimate exceeds it or the machine's available memory.
+  std::optional<double> max_memory_bytes;
+  // Not from the file: every triangle takes default_reflectance, whatever its MTL Kd
+  // (`ilp inspect MESH`, where reflectances do not matter).
+  bool ignore_material_kd = false;
+};
+
+// Sets the goal parameter `key` ("goals.NAME.average_lux", ".min_lux", ".max_lux" or
+// ".uniformity") to value, checked as the file would be. Throws ConfigError naming
+// the key when no goal has that name and metric or the value breaks the rule.
+void set_goal_parameter(JobConfig& job, const std::string& key, double value);
+
+// The target a goal is searched and verified at: initial = maintained target / maintenance
+// factor for lux metrics, the target itself for uniformity.
+double initial_target(const JobConfig& job, const GoalSetting& goal);
+// Index of the grid with this name in job.grids, or -1.
+int find_grid(const JobConfig& job, const std::string& name);
+
+// Reads and validates a job file. Throws ConfigError "file:line:col: key = value: rule".
+JobConfig load_job_config(const std::string& path);
+
+}  // namespace ilp

@@ -1,0 +1,100 @@
+#include "job/job_cost.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "core/operator/sample_operator.h"
+
+namespace ilp {
+
+VerificationPlan plan_verification(const JobConfig& job, std::size_t patches, std::size_t population,
+                                   std::size_t goal_patches, int luminaires, std::optional<double> budget) {
+  const VerificationSettings& s = job.verification;
+  VerificationPlan plan;
+  plan.method = s.method;
+  const int configured_k =
+      std::max(1, static_cast<int>(std::lround(s.sample_fraction * static_cast<double>(population))));
+  if (s.method == VerificationMethod::none) return plan;
+  if (s.method == VerificationMethod::exact) {
+    plan.reason = "verification.method: exact";
+    return plan;
+  }
+  if (s.method == VerificationMethod::sample) {
+    plan.sample_size = configured_k;
+    plan.reason = "verification.method: sample";
+    return plan;
+  }
+  // auto: exact up to max_exact_patches, or beyond while its sparse rows fit in half
+  // the budget; else a sample that fits and stays quick.
+  const double exact_bytes = exact_verification_bytes(patches, s.rays_per_patch);
+  std::ostringstream why;
+  if (patches <= s.max_exact_patches) {
+    plan.method = VerificationMethod::exact;
+    why << "auto: exact (" << patches << " patches <= verification.max_exact_patches " << s.max_exact_patches << ")";
+  } else if (!budget || exact_bytes <= 0.5 * *budget) {
+    plan.method = VerificationMethod::exact;
+    why << "auto: exact (" << patches << " sparse rows at " << s.rays_per_patch << " rays, about "
+        << format_bytes(exact_bytes) << ", fit in memory)";
+  } else {
+    plan.method = VerificationMethod::sample;
+    int k = std::min(configured_k, kAutoVerificationMaxSample);
+    while (k > 1 && budget &&
+           sample_verification_bytes(static_cast<std::size_t>(k), goal_patches, static_cast<std::size_t>(luminaires) + 1,
+                                    s.rays_per_patch) > 0.5 * *budget)
+      k = k * 3 / 4;
+    plan.sample_size = std::max(1, k);
+    why << "auto: sample of k = " << plan.sample_size << " (exact rows would need " << format_bytes(exact_bytes)
+        << "; k capped at " << kAutoVerificationMaxSample << " and by memory, verification.sample_fraction asks "
+        << configured_k << ")";
+  }
+  plan.reason = why.str();
+  return plan;
+}
+
+CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const LightingModel& geometry,
+                           std::optional<double> budget) {
+  CostCounts c;
+  c.patches = job_scene.patches.size();
+  c.population = reflecting_patches(job_scene).size();
+  c.goal_patches = geometry.goal_patches.size();
+  c.sources = scene_light_sources(geometry.scene).size();
+  c.channels = job_scene.channels;
+  c.rays_per_patch = job.form_factors.rays_per_patch;
+  c.exact_second_bounce = job.sample.indirect == IndirectMethod::exact_second_bounce;
+  c.direct_rays = job.direct_light.receiver_points * job.direct_light.shadow_rays;
+  if (c.population > 0) {
+    if (job.sample.target_error) {
+      c.pilot_builds = job.sample.error_samples;
+      c.pilot_size = static_cast<std::size_t>(std::min<double>(
+          static_cast<double>(c.population), std::max(2.0, std::round(job.sample.pilot_fraction * c.population))));
+      c.sample_size = static_cast<std::size_t>(std::min<double>(static_cast<double>(c.population),
+                                                                job.sample.max_size_for_target));
+    } else {
+      c.sample_size = static_cast<std::size_t>(std::min<double>(static_cast<double>(c.population),
+                                                                job.sample.size_for(c.population)));
+    }
+  }
+  if (job.search) {
+    const LuminaireSearch& s = *job.search;
+    const int most = job.constraints.max_luminaires ? std::min(s.count_max, *job.constraints.max_luminaires) : s.count_max;
+    const int counts = s.layout == LayoutFamily::array ? 1 : std::max(1, most - s.count_min + 1);
+    c.luminaires = s.layout == LayoutFamily::array ? s.array_rows * s.array_columns : most;
+    c.evaluations = static_cast<long long>(counts) *
+                    (job.optimizer.max_evaluations + job.optimizer.local_max_evaluations);
+    c.search_max_seconds = job.optimizer.max_seconds;
+  }
+  const VerificationPlan plan =
+      plan_verification(job, c.patches + 2 * static_cast<std::size_t>(c.luminaires), c.population, c.goal_patches,
+                        c.luminaires, budget);
+  c.verify = plan.method == VerificationMethod::exact    ? CostCounts::Verify::exact
+             : plan.method == VerificationMethod::sample ? CostCounts::Verify::sample
+                                                         : CostCounts::Verify::none;
+  c.verify_rays = job.verification.rays_per_patch;
+  c.verify_sample_size = static_cast<std::size_t>(plan.sample_size);
+  c.verify_rounds = plan.method == VerificationMethod::none ? 1 : job.verification.rounds;
+  return c;
+}
+
+}  // namespace ilp

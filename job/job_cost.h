@@ -1,0 +1,36 @@
+// The cost model (core/cost_model.h) applied to an inverse job: its counts from the
+// job and the model's geometry (goal patches, candidates), and the verification
+// method `auto` resolves to on this machine (exact when its sparse rows fit in
+// memory, else a sample whose dense k x k solve fits and stays quick).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "job/config.h"
+#include "core/operator/cost_model.h"
+#include "core/scene/scene.h"
+#include "optimizer/lighting_model.h"
+
+namespace ilp {
+
+struct VerificationPlan {
+  VerificationMethod method = VerificationMethod::none;  // exact, sample or none (never automatic)
+  int sample_size = 0;                                    // sample: k
+  std::string reason;                                     // for the run log
+};
+
+// The largest k the automatic verification uses (a dense LU of 4000 per channel takes about 3 s here).
+inline constexpr int kAutoVerificationMaxSample = 4000;
+
+// What verify_layout does for `job` on a scene of `patches` patches (`population` of
+// them reflecting) with `luminaires` placed, within `budget_bytes` (none: no limit).
+VerificationPlan plan_verification(const JobConfig& job, std::size_t patches, std::size_t population,
+                                   std::size_t goal_patches, int luminaires, std::optional<double> budget_bytes);
+
+// Counts for the cost model. `sample_size`: k of the operator (0 when not known: the
+// configured size, or with solver.target_error the largest k it may choose).
+CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const LightingModel& geometry,
+                           std::optional<double> budget_bytes);
+
+}  // namespace ilp

@@ -1,0 +1,432 @@
+#include "job/job_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/base/error.h"
+#include "core/exact/exact_solver.h"
+#include "job/operator_setup.h"
+#include "core/rays/point_gather.h"
+#include "optimizer/goal_metrics.h"
+#include "core/operator/sample_operator.h"
+#include "job/job_cost.h"
+#include "job/model_cache.h"
+#include "job/round_calibration.h"
+
+namespace ilp {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The verification's rays are independent of the operator's.
+constexpr std::uint64_t kVerificationSeedSalt = 0x5EED5EEDull;
+
+}  // namespace
+
+Verification verify_layout(const PreparedJob& prepared, const JobConfig& job, const std::vector<PlacedLuminaire>& layout,
+                           const ProgressCallback& progress) {
+  Verification out;
+  const VerificationSettings& settings = job.verification;
+  if (settings.method == VerificationMethod::none) return out;
+  const auto start = Clock::now();
+  Scene scene = prepared.loaded.scene;
+  add_layout(scene, *job.search, layout);
+  // auto resolves by the cost model: exact while its sparse rows fit, else a sample that fits.
+  const VerificationPlan plan =
+      plan_verification(job, scene.patches.size(), reflecting_patches(scene).size(), prepared.model.goal_patches.size(),
+                        static_cast<int>(layout.size()), memory_budget_bytes(job.max_memory_bytes));
+  const bool exact = plan.method == VerificationMethod::exact;
+  out.rays_per_patch = settings.rays_per_patch;
+  if (exact) {
+    ExactSolveOptions options = exact_solve_options(job);
+    options.form_factors.rays_per_patch = settings.rays_per_patch;
+    options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
+    options.direct_light.seed = options.form_factors.seed;
+    options.precise_patches = prepared.model.goal_patches;  // elsewhere direct light is only reflected
+    const ExactSolution solution = solve_exact(scene, options, progress);
+    out.method = "exact";
+    out.patches = scene.all_patches();
+    out.lux = solution.radiosity.total_lux;
+    out.direct_lux = solution.radiosity.direct_lux;
+    if (!prepared.model.goal_points.empty()) {
+      const RayCaster caster(scene, job.form_factors.threads);
+      const PointIlluminance at = exact_point_illuminance(scene, caster, solution.radiosity, prepared.model.goal_points,
+                                                          options.form_factors, options.direct_light, progress);
+      out.point_lux = at.total_lux;
+      out.point_direct_lux = at.direct_lux;
+    }
+  } else {
+    const RayCaster caster(scene, job.form_factors.threads);
+    const std::vector<LightSource> sources = scene_light_sources(scene);
+    SampleOperatorOptions options = sample_operator_options(job);
+    options.form_factors.rays_per_patch = settings.rays_per_patch;
+    options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
+    options.direct_light.seed = options.form_factors.seed;
+    options.sample_seed = job.sample.seed ^ kVerificationSeedSalt;
+    options.sample_size = std::max(1, plan.sample_size);
+    const GoalRows rows = compute_goal_rows(scene, caster, prepared.model.goal_patches, prepared.model.goal_points,
+                                            sources, options, progress);
+    const SampleOperator op = build_sample_operator(scene, caster, rows, options, progress);
+    const Eigen::VectorXd flux = source_flux_lm(scene, sources);
+    out.method = "sample";
+    out.sample_size = op.stats.direct_only ? 0 : static_cast<int>(op.stats.sample_patches);
+    out.patches = prepared.model.goal_patches;
+    const Eigen::VectorXd lux = op.illuminance_lux(flux), direct = op.direct_lux(flux);
+    const Eigen::Index G = static_cast<Eigen::Index>(out.patches.size()), Q = lux.size() - G;
+    out.lux = lux.head(G);
+    out.direct_lux = direct.head(G);
+    out.point_lux = lux.tail(Q);
+    out.point_direct_lux = direct.tail(Q);
+  }
+  out.seconds = seconds_since(start);
+  return out;
+}
+
+Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification& v) {
+  Eigen::VectorXd out(model.goal_rows());
+  if (v.point_lux.size() != static_cast<Eigen::Index>(model.goal_points.size()))
+    throw std::logic_error("verification: the goal points were not solved");
+  out.tail(v.point_lux.size()) = v.point_lux;
+  std::size_t k = 0;
+  for (std::size_t r = 0; r < model.goal_patches.size(); ++r) {
+    while (k < v.patches.size() && v.patches[k] < model.goal_patches[r]) ++k;  // both ascending
+    if (k == v.patches.size() || v.patches[k] != model.goal_patches[r])
+      throw std::logic_error("verification: goal patch " + std::to_string(model.goal_patches[r]) + " was not solved");
+    out[static_cast<Eigen::Index>(r)] = v.lux[static_cast<Eigen::Index>(k)];
+  }
+  return out;
+}
+
+namespace {
+
+// The flux scale that makes the verified values just meet the lower-bound goals
+// (min_power) or fit the average targets best (closest_to_target): illuminance is
+// linear in flux, so scaling every flux scales the verified values exactly.
+double verified_flux_scale(const JobConfig& job, const std::vector<GoalJudgement>& verified,
+                           const std::vector<PlacedLuminaire>& layout, bool& limited) {
+  limited = false;
+  double scale = 0.0, num = 0.0, den = 0.0;
+  for (const GoalJudgement& g : verified) {
+    if (g.metric == GoalMetric::average && job.objective == Objective::closest_to_target) {
+      num += g.value / g.target;
+      den += g.value * g.value / (g.target * g.target);
+    } else if (metric_rule(g.metric).scale_closed_form && g.target > 0.0) {
+      if (!(g.value > 0.0)) return 1.0;
+      scale = std::max(scale, g.target / g.value);
+    }
+  }
+  if (job.objective == Objective::closest_to_target) scale = den > 0.0 ? num / den : 1.0;
+  if (!(scale > 0.0)) return 1.0;
+  double flux_high = 0.0, flux_low = std::numeric_limits<double>::infinity();
+  for (const PlacedLuminaire& l : layout) {
+    flux_high = std::max(flux_high, l.flux_lm);
+    flux_low = std::min(flux_low, l.flux_lm);
+  }
+  const double wanted = scale;
+  if (flux_high > 0.0) scale = std::min(scale, job.search->flux_max_lm / flux_high);
+  if (flux_low > 0.0) scale = std::max(scale, job.search->flux_min_lm / flux_low);
+  limited = std::abs(scale - wanted) > 1e-12 * wanted;
+  return scale;
+}
+
+}  // namespace
+
+void add_layout(Scene& scene, const LuminaireSearch& search, const std::vector<PlacedLuminaire>& layout) {
+  for (std::size_t j = 0; j < layout.size(); ++j)
+    add_luminaire(scene, luminaire_name(j), search.type, {layout[j].position_m, search.rotation_deg}, layout[j].flux_lm);
+}
+
+std::vector<JobVariant> job_variants(const JobConfig& job) {
+  if (!job.search || job.search->products.empty()) return {JobVariant{job, std::nullopt}};
+  std::vector<JobVariant> out;
+  for (ProductVariant& v : product_variants(*job.search)) {
+    JobConfig j = job_for_variant(job, v);
+    out.push_back({std::move(j), std::move(v)});
+  }
+  return out;
+}
+
+bool better_outcome(const JobOutcome& a, const JobOutcome& b) {
+  if (a.all_met != b.all_met) return a.all_met;
+  if (a.feasible != b.feasible) return a.feasible;
+  if (a.all_met || a.feasible) return a.power_w < b.power_w;
+  return a.search.best.objective < b.search.best.objective;
+}
+
+std::string luminaire_name(std::size_t j) {
+  std::string name = "L";  // (not "L" + ...: GCC 12 warns falsely on operator+(const char*, string&&))
+  return name.append(std::to_string(j + 1));
+}
+
+PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, const std::string& cache_dir,
+                        const LogSink& log) {
+  auto emit = [&](const std::vector<std::string>& lines, std::size_t from) {
+    if (log)
+      for (std::size_t k = from; k < lines.size(); ++k) log(lines[k]);
+  };
+  if (!job.search)
+    throw ConfigError(job.path + ": luminaires.mounting_surface is missing: an inverse job says where luminaires may "
+                                 "go (see docs/user-guide.md)");
+  if (job.goals.empty()) throw ConfigError(job.path + ": goals are missing: an inverse job says what surfaces must receive");
+  PreparedJob out;
+  out.job = job;
+  auto start = Clock::now();
+  // Meshing stops before it makes more patches than the memory could ever hold
+  // (a scene, its BVH and the least build take about 1 kB a patch).
+  const std::optional<double> budget = memory_budget_bytes(job.max_memory_bytes);
+  JobConfig scene_job = job;
+  if (budget) scene_job.scene.max_patches = std::min(job.scene.max_patches, static_cast<std::size_t>(*budget / 1024.0));
+  try {
+    out.loaded = load_job_scene(scene_job);
+  } catch (const ConfigError& e) {
+    if (scene_job.scene.max_patches == job.scene.max_patches) throw;
+    throw ConfigError(std::string(e.what()) + " (about 1 kB a patch within the " + format_bytes(*budget) +
+                      " of memory the job may use: the machine's available memory or --max-memory)");
+  }
+  out.scene_seconds = seconds_since(start);
+  emit(out.loaded.log, 0);
+  start = Clock::now();
+  out.caster = std::make_unique<RayCaster>(out.loaded.scene, job.form_factors.threads);
+  out.bvh_seconds = seconds_since(start);
+  out.model = lighting_model_geometry(out.loaded.scene, job);
+  {
+    // The cost model: printed, and a job that cannot fit is refused now, not minutes later.
+    // (Kept apart from the model's log, which the cache compares with the file's.)
+    const CostEstimate estimate = estimate_job_cost(job_cost_counts(job, out.loaded.scene, out.model, budget));
+    out.estimate_log = format_estimate(estimate);
+    if (budget) out.estimate_log.push_back("memory available to the job: " + format_bytes(*budget));
+    emit(out.model.log, 0);
+    emit(out.estimate_log, 0);
+    require_fits(estimate, budget, job.path);
+  }
+  const std::size_t geometry_lines = out.model.log.size();
+  if (cache_dir.empty()) {
+    compute_lighting_operator(out.model, out.loaded.scene, *out.caster, job, progress);
+    emit(out.model.log, geometry_lines);
+    return out;
+  }
+
+  start = Clock::now();
+  const std::string key = lighting_model_key(job);
+  const std::string file = (std::filesystem::path(cache_dir) / (key + ".ilpmodel")).string();
+  const std::optional<std::string> not_used = load_lighting_model(file, key, out.model);
+  out.cache_seconds = seconds_since(start);
+  if (!not_used) {
+    out.loaded_from_cache = true;
+    std::ostringstream status;
+    status << std::fixed << std::setprecision(3) << "operator loaded from cache " << file << " (built in "
+           << out.model.build_seconds << " s originally)";
+    out.cache_status = status.str();
+    emit(out.model.log, geometry_lines);
+    return out;
+  }
+  compute_lighting_operator(out.model, out.loaded.scene, *out.caster, job, progress);
+  emit(out.model.log, geometry_lines);
+  // The file was missing, or is replaced: a failure to write it leaves the job as it is.
+  const std::string previous = *not_used == "no cache file" ? "" : "the cached file was not used: " + *not_used;
+  start = Clock::now();
+  try {
+    std::error_code ec;
+    std::filesystem::create_directories(cache_dir, ec);
+    if (ec) throw IlpError(cache_dir + ": cannot create the cache folder (" + ec.message() + ")");
+    save_lighting_model(file, out.model, key);
+    out.cache_status = "operator built and cached in " + file + (previous.empty() ? "" : " (" + previous + ")");
+  } catch (const std::exception& e) {
+    out.cache_status = std::string("operator built; cache not used: ") + e.what() +
+                       (previous.empty() ? "" : "; " + previous);
+  }
+  out.cache_seconds += seconds_since(start);
+  return out;
+}
+
+namespace {
+
+// One search (with the search targets of `search_job`) and its verification, judged
+// against the real targets of `job`.
+JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, const JobConfig& search_job,
+                             const ProgressCallback& progress, const SearchBounds& bounds) {
+  const LightingModel& model = prepared.model;
+  JobOutcome out;
+  out.search = search_layout(model, search_job, progress, bounds);
+  if (out.search.beaten) return out;  // nothing to verify
+  const LayoutEvaluation& best = out.search.best;
+  out.luminaires = best.luminaires;
+  out.predicted_lux = best.lux;
+  {
+    Eigen::VectorXd a = model.fixed_direct_lux;
+    for (const PlacedLuminaire& l : best.luminaires)
+      for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
+        if (l.blend.candidates[k] >= 0)
+          a += (l.flux_lm * l.blend.weights[k]) * model.candidate_direct_lux_per_lm.col(l.blend.candidates[k]);
+    out.predicted_direct_lux = a.cwiseMax(0.0);
+  }
+  // Met as predicted is judged on the search's own layout, before any flux correction.
+  const std::vector<GoalJudgement> as_searched = judge_goals(model, job, out.predicted_lux);
+  std::vector<GoalJudgement> predicted = as_searched;
+
+  out.verification = verify_layout(prepared, job, out.luminaires, progress);
+  out.verify_seconds = out.verification.seconds;
+  std::optional<std::vector<GoalJudgement>> verified;
+  if (out.verification.method != "none") {
+    verified = judge_goals(model, job, verified_goal_lux(model, out.verification));
+    // Without fixed sources every illuminance is proportional to the common flux scale.
+    const bool no_fixed = model.fixed_lux.cwiseAbs().maxCoeff() == 0.0;
+    if (no_fixed && !out.luminaires.empty()) {
+      out.flux_correction = verified_flux_scale(job, *verified, out.luminaires, out.flux_correction_limited);
+      if (std::abs(out.flux_correction - 1.0) > 1e-12) {
+        for (PlacedLuminaire& l : out.luminaires) {
+          l.flux_lm *= out.flux_correction;
+          l.power_w *= out.flux_correction;
+        }
+        out.predicted_lux *= out.flux_correction;
+        out.predicted_direct_lux *= out.flux_correction;
+        out.verification.lux *= out.flux_correction;
+        out.verification.direct_lux *= out.flux_correction;
+        out.verification.point_lux *= out.flux_correction;
+        out.verification.point_direct_lux *= out.flux_correction;
+        predicted = judge_goals(model, job, out.predicted_lux);
+        verified = judge_goals(model, job, verified_goal_lux(model, out.verification));
+      }
+    }
+  }
+  for (const PlacedLuminaire& l : out.luminaires) out.power_w += l.power_w;
+  out.fixed_flux_lm = model.fixed_flux_lm;
+  out.mounting_area_m2 = model.grid.mounting_area_m2();
+  out.maintenance_factor = job.maintenance_factor;
+  out.floor_area_m2 = out.mounting_area_m2;
+  out.floor_area_source = "plan area of the mounting surface '" + job.search->mounting_surface + "'";
+  // The floor: a grid's surface whose upward patches lie at the room's lowest level
+  // (a grid over a table top is a task area, not the floor).
+  constexpr double kFloorLevelTolerance_m = 0.2;
+  for (const CalcGridSetting& g : job.grids)
+    if (g.kind == GridKind::horizontal && !g.over_surface.empty()) {
+      const Scene& scene = prepared.loaded.scene;
+      const int surface = scene.find_surface(g.over_surface);
+      double area = 0.0, highest_m = -std::numeric_limits<double>::infinity();
+      for (const Patch& p : scene.patches)
+        if (p.surface == surface && p.normal.z() >= 0.9) {
+          area += p.area_m2;
+          highest_m = std::max(highest_m, p.centroid_m.z());
+        }
+      if (area > 0.0 && highest_m <= scene.bounds_m.min().z() + kFloorLevelTolerance_m) {
+        out.floor_area_m2 = area;
+        out.floor_area_source = "floor '" + g.over_surface + "' (under grid '" + g.name + "')";
+      }
+      break;
+    }
+  out.power_density_w_per_m2 = out.floor_area_m2 > 0.0 ? out.power_w / out.floor_area_m2 : 0.0;
+  // Feasible as predicted: against the real targets, with the distance constraint.
+  out.feasible = best.distance_violation <= 1e-4;
+  out.all_met = out.feasible;
+  for (std::size_t g = 0; g < predicted.size(); ++g) {
+    GoalOutcome o;
+    o.predicted = predicted[g];
+    o.tolerance = goal_tolerance(job, predicted[g].metric);
+    // The closed-form scale meets goals to round-off; allow for it.
+    const bool predicted_met = as_searched[g].violation <= o.tolerance + 1e-9;
+    if (!(job.objective == Objective::closest_to_target && predicted[g].metric == GoalMetric::average))
+      out.feasible = out.feasible && predicted_met;
+    if (verified) {
+      o.verified = (*verified)[g];
+      o.met = o.verified->violation <= o.tolerance + 1e-9;
+      o.fails_only_on_verification = predicted_met && !o.met;
+    } else {
+      o.met = predicted_met;
+    }
+    out.all_met = out.all_met && o.met;
+    out.goals.push_back(o);
+  }
+  for (const GoalOutcome& o : out.goals)
+    if (o.predicted.metric == GoalMetric::average) {
+      const double maintained = (o.verified ? o.verified->value : o.predicted.value) * job.maintenance_factor;
+      if (maintained > 0.0) out.power_density_w_per_m2_per_100_lx = out.power_density_w_per_m2 / (maintained / 100.0);
+      break;
+    }
+  return out;
+}
+
+double total_missed(const JobOutcome& o) {
+  double sum = 0.0;
+  for (const GoalOutcome& g : o.goals) sum += (g.verified ? g.verified->violation : g.predicted.violation);
+  return sum;
+}
+
+// Is a better than b? Every goal met first, then less power (min_power) or less
+// deviation; otherwise less missed.
+bool better_outcome(const JobOutcome& a, const JobOutcome& b, Objective objective) {
+  if (a.all_met != b.all_met) return a.all_met;
+  if (a.all_met && objective == Objective::min_power) return a.power_w < b.power_w;
+  return total_missed(a) < total_missed(b);
+}
+
+}  // namespace
+
+JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress,
+                          double power_to_beat_w) {
+  JobConfig search_job = job;
+  std::optional<JobOutcome> best;
+  const int rounds = job.verification.method == VerificationMethod::none ? 1 : job.verification.rounds;
+  int searches = 0, evaluations = 0;
+  SearchBounds bounds;
+  bounds.power_to_beat_w = power_to_beat_w;
+  double search_seconds = 0.0, verify_seconds = 0.0;
+  for (int round = 0; round < rounds; ++round) {
+    JobOutcome outcome = search_and_verify(prepared, job, search_job, progress, bounds);
+    if (outcome.search.beaten) {
+      if (!best) return outcome;  // nothing could beat the power given: nothing searched
+      // A later round whose every count drew no less at the easier targets than the
+      // power given: the earlier rounds' best stands.
+      search_seconds += outcome.search.seconds;
+      break;
+    }
+    // The next round's targets are no easier: what this one found infeasible stays so,
+    // and what it found feasible draws no less (optimizer/layout_search.h).
+    for (const CountAttempt& a : outcome.search.attempts) {
+      if (a.evaluations == 0) continue;
+      std::erase_if(bounds.easier, [&](const CountAttempt& e) { return e.luminaires == a.luminaires; });
+      bounds.easier.push_back(a);
+    }
+    ++searches;
+    evaluations += outcome.search.evaluations;
+    search_seconds += outcome.search.seconds;
+    verify_seconds += outcome.verify_seconds;
+    // Defect correction: a goal that fails on verification is searched for again with
+    // its target scaled by how far the prediction overshot the verified value.
+    bool recalibrated = false;
+    for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
+      const GoalOutcome& o = outcome.goals[g];
+      if (round + 1 == rounds) break;  // no search follows
+      if (!o.fails_only_on_verification) continue;
+      if (job.objective == Objective::closest_to_target && o.predicted.metric == GoalMetric::average) continue;
+      GoalSetting& goal = search_job.goals[g];
+      const std::optional<double> next =
+          next_search_target(goal.metric, job.goals[g].target, goal.target, o.predicted.value, o.verified->value);
+      if (!next) continue;
+      goal.target = *next;
+      outcome.calibration.push_back(
+          calibration_line(round, job, job.goals[g], o.predicted.value, o.verified->value, goal.target));
+      recalibrated = true;
+    }
+    std::vector<std::string> calibration = best ? best->calibration : std::vector<std::string>{};
+    calibration.insert(calibration.end(), outcome.calibration.begin(), outcome.calibration.end());
+    const bool done = outcome.all_met || !recalibrated;
+    if (!best || better_outcome(outcome, *best, job.objective)) best = std::move(outcome);
+    best->calibration = std::move(calibration);
+    if (done) break;
+  }
+  best->searches = searches;
+  best->search.evaluations = evaluations;
+  best->search.seconds = search_seconds;
+  best->verify_seconds = verify_seconds;
+  return std::move(*best);
+}
+
+}  // namespace ilp

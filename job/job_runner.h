@@ -1,0 +1,141 @@
+// An inverse-lighting job from start to finish: the scene and the lighting model
+// (built once, shared by every sweep point), the layout search, and the verification
+// that places the luminaires found as real ones and solves again with the exact
+// direct light and a high-accuracy indirect term.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "job/config.h"
+#include "job/job_scene.h"
+#include "job/products.h"
+#include "core/base/progress.h"
+#include "core/rays/ray_caster.h"
+#include "optimizer/layout_search.h"
+#include "optimizer/lighting_model.h"
+
+namespace ilp {
+
+// The expensive part, independent of goal targets.
+struct PreparedJob {
+  JobConfig job;
+  JobScene loaded;
+  std::unique_ptr<RayCaster> caster;
+  LightingModel model;         // loaded from the cache: build_seconds is the original build's
+  double scene_seconds = 0.0;  // mesh loading and meshing
+  double bvh_seconds = 0.0;
+  bool loaded_from_cache = false;  // the operator came from the cache folder
+  std::string cache_status;        // for the run log; empty without a cache folder
+  double cache_seconds = 0.0;      // computing the key and reading, or writing, the cache file
+  std::vector<std::string> estimate_log;  // the cost model's estimate (core/cost_model.h), for the run log
+};
+
+// Throws ConfigError when the job does not describe an inverse problem (no
+// luminaires.mounting_surface or no goals), naming the file.
+//
+// With a cache folder (optimizer/model_cache.h), the operator is read from
+// cache_dir/KEY.ilpmodel when that file is valid for the job; otherwise it is built
+// and written there (the folder is created; a stale or corrupt file is replaced). A
+// cache that cannot be read or written never fails the job: cache_status says why.
+// An empty cache_dir: no cache.
+// `log`, when given, receives the run log's lines as soon as each phase has them (the
+// scene's before the operator is built, which can take a minute); they are also kept
+// in loaded.log and model.log.
+using LogSink = std::function<void(const std::string& line)>;
+PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress = {}, const std::string& cache_dir = "",
+                        const LogSink& log = {});
+
+struct GoalOutcome {
+  GoalJudgement predicted;                 // through the operator
+  std::optional<GoalJudgement> verified;   // through the verification solve
+  bool met = false;                        // judged on the verified value (predicted if unverified)
+  bool fails_only_on_verification = false;
+  double tolerance = 0.0;                  // relative violation accepted as met
+};
+
+struct Verification {
+  std::string method = "none";  // "exact", "sample" or "none"
+  int rays_per_patch = 0;
+  int sample_size = 0;          // sample method: k
+  double seconds = 0.0;
+  std::vector<int> patches;     // where lux is known: every patch (exact) or the goal patches (sample)
+  Eigen::VectorXd lux, direct_lux;
+  // At the model's goal points (LightingModel::goal_points order): exact, each point's
+  // gather of the exact radiosity with rays_per_patch rays; sample, the sample operator's rows.
+  Eigen::VectorXd point_lux, point_direct_lux;
+};
+
+// Places `layout` as real luminaires in the job's scene and solves it as
+// job.verification says (exact, or a sample of verification.sample_fraction), with
+// rays independent of the operator's. Method "none" returns an empty Verification.
+Verification verify_layout(const PreparedJob& prepared, const JobConfig& job,
+                           const std::vector<PlacedLuminaire>& layout, const ProgressCallback& progress = {});
+
+// The verified illuminance at the model's goal rows: goal patches, then goal points.
+Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification& verification);
+
+struct JobOutcome {
+  std::vector<PlacedLuminaire> luminaires;  // named L1, L2, ... in this order
+  std::vector<GoalOutcome> goals;
+  double power_w = 0.0;                     // of the luminaires placed
+  double fixed_flux_lm = 0.0;               // placed in the config (not counted in power_w)
+  double mounting_area_m2 = 0.0;
+  // The power density's area: the floor under the first horizontal grid laid over a
+  // surface (its patches facing up), else the mounting surface's plan area.
+  double floor_area_m2 = 0.0;
+  std::string floor_area_source;            // what floor_area_m2 is the area of
+  double power_density_w_per_m2 = 0.0;      // power_w / floor_area_m2
+  // W/m² per 100 lx: the power density over the first average goal's (maintained) value / 100.
+  double power_density_w_per_m2_per_100_lx = 0.0;
+  double maintenance_factor = 1.0;          // maintained = initial x this
+  bool feasible = false;                    // predicted: every constraint met
+  bool all_met = false;                     // judged as `met` is
+  double flux_correction = 1.0;             // every flux was scaled by this after verification
+  bool flux_correction_limited = false;     // the flux range kept it from the scale the goals wanted
+  SearchResult search;
+  Verification verification;
+  Eigen::VectorXd predicted_lux, predicted_direct_lux;  // at model.goal_patches
+  double verify_seconds = 0.0;             // all verification rounds
+  int searches = 1;                         // search rounds run (see VerificationSettings::rounds)
+  std::vector<std::string> calibration;     // what each round changed in the search targets
+};
+
+// The jobs a run tries: one per product and rotation (luminaires.products, through
+// job_for_variant), else the job itself with no variant.
+struct JobVariant {
+  JobConfig job;
+  std::optional<ProductVariant> variant;
+};
+std::vector<JobVariant> job_variants(const JobConfig& job);
+
+// Is a better than b: every goal met (as verified) first, then least power, then the
+// search's own order.
+bool better_outcome(const JobOutcome& a, const JobOutcome& b);
+
+// Adds the layout's luminaires to `scene` as real ones, named L1, L2, ..., of the
+// search's type at its rotation: how a layout found is placed everywhere (the
+// verification, the benchmark's full solve).
+void add_layout(Scene& scene, const LuminaireSearch& search, const std::vector<PlacedLuminaire>& layout);
+
+// "L1", "L2", ...: the name of the j-th (0-based) luminaire of a layout.
+std::string luminaire_name(std::size_t j);
+
+// Searches and verifies with `job`'s goals. When a goal fails only on verification
+// (met as predicted, missed as verified), searches again, up to
+// job.verification.rounds searches in all, with that goal's search target scaled by
+// predicted / verified; returns the best round (every goal met and least power
+// first). search.evaluations, search.seconds and verify_seconds add up all rounds;
+// search.attempts are the returned round's. `job`'s goals may differ from
+// prepared.job's in targets, as in a sweep; the goal surfaces must be the same.
+// power_to_beat_w (min_power): the power of a layout already found with every goal
+// met (another product's); counts that cannot draw less are not searched, and when
+// none can, the outcome's search.beaten is set and nothing is searched or verified.
+JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress = {},
+                          double power_to_beat_w = kNoPowerToBeat);
+
+}  // namespace ilp

@@ -1,0 +1,235 @@
+#include "job/job_scene.h"
+
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace ilp {
+namespace {
+
+std::string fmt_rgb(const Eigen::Vector3d& v) {
+  std::ostringstream os;
+  if (v[0] == v[1] && v[0] == v[2]) os << v[0];
+  else os << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
+  return os.str();
+}
+
+}  // namespace
+
+JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
+  JobScene out;
+  TriangleMesh mesh;
+  try {
+    mesh = load_mesh(job.mesh_path, job.mesh_read);
+  } catch (const SceneError& e) {
+    throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
+  }
+  const SurfaceSplitReport split = split_surfaces(mesh, job.scene, job.surface_split);
+
+  std::map<std::string, int> surface_of;
+  for (std::size_t s = 0; s < mesh.surface_names.size(); ++s) surface_of[mesh.surface_names[s]] = static_cast<int>(s);
+  auto require_surface = [&](const std::string& name, const FileLoc& loc, const std::string& key) {
+    auto it = surface_of.find(name);
+    if (it == surface_of.end()) {
+      std::string known;
+      int shown = 0;
+      for (const auto& [n, _] : surface_of) {
+        if (shown++ == 12) { known += ", ..."; break; }
+        known += (known.empty() ? "" : ", ") + n;
+      }
+      throw ConfigError(located(loc, key + ": unknown surface '" + name + "' in " + job.mesh_path +
+                                         " (surfaces: " + known + ")"));
+    }
+    return it->second;
+  };
+
+  // Excluded surfaces lose their triangles (the surface stays, empty); two-sided ones
+  // get a reversed copy of each triangle, back to back with it.
+  std::vector<bool> excluded(mesh.surface_names.size(), false), two_sided(mesh.surface_names.size(), job.two_sided_all);
+  for (std::size_t k = 0; k < job.exclude_surfaces.size(); ++k)
+    excluded[require_surface(job.exclude_surfaces[k], job.exclude_surface_locs[k], "scene.exclude_surfaces")] = true;
+  for (std::size_t k = 0; k < job.two_sided_surfaces.size(); ++k)
+    two_sided[require_surface(job.two_sided_surfaces[k], job.two_sided_locs[k], "scene.two_sided")] = true;
+  std::size_t excluded_triangles = 0, doubled_triangles = 0;
+  {
+    const std::size_t n = mesh.triangles.size();
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+      const int s = mesh.triangle_surface[t];
+      if (excluded[s]) {
+        ++excluded_triangles;
+        continue;
+      }
+      mesh.triangles[kept] = mesh.triangles[t];
+      mesh.triangle_surface[kept] = s;
+      mesh.triangle_material[kept] = mesh.triangle_material[t];
+      ++kept;
+    }
+    mesh.triangles.resize(kept);
+    mesh.triangle_surface.resize(kept);
+    mesh.triangle_material.resize(kept);
+    for (std::size_t t = 0; t < kept; ++t) {
+      const int s = mesh.triangle_surface[t];
+      if (!two_sided[s]) continue;
+      const Eigen::Vector3i tri = mesh.triangles[t];
+      mesh.triangles.push_back(Eigen::Vector3i(tri[0], tri[2], tri[1]));
+      mesh.triangle_surface.push_back(s);
+      mesh.triangle_material.push_back(mesh.triangle_material[t]);
+      ++doubled_triangles;
+    }
+  }
+
+  // Added floors: a rectangle each, in the file's frame and units (make_scene turns it back).
+  std::vector<std::pair<int, Eigen::Vector3d>> added_rho;
+  for (const FloorSetting& f : job.add_floors) {
+    if (surface_of.count(f.name))
+      throw ConfigError(located(f.loc, "scene.add_floor: name '" + f.name + "' is already a surface of the mesh"));
+    const int s = static_cast<int>(mesh.surface_names.size());
+    mesh.surface_names.push_back(f.name);
+    surface_of[f.name] = s;
+    added_rho.emplace_back(s, f.rgb);
+    auto to_file = [&](double x, double y) {
+      const Eigen::Vector3d p = Eigen::Vector3d(x, y, f.z_m) / job.scene.scale_to_m;
+      return job.scene.up_axis == UpAxis::y ? Eigen::Vector3d(p.x(), p.z(), -p.y()) : p;
+    };
+    const int base = static_cast<int>(mesh.positions.size());
+    for (const Eigen::Vector3d& p : {to_file(f.lo.x(), f.lo.y()), to_file(f.hi.x(), f.lo.y()), to_file(f.hi.x(), f.hi.y()),
+                                     to_file(f.lo.x(), f.hi.y())})
+      mesh.positions.push_back(p);
+    for (const Eigen::Vector3i& t : {Eigen::Vector3i(base, base + 1, base + 2), Eigen::Vector3i(base, base + 2, base + 3)}) {
+      mesh.triangles.push_back(t);
+      mesh.triangle_surface.push_back(s);
+      mesh.triangle_material.push_back(-1);
+    }
+    out.log.push_back("scene.add_floor: '" + f.name + "' added, a rectangle facing up");
+  }
+
+  // Reflectance per surface from the config, then per triangle.
+  std::vector<std::optional<Eigen::Vector3d>> surface_rho(mesh.surface_names.size());
+  for (const auto& [s, rgb] : added_rho) surface_rho[static_cast<std::size_t>(s)] = rgb;
+  for (const ReflectanceSetting& r : job.reflectance)
+    surface_rho[require_surface(r.surface, r.loc, "scene.reflectance." + r.surface)] = r.rgb;
+  TriangleReflectance rho(mesh.triangles.size());
+  std::vector<int> bad_kd_surface(mesh.materials.size(), -1);  // per material: a surface that uses it
+  std::vector<int> bad_kd_order;                               // materials in the order found
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const int s = mesh.triangle_surface[t];
+    const int m = mesh.triangle_material[t];
+    if (surface_rho[s]) {
+      rho[t] = *surface_rho[s];
+    } else if (m >= 0 && mesh.materials[m].kd && !job.ignore_material_kd) {
+      rho[t] = *mesh.materials[m].kd;
+      if (((rho[t].array() < 0.0) || (rho[t].array() >= 1.0)).any() && bad_kd_surface[m] < 0) {
+        bad_kd_surface[m] = s;
+        bad_kd_order.push_back(m);
+      }
+    } else if (job.default_reflectance) {
+      rho[t] = *job.default_reflectance;
+    } else {
+      throw ConfigError(located(job.mesh_loc, "surface '" + mesh.surface_names[s] +
+                                                  "' has no reflectance: give it in scene.reflectance "
+                                                  "(or scene.default_reflectance), or a Kd in the MTL"));
+    }
+  }
+  // Every material with an unusable Kd at once (real models often carry Kd 1), each
+  // with its line; the error points at the first.
+  if (!bad_kd_order.empty()) {
+    std::string list;
+    for (int m : bad_kd_order) {
+      const MeshMaterial& material = mesh.materials[m];
+      list += std::string(list.empty() ? "" : "; ") + "'" + material.name + "' = " + fmt_rgb(*material.kd) +
+              " (line " + std::to_string(material.kd_loc.line) + ", surface '" + mesh.surface_names[bad_kd_surface[m]] +
+              "')";
+    }
+    throw SceneError(located(mesh.materials[bad_kd_order.front()].kd_loc,
+                             "Kd outside [0, 1) for " + std::to_string(bad_kd_order.size()) + " material(s): " + list +
+                                 ": set their surfaces' reflectance in scene.reflectance of " + job.path));
+  }
+
+  try {
+    out.scene = make_scene(mesh, rho, job.scene);
+  } catch (const PatchLimitError& e) {
+    const FileLoc& loc = job.max_patch_edge_loc.file.empty() ? job.mesh_loc : job.max_patch_edge_loc;
+    throw ConfigError(located(loc, std::string("scene.max_patch_edge_m: ") + e.what()));
+  } catch (const SceneError& e) {
+    throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
+  }
+  Scene& scene = out.scene;
+  {
+    std::ostringstream os;
+    os << "mesh " << job.mesh_path << ": " << scene.stats << " (" << mesh.polygons_split
+       << " polygons fan-triangulated), " << mesh.surface_names.size() << " surfaces";
+    out.log.push_back(os.str());
+  }
+  out.log.insert(out.log.end(), split.log.begin(), split.log.end());
+  if (excluded_triangles > 0 || !job.exclude_surfaces.empty())
+    out.log.push_back("scene.exclude_surfaces: " + std::to_string(excluded_triangles) + " triangles of " +
+                      std::to_string(job.exclude_surfaces.size()) + " surfaces left out");
+  if (doubled_triangles > 0)
+    out.log.push_back("scene.two_sided: " + std::to_string(doubled_triangles) +
+                      " triangles doubled back to back (both sides reflect; counted in the triangles above)");
+
+  for (std::size_t k = 0; k < job.emitting_surfaces.size(); ++k) {
+    const EmitterSetting& e = job.emitting_surfaces[k];
+    const std::string key = "scene.emitting_surfaces[" + std::to_string(k) + "].surface";
+    set_surface_exitance(scene, require_surface(e.surface, e.loc, key), e.exitance_lm_per_m2);
+  }
+  const Eigen::AlignedBox3d mesh_bounds = scene.bounds_m;
+  for (const LuminaireSetting& l : job.luminaires) {
+    // Outside the model is almost always a unit or axis mix-up (mm, y up).
+    if (!mesh_bounds.contains(l.position_m)) {
+      std::ostringstream os;
+      os << "luminaires.placed: '" << l.name << "' at [" << l.position_m.transpose() << "] m lies outside the scene, ["
+         << mesh_bounds.min().transpose() << "] .. [" << mesh_bounds.max().transpose()
+         << "] m (positions are in metres, z up, after scale_to_m and up_axis)";
+      throw ConfigError(located(l.loc, os.str()));
+    }
+    if (scene.find_surface(l.name) >= 0)
+      throw ConfigError(located(l.loc, "luminaires.placed: name '" + l.name + "' is already a surface of the mesh"));
+    add_square_luminaire(scene, l.name, l.position_m, job.luminaire_size_m, l.flux_lm);
+  }
+  // A surface to report or light must keep a patch (not all excluded or degenerate).
+  std::vector<std::size_t> patches_of(scene.surfaces.size(), 0);
+  for (const Patch& p : scene.patches) ++patches_of[static_cast<std::size_t>(p.surface)];
+  auto require_patches = [&](int surface, const FileLoc& loc, const std::string& key) {
+    if (patches_of[static_cast<std::size_t>(surface)] == 0)
+      throw ConfigError(located(loc, key + ": surface '" + scene.surfaces[static_cast<std::size_t>(surface)].name +
+                                         "' has no patch left (left out by scene.exclude_surfaces, or every face "
+                                         "degenerate)"));
+  };
+  for (std::size_t k = 0; k < job.report_surfaces.size(); ++k) {
+    const int s = scene.find_surface(job.report_surfaces[k]);
+    if (s < 0)
+      throw ConfigError(located(job.report_surface_locs[k], "report.surfaces: unknown surface '" +
+                                                               job.report_surfaces[k] + "'"));
+    require_patches(s, job.report_surface_locs[k], "report.surfaces");
+  }
+  // The inverse problem's surfaces: those of the mesh (a placed luminaire is no goal).
+  for (const GoalSetting& g : job.goals)
+    for (const std::string& s : g.surfaces)
+      require_patches(require_surface(s, g.surfaces_loc, "goals." + g.name + ".surface"), g.surfaces_loc,
+                      "goals." + g.name + ".surface");
+  if (job.search)
+    require_surface(job.search->mounting_surface, job.search->mounting_loc, "luminaires.mounting_surface");
+
+  double luminaire_flux_lm = 0.0, surface_flux_lm = 0.0;
+  for (const Patch& p : scene.patches)
+    (scene.surfaces[p.surface].is_luminaire() ? luminaire_flux_lm : surface_flux_lm) += p.area_m2 * p.exitance_lm_per_m2;
+  if (luminaire_flux_lm + surface_flux_lm == 0.0 && !job.search)  // an inverse job places its own
+    out.log.push_back("warning: nothing emits light, so every illuminance will be 0 lx "
+                      "(add luminaires.placed or scene.emitting_surfaces)");
+
+  std::ostringstream os;
+  os.precision(3);
+  os << std::fixed << "scene: " << scene.patches.size() << " patches, " << scene.total_area_m2() << " m2, bounds ["
+     << scene.bounds_m.min().transpose() << "] .. [" << scene.bounds_m.max().transpose() << "] m, "
+     << (scene.channels == 1 ? "gray (1 channel)" : "coloured (3 channels)") << ", " << job.luminaires.size()
+     << (job.luminaires.size() == 1 ? " luminaire" : " luminaires") << "; emitted flux " << std::setprecision(0)
+     << luminaire_flux_lm << " lm from luminaires, "
+     << surface_flux_lm << " lm from emitting surfaces";
+  out.log.push_back(os.str());
+  if (mesh_out) *mesh_out = std::move(mesh);
+  return out;
+}
+
+}  // namespace ilp

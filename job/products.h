@@ -1,0 +1,23 @@
+// From the job's luminaire products (luminaires.products) to the variants a search
+// tries: each product at each of its rotations (core/light/luminaire_product.h).
+#pragma once
+
+#include <vector>
+
+#include "core/light/luminaire_product.h"
+#include "job/config.h"
+
+namespace ilp {
+
+// Every product at every rotation, in the job's order. Throws ConfigError naming the
+// config's file:line and key for a photometric file that cannot be read (with the
+// file's own line and field) or that lacks what the product needs (watts).
+std::vector<ProductVariant> product_variants(const LuminaireSearch& search);
+
+// `job` with its search set to one variant: the type, rotation, product name, a flux
+// range of the dimming range x the rated output, the efficacy of rated lumens per
+// watt, and one output for every luminaire of a layout; the product's maintenance
+// factor and mount offset (suspension) replace the job's when it gives them.
+JobConfig job_for_variant(const JobConfig& job, const ProductVariant& variant);
+
+}  // namespace ilp

@@ -1,0 +1,428 @@
+// The operator cache: a saved and loaded model is the built one bit for bit; the
+// key changes with what the operator depends on and only with that; a damaged,
+// stale or foreign file is reported, rebuilt and replaced; an unwritable cache
+// folder does not fail the job.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "job/config.h"
+#include "job/job_runner.h"
+#include "optimizer/layout_search.h"
+#include "job/model_cache.h"
+#include "tests/optimizer/optimizer_test_scenes.h"
+
+namespace ilp {
+namespace {
+
+using test::Contains;
+using test::room_job;
+using test::room_obj;
+using test::StartsWith;
+using test::TempDir;
+
+const char* kLuminaires =
+    "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+    "  mount_offset_m: 0.02\n  candidate_spacing_m: 0.5\n  count: 1\n";
+const char* kOptimizer = "optimizer:\n  max_evaluations: 1500\n  local_max_evaluations: 1500\n  seed: 4\n";
+
+// The small room of layout_search_test.cpp with a second mat, reflectance 0.5 (so
+// the operator has a sample), one goal on the first mat.
+JobConfig cache_job(const TempDir& dir, const std::string& reflectance = "0.5") {
+  dir.write("room.obj", room_obj({{"mat", {1.3, 1.7}}, {"other", {3.0, 2.5}}}));
+  return load_job_config(
+      dir.write("job.yaml", room_job(reflectance, kLuminaires, "  - surface: mat\n    average_lux: 200\n", kOptimizer)));
+}
+
+template <class M>
+::testing::AssertionResult SameBits(const M& a, const M& b, const char* what) {
+  if (a.rows() != b.rows() || a.cols() != b.cols())
+    return ::testing::AssertionFailure() << what << ": " << a.rows() << " x " << a.cols() << " against " << b.rows()
+                                         << " x " << b.cols();
+  if (a.size() > 0 && std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) != 0)
+    return ::testing::AssertionFailure() << what << ": the values differ";
+  return ::testing::AssertionSuccess();
+}
+
+// The operator part of two models; with `timings`, also the seconds (only a model
+// saved and loaded has the same ones).
+void expect_same_operator(const LightingModel& a, const LightingModel& b, bool timings) {
+  EXPECT_TRUE(SameBits(a.fixed_lux, b.fixed_lux, "fixed_lux"));
+  EXPECT_TRUE(SameBits(a.fixed_direct_lux, b.fixed_direct_lux, "fixed_direct_lux"));
+  EXPECT_TRUE(SameBits(a.candidate_lux_per_lm, b.candidate_lux_per_lm, "candidate_lux_per_lm"));
+  EXPECT_TRUE(SameBits(a.candidate_direct_lux_per_lm, b.candidate_direct_lux_per_lm, "candidate_direct_lux_per_lm"));
+  EXPECT_EQ(a.fixed_flux_lm, b.fixed_flux_lm);
+  EXPECT_EQ(a.sample_size, b.sample_size);
+  EXPECT_EQ(a.log, b.log);
+  const SampleOperatorStats &s = a.stats, &t = b.stats;
+  EXPECT_EQ(s.patches, t.patches);
+  EXPECT_EQ(s.population, t.population);
+  EXPECT_EQ(s.sample_patches, t.sample_patches);
+  EXPECT_EQ(s.census, t.census);
+  EXPECT_EQ(s.direct_only, t.direct_only);
+  EXPECT_EQ(s.channels, t.channels);
+  EXPECT_EQ(s.goal_patches, t.goal_patches);
+  EXPECT_EQ(s.direct_rows, t.direct_rows);
+  EXPECT_EQ(s.cheap_direct_rows, t.cheap_direct_rows);
+  EXPECT_EQ(s.goal_fallback_rows, t.goal_fallback_rows);
+  EXPECT_EQ(s.goal_fallback_area_fraction, t.goal_fallback_area_fraction);
+  EXPECT_EQ(s.sample_fallback_rows, t.sample_fallback_rows);
+  EXPECT_EQ(s.condition_estimate, t.condition_estimate);
+  EXPECT_EQ(s.max_row_sum, t.max_row_sum);
+  EXPECT_EQ(s.condition_bound_inf, t.condition_bound_inf);
+  EXPECT_EQ(s.rays_cast, t.rays_cast);
+  if (timings) {
+    EXPECT_EQ(s.goal_seconds, t.goal_seconds);
+    EXPECT_EQ(s.sample_row_seconds, t.sample_row_seconds);
+    EXPECT_EQ(s.direct_seconds, t.direct_seconds);
+    EXPECT_EQ(s.solve_seconds, t.solve_seconds);
+    EXPECT_EQ(s.response_seconds, t.response_seconds);
+    EXPECT_EQ(a.build_seconds, b.build_seconds);
+  }
+}
+
+// A model with only the geometry part, as prepare_job has it before the cache.
+LightingModel geometry_of(const PreparedJob& prepared) {
+  return lighting_model_geometry(prepared.loaded.scene, prepared.job);
+}
+
+std::string cache_file(const std::string& cache_dir, const JobConfig& job) {
+  return (std::filesystem::path(cache_dir) / (lighting_model_key(job) + ".ilpmodel")).string();
+}
+
+TEST(ModelCache, SavedAndLoadedModelIsTheBuiltOneBitForBit) {
+  TempDir dir;
+  const JobConfig job = cache_job(dir);
+  const PreparedJob built = prepare_job(job);
+  ASSERT_GT(built.model.sample_size, 0) << "reflectance 0.5: the operator has a sample";
+  ASSERT_GT(built.model.candidate_lux_per_lm.size(), 0);
+  EXPECT_FALSE(built.loaded_from_cache);
+  EXPECT_EQ(built.cache_status, "") << "no cache folder, no cache";
+
+  const std::string key = lighting_model_key(job);
+  EXPECT_EQ(key.size(), 32u);
+  save_lighting_model(dir.file("model.ilpmodel"), built.model, key);
+  LightingModel loaded = geometry_of(built);
+  ASSERT_EQ(loaded.candidate_lux_per_lm.size(), 0);
+  const std::optional<std::string> not_used = load_lighting_model(dir.file("model.ilpmodel"), key, loaded);
+  ASSERT_FALSE(not_used) << *not_used;
+  expect_same_operator(built.model, loaded, true);
+
+  // The search on it finds the same layout along the same path.
+  const SearchResult a = search_layout(built.model, job), b = search_layout(loaded, job);
+  EXPECT_EQ(a.evaluations, b.evaluations);
+  ASSERT_EQ(a.best.luminaires.size(), b.best.luminaires.size());
+  ASSERT_EQ(a.best.luminaires.size(), 1u);
+  for (std::size_t j = 0; j < a.best.luminaires.size(); ++j) {
+    EXPECT_EQ(a.best.luminaires[j].position_m, b.best.luminaires[j].position_m);
+    EXPECT_EQ(a.best.luminaires[j].flux_lm, b.best.luminaires[j].flux_lm);
+  }
+  EXPECT_TRUE(SameBits(a.best.lux, b.best.lux, "the best layout's lux"));
+}
+
+TEST(ModelCache, SecondPrepareLoadsTheOperator) {
+  TempDir dir;
+  const JobConfig job = cache_job(dir);
+  const std::string cache = dir.file("cache");  // created by prepare_job
+  const PreparedJob first = prepare_job(job, {}, cache);
+  EXPECT_FALSE(first.loaded_from_cache);
+  EXPECT_EQ(first.cache_status, "operator built and cached in " + cache_file(cache, job));
+  ASSERT_TRUE(std::filesystem::is_regular_file(cache_file(cache, job)));
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(cache)) ++files;
+  EXPECT_EQ(files, 1) << "the cache file alone: no temporary left behind";
+
+  const PreparedJob second = prepare_job(job, {}, cache);
+  EXPECT_TRUE(second.loaded_from_cache);
+  EXPECT_TRUE(StartsWith(second.cache_status, "operator loaded from cache " + cache_file(cache, job) + " (built in "));
+  expect_same_operator(first.model, second.model, true);
+  // And both are what a build without a cache gives.
+  expect_same_operator(prepare_job(job).model, second.model, false);
+  // The geometry part is the job's own, untouched by the cache.
+  EXPECT_EQ(second.model.goal_patches, first.model.goal_patches);
+  EXPECT_EQ(second.model.grid.size(), first.model.grid.size());
+}
+
+TEST(ModelCache, TargetsAndSearchSettingsKeepTheKey) {
+  TempDir dir;
+  const JobConfig job = cache_job(dir);
+  const std::string key = lighting_model_key(job);
+  EXPECT_EQ(lighting_model_key(job), key) << "the key is a function of the job";
+  auto same = [&](const char* what, auto change) {
+    JobConfig other = job;
+    change(other);
+    EXPECT_EQ(lighting_model_key(other), key) << what;
+  };
+  same("goal target", [](JobConfig& j) { set_goal_parameter(j, "goals.mat.average_lux", 400.0); });
+  same("another metric on the same goal", [](JobConfig& j) {
+    GoalSetting g = j.goals[0];
+    g.metric = GoalMetric::uniformity;
+    g.target = 0.5;
+    j.goals.push_back(g);
+  });
+  same("flux range", [](JobConfig& j) {
+    j.search->flux_min_lm = 100.0;
+    j.search->flux_max_lm = 5000.0;
+  });
+  same("efficacy and count", [](JobConfig& j) {
+    j.search->efficacy_lm_per_w = 150.0;
+    j.search->count_max = 3;
+  });
+  same("optimizer seed", [](JobConfig& j) { j.optimizer.seed = 99; });
+  same("threads", [](JobConfig& j) { j.form_factors.threads = j.direct_light.threads = 1; });
+  same("verification", [](JobConfig& j) { j.verification.rays_per_patch = 64; });
+  same("output folder", [](JobConfig& j) { j.output.directory = "elsewhere"; });
+  same("constraints", [](JobConfig& j) { j.constraints.min_distance_m = 1.0; });
+  same("maintenance factor", [](JobConfig& j) { j.maintenance_factor = 0.8; });
+}
+
+TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
+  TempDir dir;
+  const JobConfig job = cache_job(dir);
+  const std::string key = lighting_model_key(job);
+  auto differs = [&](const char* what, auto change) {
+    JobConfig other = job;
+    change(other);
+    EXPECT_NE(lighting_model_key(other), key) << what;
+  };
+  differs("default reflectance", [](JobConfig& j) { j.default_reflectance = Eigen::Vector3d::Constant(0.6); });
+  differs("a surface's reflectance", [](JobConfig& j) {
+    j.reflectance.push_back({"walls", Eigen::Vector3d::Constant(0.3), {}});
+  });
+  differs("rays_per_patch", [](JobConfig& j) { j.form_factors.rays_per_patch = 128; });
+  differs("max_sample_size (it caps sample_fraction's k)", [](JobConfig& j) { j.sample.max_size_for_target = 100; });
+  differs("ray seed", [](JobConfig& j) { j.form_factors.seed = 7; });
+  differs("shadow rays", [](JobConfig& j) { j.direct_light.shadow_rays = 16; });
+  differs("sample fraction", [](JobConfig& j) { j.sample.fraction = 0.3; });
+  differs("candidate_spacing_m", [](JobConfig& j) { j.search->candidate_spacing_m = 0.4; });
+  differs("mount offset", [](JobConfig& j) { j.search->mount_offset_m = 0.05; });
+  differs("luminaire size", [](JobConfig& j) { j.luminaire_size_m = 0.4; });
+  // Grid goals: the grid's every placing value.
+  JobConfig on_grid = job;
+  CalcGridSetting plane;
+  plane.name = "plane";
+  plane.over_surface = "floor";
+  on_grid.grids.push_back(plane);
+  on_grid.goals[0].grid = "plane";
+  on_grid.goals[0].surfaces.clear();
+  EXPECT_NE(lighting_model_key(on_grid), key) << "a goal on a grid";
+  const std::string grid_key = lighting_model_key(on_grid);
+  auto grid_differs = [&](const char* what, auto change) {
+    JobConfig other = on_grid;
+    change(other.grids[0]);
+    EXPECT_NE(lighting_model_key(other), grid_key) << what;
+  };
+  grid_differs("grid height", [](CalcGridSetting& g) { g.height_m = 0.75; });
+  grid_differs("grid band", [](CalcGridSetting& g) { g.border_m = 0.3; });
+  grid_differs("grid spacing", [](CalcGridSetting& g) { g.spacing_m = 0.3; });
+  grid_differs("grid outline", [](CalcGridSetting& g) {
+    g.over_surface.clear();
+    g.polygon_m = {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(1, 1)};
+  });
+  differs("an added floor", [](JobConfig& j) {
+    j.add_floors.push_back({"extra", Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1), 0.0, Eigen::Vector3d::Constant(0.3), {}});
+  });
+  differs("a goal's surface", [](JobConfig& j) { j.goals[0].surfaces = {"other"}; });
+  differs("a placed luminaire", [](JobConfig& j) { j.luminaires.push_back({"old", {0.5, 0.5, 2.4}, 2000.0, {}}); });
+  differs("patch size", [](JobConfig& j) { j.scene.max_patch_edge_m = 0.3; });
+  differs("a goal's facing", [](JobConfig& j) { j.goals[0].facing = GoalFacing::up; });
+  differs("an excluded surface", [](JobConfig& j) { j.exclude_surfaces.push_back("walls"); });
+  differs("a two-sided surface", [](JobConfig& j) { j.two_sided_surfaces.push_back("walls"); });
+  differs("every surface two-sided", [](JobConfig& j) { j.two_sided_all = true; });
+
+  // The mesh's bytes: a comment changes no geometry but is another file.
+  {
+    std::ofstream obj(job.mesh_path, std::ios::app | std::ios::binary);
+    obj << "# a comment\n";
+  }
+  EXPECT_NE(lighting_model_key(job), key) << "the mesh file's bytes";
+}
+
+TEST(ModelCache, MaterialFilesAreInTheKey) {
+  TempDir dir;
+  JobConfig job = cache_job(dir);
+  dir.write("room.obj", "mtllib room.mtl\n" + room_obj({{"mat", {1.3, 1.7}}, {"other", {3.0, 2.5}}}));
+  dir.write("room.mtl", "newmtl white\nKd 0.5 0.5 0.5\n");
+  const std::string with_mtl = lighting_model_key(job);
+  dir.write("room.mtl", "newmtl white\nKd 0.6 0.6 0.6\n");
+  const std::string changed = lighting_model_key(job);
+  EXPECT_NE(changed, with_mtl) << "the MTL's bytes";
+  std::filesystem::remove(dir.file("room.mtl"));
+  const std::string missing = lighting_model_key(job);  // no throw: a missing MTL contributes a marker
+  EXPECT_NE(missing, with_mtl);
+  EXPECT_NE(missing, changed);
+  dir.write("room.mtl", "newmtl white\nKd 0.5 0.5 0.5\n");
+  EXPECT_EQ(lighting_model_key(job), with_mtl) << "the same bytes, the same key";
+}
+
+TEST(ModelCache, TheFluxRangeCountsOnlyWithATargetError) {
+  TempDir dir;
+  JobConfig job = cache_job(dir);
+  job.sample.target_error = 0.05;  // k is then chosen with every candidate at the top of the flux range
+  const std::string key = lighting_model_key(job);
+  JobConfig other = job;
+  other.search->flux_max_lm = 5000.0;
+  EXPECT_NE(lighting_model_key(other), key);
+  other = job;
+  other.search->flux_min_lm = 100.0;
+  EXPECT_EQ(lighting_model_key(other), key);
+}
+
+// A damaged or foreign cache file: load_lighting_model says why and leaves the model
+// as it was; prepare_job rebuilds (the model is a fresh build's) and rewrites the
+// file, which the next prepare_job loads.
+void expect_rebuilt(const TempDir& dir, const JobConfig& job, const std::string& reason_start,
+                    const std::function<void(const std::string& file, const LightingModel& model)>& damage) {
+  const std::string cache = dir.file("cache");
+  const PreparedJob fresh = prepare_job(job);
+  const PreparedJob first = prepare_job(job, {}, cache);
+  ASSERT_FALSE(first.loaded_from_cache);
+  const std::string file = cache_file(cache, job);
+  damage(file, first.model);
+
+  LightingModel model = geometry_of(first);
+  const std::size_t log_lines = model.log.size();
+  const std::optional<std::string> not_used = load_lighting_model(file, lighting_model_key(job), model);
+  ASSERT_TRUE(not_used) << "the damaged file was used";
+  EXPECT_TRUE(StartsWith(*not_used, reason_start));
+  EXPECT_EQ(model.fixed_lux.size(), 0) << "the model was touched";
+  EXPECT_EQ(model.candidate_lux_per_lm.size(), 0) << "the model was touched";
+  EXPECT_EQ(model.sample_size, 0);
+  EXPECT_EQ(model.log.size(), log_lines);
+
+  const PreparedJob second = prepare_job(job, {}, cache);
+  EXPECT_FALSE(second.loaded_from_cache);
+  EXPECT_TRUE(Contains(second.cache_status, "operator built and cached in " + file));
+  EXPECT_TRUE(Contains(second.cache_status, "the cached file was not used: " + reason_start));
+  expect_same_operator(fresh.model, second.model, false);
+
+  const PreparedJob third = prepare_job(job, {}, cache);
+  EXPECT_TRUE(third.loaded_from_cache) << third.cache_status;
+  expect_same_operator(second.model, third.model, true);
+}
+
+// A run killed while writing the cache left "KEY.ilpmodel.tmp.PID.N" for ever. The
+// next read or write of the folder removes those of processes that have gone, and
+// leaves a running process's alone.
+TEST(ModelCache, TemporariesOfKilledRunsAreRemoved) {
+  TempDir dir;
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  int status = 0;
+  waitpid(child, &status, 0);  // a process id that no longer runs
+  const std::string stale = dir.write("abc.ilpmodel.tmp." + std::to_string(child) + ".0", "half a model");
+  const std::string mine = dir.write("abc.ilpmodel.tmp." + std::to_string(::getpid()) + ".7", "being written");
+  const std::string other = dir.write("notes.tmp.1.2", "not the cache's");
+  LightingModel model;
+  EXPECT_TRUE(load_lighting_model(dir.file("abc.ilpmodel"), "abc", model).has_value());  // no cache file
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  EXPECT_TRUE(std::filesystem::exists(mine));
+  EXPECT_TRUE(std::filesystem::exists(other));
+}
+
+TEST(ModelCache, FlippedByteIsCorrupt) {
+  TempDir dir;
+  expect_rebuilt(dir, cache_job(dir), "corrupt: checksum mismatch", [](const std::string& file, const LightingModel&) {
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(0, std::ios::end);
+    const std::streamoff middle = f.tellg() / 2;
+    f.seekg(middle);
+    char c = 0;
+    f.get(c);
+    f.seekp(middle);
+    f.put(static_cast<char>(c ^ 0x01));
+  });
+}
+
+TEST(ModelCache, TruncatedFileIsTruncated) {
+  TempDir dir;
+  expect_rebuilt(dir, cache_job(dir), "truncated", [](const std::string& file, const LightingModel&) {
+    std::filesystem::resize_file(file, std::filesystem::file_size(file) / 2);
+  });
+}
+
+TEST(ModelCache, FileWithAnotherKeyIsStale) {
+  TempDir dir;
+  expect_rebuilt(dir, cache_job(dir), "stale: the key differs", [](const std::string& file, const LightingModel& model) {
+    save_lighting_model(file, model, std::string(32, '0'));
+  });
+}
+
+TEST(ModelCache, AnotherFormatVersionIsNotUsed) {
+  TempDir dir;
+  expect_rebuilt(dir, cache_job(dir), "written by another format version",
+                 [](const std::string& file, const LightingModel&) {
+                   std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+                   f.seekp(8);  // after the magic: u32 version, little-endian
+                   const char version[4] = {static_cast<char>(kLightingModelCacheVersion + 1), 0, 0, 0};
+                   f.write(version, 4);
+                 });
+}
+
+TEST(ModelCache, MissingOrForeignFilesAreReported) {
+  TempDir dir;
+  const JobConfig job = cache_job(dir);
+  const PreparedJob built = prepare_job(job);
+  LightingModel model = geometry_of(built);
+  const std::string key = lighting_model_key(job);
+  EXPECT_EQ(load_lighting_model(dir.file("none.ilpmodel"), key, model), "no cache file");
+  EXPECT_TRUE(StartsWith(load_lighting_model(dir.write("foreign.ilpmodel", "hello, world\n"), key, model).value(),
+                         "corrupt: not an ilp model cache file"));
+  EXPECT_TRUE(StartsWith(load_lighting_model(dir.write("empty.ilpmodel", ""), key, model).value(), "truncated"));
+  // A model of other sizes under the right key: the sizes are checked against the scene.
+  JobConfig coarse = job;
+  coarse.search->candidate_spacing_m = 1.0;
+  const PreparedJob other = prepare_job(coarse);
+  ASSERT_NE(other.model.grid.size(), built.model.grid.size());
+  save_lighting_model(dir.file("other.ilpmodel"), other.model, key);
+  EXPECT_TRUE(StartsWith(load_lighting_model(dir.file("other.ilpmodel"), key, model).value(),
+                         "sizes do not match the scene's goal patches/candidates"));
+  EXPECT_EQ(model.candidate_lux_per_lm.size(), 0);
+  // A file, not a folder, where the cache file should be written: an error that names it.
+  EXPECT_THROW(save_lighting_model(dir.file("job.yaml") + "/x.ilpmodel", built.model, key), IlpError);
+}
+
+TEST(ModelCache, UnwritableCacheFolderStillCompletesTheJob) {
+  TempDir dir;
+  JobConfig job = cache_job(dir);
+  job.verification.method = VerificationMethod::none;
+  // A folder inside a regular file can be neither created nor written (even as root).
+  const std::string cache = dir.write("not_a_folder", "") + "/cache";
+  const PreparedJob prepared = prepare_job(job, {}, cache);
+  EXPECT_FALSE(prepared.loaded_from_cache);
+  EXPECT_TRUE(StartsWith(prepared.cache_status, "operator built; cache not used: ")) << prepared.cache_status;
+  EXPECT_TRUE(Contains(prepared.cache_status, cache));
+  expect_same_operator(prepare_job(job).model, prepared.model, false);
+  const JobOutcome outcome = solve_prepared(prepared, job);
+  EXPECT_EQ(outcome.luminaires.size(), 1u);
+  EXPECT_TRUE(outcome.feasible);
+}
+
+// A reminder that runs where the sizes are known (x86-64, libstdc++): a field added to
+// one of these structs must be written by save_lighting_model (the stats) or put in
+// lighting_model_key's text (the settings), and kLightingModelCacheVersion bumped;
+// then update the size here.
+TEST(ModelCache, FormatAndKeyCoverEveryField) {
+#if defined(__x86_64__) && defined(__GLIBCXX__)
+  EXPECT_EQ(sizeof(SampleOperatorStats), 168u) << "SampleOperatorStats changed: save and load the new field";
+  EXPECT_EQ(sizeof(SampleSettings), 200u) << "SampleSettings changed: is the new field in lighting_model_key?";
+  EXPECT_EQ(sizeof(FormFactorOptions), 24u) << "FormFactorOptions changed: is the new field in lighting_model_key?";
+  // 88: the progress callback and its label, which do not change the operator.
+  EXPECT_EQ(sizeof(DirectLightOptions), 88u) << "DirectLightOptions changed: is the new field in lighting_model_key?";
+  EXPECT_EQ(sizeof(SceneOptions), 32u) << "SceneOptions changed: is the new field in lighting_model_key?";
+  EXPECT_EQ(sizeof(MeshReadOptions), 4u) << "MeshReadOptions changed: is the new field in lighting_model_key?";
+  EXPECT_EQ(sizeof(LuminaireSearch), 592u) << "LuminaireSearch changed: does the new field shape the candidates?";
+  EXPECT_EQ(sizeof(JobConfig), 1904u) << "JobConfig changed: does the new setting change the operator?";
+#else
+  GTEST_SKIP() << "struct sizes are checked on x86-64 with libstdc++ only";
+#endif
+}
+
+}  // namespace
+}  // namespace ilp
