@@ -1,5 +1,6 @@
 #include "job/config.h"
 
+
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
@@ -518,34 +519,10 @@ void read_luminaires(const Map& luminaires, JobConfig& job) {
 
 // ---- goals
 
-// The key each metric has in a goals entry, in GoalSetting order.
-constexpr std::pair<GoalMetric, const char*> kGoalKeys[] = {{GoalMetric::average, "average_lux"},
-                                                            {GoalMetric::minimum, "min_lux"},
-                                                            {GoalMetric::maximum, "max_lux"},
-                                                            {GoalMetric::uniformity, "uniformity"}};
-
-const char* key_text(GoalMetric metric) {
-  for (const auto& [m, key] : kGoalKeys)
-    if (m == metric) return key;
-  return "?";
-}
-
-
 std::string format_number(double v) {
   std::ostringstream os;
   os << std::setprecision(12) << v;
   return os.str();
-}
-
-// The rule a target breaks ("" when none): the value alone.
-std::string goal_value_rule(GoalMetric metric, double v) {
-  switch (metric) {
-    case GoalMetric::average:
-    case GoalMetric::maximum: return v > 0.0 ? (v <= kMaxLux ? "" : "must be at most 1e+07 lx") : "must be > 0";
-    case GoalMetric::minimum: return v >= 0.0 ? (v <= kMaxLux ? "" : "must be at most 1e+07 lx") : "must be >= 0";
-    case GoalMetric::uniformity: return v > 0.0 && v <= 1.0 ? "" : "must be in (0, 1]";
-  }
-  return "";
 }
 
 // The rule `metric` = v breaks against the other targets of goal `name` in `others`
@@ -560,7 +537,7 @@ std::string goal_bound_rule(const std::vector<GoalSetting>& others, const std::s
     if (lower && g.metric == GoalMetric::maximum && v > g.target)
       return "must be <= max_lux (" + format_number(g.target) + ") of goal '" + name + "'";
     if (metric == GoalMetric::maximum && other_lower && v < g.target)
-      return std::string("must be >= ") + key_text(g.metric) + " (" + format_number(g.target) + ") of goal '" + name +
+      return std::string("must be >= ") + std::string(goal_key(g.metric)) + " (" + format_number(g.target) + ") of goal '" + name +
              "'";
   }
   return "";
@@ -722,7 +699,9 @@ void read_goals(const Value& section, JobConfig& job) {
     // This entry's metrics, each checked alone and against the same goal's earlier
     // entries; a bound conflict inside the entry is reported at max_lux.
     std::vector<std::pair<GoalSetting, Value>> metrics;
-    for (const auto& [metric, key] : kGoalKeys) {
+    for (const MetricRule& rule_of_metric : metric_rules()) {
+      const GoalMetric metric = rule_of_metric.metric;
+      const std::string key(rule_of_metric.key);
       auto v = entry.get(key);
       const bool from_preset = !v && preset && (metric == GoalMetric::average || metric == GoalMetric::uniformity);
       if (from_preset) v = preset_value;  // an explicit key overrides the preset's value
@@ -730,7 +709,7 @@ void read_goals(const Value& section, JobConfig& job) {
       GoalSetting goal = base;
       goal.metric = metric;
       goal.target = from_preset ? (metric == GoalMetric::average ? preset->average_lux : preset->uniformity) : v->number();
-      if (const std::string rule = goal_value_rule(metric, goal.target); !rule.empty()) v->fail(rule);
+      if (const std::string rule = target_rule(metric, goal.target); !rule.empty()) v->fail(rule);
       goal.loc = v->loc();
       for (const GoalSetting& g : job.goals)
         if (g.name == goal.name && g.metric == metric) v->fail("goal '" + goal.name + "' already has " + key);
@@ -753,7 +732,7 @@ void read_goals(const Value& section, JobConfig& job) {
 std::string goal_parameters(const JobConfig& job) {
   std::string out;
   for (const GoalSetting& g : job.goals)
-    out += (out.empty() ? "goals." : ", goals.") + g.name + "." + key_text(g.metric);
+    out += (out.empty() ? "goals." : ", goals.") + g.name + "." + std::string(goal_key(g.metric));
   return out;
 }
 
@@ -766,14 +745,14 @@ void apply_goal_parameter(JobConfig& job, const std::string& key, double value, 
   if (key.rfind("goals.", 0) == 0 && dot != std::string::npos && dot > 6) {
     const std::string name = key.substr(6, dot - 6), metric = key.substr(dot + 1);
     for (GoalSetting& g : job.goals)
-      if (g.name == name && metric == key_text(g.metric)) found = &g;
+      if (g.name == name && metric == std::string(goal_key(g.metric))) found = &g;
   }
   if (!found) {
     bad_key("no goal parameter " + key + "; " +
             (job.goals.empty() ? std::string("the job has no goals") : "the job has " + goal_parameters(job)));
     return;
   }
-  std::string rule = std::isfinite(value) ? goal_value_rule(found->metric, value) : "must be a finite number";
+  std::string rule = std::isfinite(value) ? target_rule(found->metric, value) : "must be a finite number";
   if (rule.empty()) rule = goal_bound_rule(job.goals, found->name, found->metric, value, found);
   if (!rule.empty()) {
     bad_value(rule);
@@ -982,8 +961,6 @@ void read_solver(const Map& solver, JobConfig& job) {
 
 }  // namespace
 
-std::string_view goal_key(GoalMetric metric) { return key_text(metric); }
-
 std::span<const GoalPreset> goal_presets() { return kPresets; }
 
 double initial_target(const JobConfig& job, const GoalSetting& goal) {
@@ -994,16 +971,6 @@ int find_grid(const JobConfig& job, const std::string& name) {
   for (std::size_t g = 0; g < job.grids.size(); ++g)
     if (job.grids[g].name == name) return static_cast<int>(g);
   return -1;
-}
-
-std::string_view to_string(GoalMetric metric) {
-  switch (metric) {
-    case GoalMetric::average: return "average";
-    case GoalMetric::minimum: return "minimum";
-    case GoalMetric::maximum: return "maximum";
-    case GoalMetric::uniformity: return "uniformity";
-  }
-  return "?";
 }
 
 void set_goal_parameter(JobConfig& job, const std::string& key, double value) {

@@ -22,6 +22,7 @@
 #include "core/operator/sample_operator.h"
 #include "core/scene/scene.h"
 #include "core/scene/surface_split.h"
+#include "optimizer/goal_spec.h"
 
 namespace ilp {
 
@@ -141,22 +142,9 @@ struct LuminaireSearch {
   FileLoc layout_loc;
 };
 
-enum class GoalMetric {
-  average,     // area-weighted average illuminance >= target lux (closest_to_target: = target)
-  minimum,     // lowest patch illuminance >= target lux
-  maximum,     // highest patch illuminance <= target lux
-  uniformity,  // U0 = Emin / Eavg >= target (a ratio in (0, 1])
-};
-std::string_view to_string(GoalMetric metric);
-// The metric's key in a goals entry and in sweep keys: average_lux, min_lux, max_lux, uniformity.
-std::string_view goal_key(GoalMetric metric);
-
 // One line of goals: a metric over the union of some surfaces. A goals entry with
 // several metrics (average_lux and uniformity) becomes several GoalSettings with the
 // same name.
-// Which patches of a goal's surfaces count: all, or only those facing up (a desk's top
-// without its edges and underside) or down, within about 25 degrees of vertical.
-enum class GoalFacing { any, up, down };
 
 struct GoalSetting {
   std::string name;                   // `name:`, else the surfaces joined with '+' (or the grid's name)
@@ -183,11 +171,6 @@ struct SearchConstraints {
   std::optional<int> max_luminaires;    // caps luminaires.count (free) or rows x columns (array: error if more)
   FileLoc max_luminaires_loc;
   double min_distance_m = 0.0;          // between luminaire centres, >= 0
-};
-
-enum class Objective {
-  min_power,          // least electric power meeting every goal
-  closest_to_target,  // average goals hit their targets (least squared relative deviation); others are constraints
 };
 
 // optimizer: NLopt names (nlopt::algorithm as text, e.g. GN_CRS2_LM, LN_SBPLX) or "none".

@@ -8,11 +8,13 @@
 namespace ilp {
 namespace {
 
-constexpr MetricRule kRules[] = {
-    {GoalMetric::average, "average_lux", "average", "lx", true, true, true},
-    {GoalMetric::minimum, "min_lux", "minimum", "lx", true, true, true},
-    {GoalMetric::maximum, "max_lux", "maximum", "lx", false, true, false},
-    {GoalMetric::uniformity, "uniformity", "uniformity", "", true, false, false},
+constexpr double kMaxLux = 1e7;
+
+const std::vector<MetricRule> kRules = {
+    {GoalMetric::average, "average_lux", "average", "lx", true, true, true, false, kMaxLux},
+    {GoalMetric::minimum, "min_lux", "minimum", "lx", true, true, true, true, kMaxLux},
+    {GoalMetric::maximum, "max_lux", "maximum", "lx", false, true, false, false, kMaxLux},
+    {GoalMetric::uniformity, "uniformity", "uniformity", "", true, false, false, false, 1.0},
 };
 
 double weighted_average(const GoalArea& area, const Eigen::VectorXd& v) {
@@ -23,10 +25,25 @@ double weighted_average(const GoalArea& area, const Eigen::VectorXd& v) {
 
 }  // namespace
 
+const std::vector<MetricRule>& metric_rules() { return kRules; }
+
 const MetricRule& metric_rule(GoalMetric metric) {
   for (const MetricRule& r : kRules)
     if (r.metric == metric) return r;
   throw std::invalid_argument("metric_rule: unknown goal metric");
+}
+
+const MetricRule* metric_rule_for_key(std::string_view key) {
+  for (const MetricRule& r : kRules)
+    if (r.key == key) return &r;
+  return nullptr;
+}
+
+std::string target_rule(GoalMetric metric, double target) {
+  const MetricRule& r = metric_rule(metric);
+  if (!r.lux) return target > 0.0 && target <= r.max_target ? "" : "must be in (0, 1]";
+  if (r.zero_allowed ? !(target >= 0.0) : !(target > 0.0)) return r.zero_allowed ? "must be >= 0" : "must be > 0";
+  return target <= r.max_target ? "" : "must be at most 1e+07 lx";
 }
 
 AreaStatistics area_statistics(const GoalArea& area, const Eigen::VectorXd& lux) {

@@ -1,0 +1,62 @@
+// What a goal is, for every stage that judges one: its metric and the one table of
+// metric rules (key, name, unit, bound, range of a valid target), the goal line the
+// search and the verification judge (its target already initial), and the objective.
+// The job's schema (job/config.h) reads its goal keys from this table.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ilp {
+
+enum class GoalMetric {
+  average,     // area-weighted average illuminance >= target lux (closest_to_target: = target)
+  minimum,     // lowest patch illuminance >= target lux
+  maximum,     // highest patch illuminance <= target lux
+  uniformity,  // U0 = Emin / Eavg >= target (a ratio in (0, 1])
+};
+
+// Which patches of a goal's surfaces count: all, or only those facing up (a desk's top
+// without its edges and underside) or down, within about 25 degrees of vertical.
+enum class GoalFacing { any, up, down };
+
+enum class Objective {
+  min_power,          // least electric power meeting every goal
+  closest_to_target,  // average goals hit their targets (least squared relative deviation); others are constraints
+};
+
+struct MetricRule {
+  GoalMetric metric;
+  std::string_view key;   // in goals entries and sweep keys: average_lux, min_lux, max_lux, uniformity
+  std::string_view name;  // average, minimum, maximum, uniformity
+  std::string_view unit;  // "lx", or "" for the U0 ratio
+  bool lower_bound;       // value >= target (else value <= target)
+  bool lux;               // in lux: linear in flux and maintained = initial x MF (U0 is neither)
+  bool scale_closed_form; // the least flux scale meeting it is a closed form (average, minimum)
+  bool zero_allowed;      // a target of 0 is valid (minimum); every other must be > 0
+  double max_target;      // the largest valid target (1e7 lx; 1 for U0)
+};
+
+// Every metric, in GoalMetric order.
+const std::vector<MetricRule>& metric_rules();
+const MetricRule& metric_rule(GoalMetric metric);
+// The rule of a goals entry's key, or nullptr for a key that is no metric.
+const MetricRule* metric_rule_for_key(std::string_view key);
+// The rule a target breaks ("" when none), e.g. "must be > 0" or "must be in (0, 1]".
+std::string target_rule(GoalMetric metric, double target);
+
+inline std::string_view to_string(GoalMetric metric) { return metric_rule(metric).name; }
+inline std::string_view goal_key(GoalMetric metric) { return metric_rule(metric).key; }
+
+// One goal line as the search and the verification judge it: a metric over the goal
+// area of that name (optimizer/lighting_model.h), at an initial target (lux metrics:
+// the job's maintained target / maintenance factor; U0 as given).
+struct GoalSpec {
+  std::string name;
+  GoalMetric metric = GoalMetric::average;
+  double target = 0.0;
+};
+
+}  // namespace ilp
