@@ -112,7 +112,7 @@ int solve_with_sample(const JobConfig& job, const JobScene& loaded, const SolveA
 
   SampleOperatorOptions options = sample_operator_options(job);
   const GoalRows goal_rows = compute_goal_rows(scene, caster, goals, laid.points, sources, options, progress);
-  const SampleSizeChoice choice = choose_sample_size(job, scene, caster, goal_rows, flux, options, progress);
+  const SampleSizeChoice choice = choose_sample_size(job.sample.rule(), scene, caster, goal_rows, flux, options, progress);
   if (!choice.log.empty()) std::cerr << choice.log << "\n";
   options.sample_size = choice.sample_size;
   const SampleOperator op = build_sample_operator(scene, caster, goal_rows, options, progress);

@@ -425,7 +425,6 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
     search.model = v->text();
     if (search.model != "square_lambertian") v->fail("must be square_lambertian");
   }
-  search.type = LuminaireType::square_lambertian(job.luminaire_size_m);
   if (auto products = luminaires.get("products")) {
     for (const char* key : {"model", "flux_lm", "efficacy_lm_per_w"})
       if (auto v = luminaires.get(key)) v->fail("not with luminaires.products (each product gives its own)");
@@ -801,7 +800,7 @@ std::string one_of(const Value& v, std::initializer_list<const char*> names) {
 }
 
 void read_optimizer(const Map& optimizer, JobConfig& job) {
-  OptimizerSettings& o = job.optimizer;
+  SearchOptions& o = job.optimizer;
   if (auto v = optimizer.get("global_algorithm"))
     o.global_algorithm = one_of(*v, {"GN_CRS2_LM", "GN_ISRES", "GN_ESCH", "GN_DIRECT_L", "GN_DIRECT_L_RAND", "none"});
   if (auto v = optimizer.get("local_algorithm")) {
@@ -981,13 +980,11 @@ void set_goal_parameter(JobConfig& job, const std::string& key, double value) {
       });
 }
 
-int SampleSettings::size_for(std::size_t population) const {
-  if (size) return *size;
-  // A fraction of the patches, capped: the sample's error depends on how light moves in
-  // the room, not on how finely it is meshed, so a finer mesh needs no larger k.
-  const double k = std::min(fraction * static_cast<double>(population), static_cast<double>(max_size_for_target));
-  return std::max(1, static_cast<int>(std::lround(k)));
+SampleSizeRule SampleSettings::rule() const {
+  return {size, fraction, max_size_for_target, target_error, error_samples, pilot_fraction};
 }
+
+int SampleSettings::size_for(std::size_t population) const { return rule().size_for(population); }
 
 JobConfig load_job_config(const std::string& path) {
   JobConfig job;

@@ -20,9 +20,11 @@
 #include "core/operator/patch_sample.h"
 #include "core/exact/radiosity.h"
 #include "core/operator/sample_operator.h"
+#include "core/operator/sample_size.h"
 #include "core/scene/scene.h"
 #include "core/scene/surface_split.h"
 #include "optimizer/goal_spec.h"
+#include "optimizer/search_spec.h"
 
 namespace ilp {
 
@@ -74,18 +76,13 @@ struct SampleSettings {
   int max_size_for_target = 4000;  // solver.max_sample_size: the largest k target_error or sample_fraction gives
   FileLoc max_size_loc;
 
-  // k for a population of reflecting patches (at least 1): size, else fraction x
-  // population capped at max_size_for_target.
-  int size_for(std::size_t population) const;
+  // The sample-size part, as the operator's stage takes it (core/operator/sample_size.h).
+  SampleSizeRule rule() const;
+  int size_for(std::size_t population) const;  // rule().size_for
 };
 
 // ---- The inverse problem (`ilp run`, `ilp sweep`): where luminaires may go, what the
 // goal surfaces must receive, and how to search. docs/config.md gives the schema, docs/user-guide.md a walk through it.
-
-enum class LayoutFamily {
-  free,   // each luminaire anywhere on the mounting surface, each its own flux
-  array,  // a regular rows x columns array, one flux for all
-};
 
 // luminaires.products: a luminaire one can buy. Photometric (an IES LM-63 or EULUMDAT
 // file) or the square Lambertian test panel; lumens and watts from the file unless
@@ -125,13 +122,6 @@ struct LuminaireSearch {
   std::vector<ProductSetting> products;     // luminaires.products; empty: the model/flux_lm/efficacy keys
   double wall_distance_m = 0.0;             // a luminaire's outline keeps at least this from the mounting surface's edges
   double ceiling_module_m = 0.0;            // > 0: centres snap to the module's cell centres (a 0.6 m grid ceiling)
-  // The variant a search runs for (set from a product by the job runner; defaults: the
-  // square panel of luminaires.size_m): its type and rotation, and whether every
-  // luminaire of a layout gives the same output (products) or each its own (the panel).
-  LuminaireType type = LuminaireType::square_lambertian(0.6);
-  double rotation_deg = 0.0;
-  std::string product;                      // the product's name; empty for the plain panel
-  bool uniform_output = false;
   LayoutFamily layout = LayoutFamily::free;
   // layout: array. rows x columns; spacing and offset (the first luminaire's centre,
   // from the mounting surface's lower x, y corner) fixed when given, else searched.
@@ -171,16 +161,6 @@ struct SearchConstraints {
   std::optional<int> max_luminaires;    // caps luminaires.count (free) or rows x columns (array: error if more)
   FileLoc max_luminaires_loc;
   double min_distance_m = 0.0;          // between luminaire centres, >= 0
-};
-
-// optimizer: NLopt names (nlopt::algorithm as text, e.g. GN_CRS2_LM, LN_SBPLX) or "none".
-struct OptimizerSettings {
-  std::string global_algorithm = "GN_CRS2_LM";
-  std::string local_algorithm = "LN_SBPLX";
-  int max_evaluations = 20000;     // global stage, per luminaire count tried
-  int local_max_evaluations = 4000;
-  double max_seconds = 60.0;       // wall-clock budget of the whole search
-  std::uint64_t seed = 1;          // NLopt's random seed: same seed, same layout
 };
 
 enum class VerificationMethod { automatic, exact, sample, none };
@@ -256,7 +236,7 @@ struct JobConfig {
   FileLoc maintenance_loc;
   SearchConstraints constraints;
   Objective objective = Objective::min_power;
-  OptimizerSettings optimizer;
+  SearchOptions optimizer;              // optimizer: NLopt names (e.g. GN_CRS2_LM, LN_SBPLX) or "none"; threads set at run time
   VerificationSettings verification;
   OutputSettings output;
   std::optional<SweepSetting> sweep;

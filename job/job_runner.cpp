@@ -11,7 +11,7 @@
 
 #include "core/base/error.h"
 #include "core/exact/exact_solver.h"
-#include "job/operator_setup.h"
+#include "job/plan.h"
 #include "core/rays/point_gather.h"
 #include "optimizer/goal_metrics.h"
 #include "core/operator/sample_operator.h"
@@ -31,22 +31,24 @@ constexpr std::uint64_t kVerificationSeedSalt = 0x5EED5EEDull;
 
 }  // namespace
 
-Verification verify_layout(const PreparedJob& prepared, const JobConfig& job, const std::vector<PlacedLuminaire>& layout,
+Verification verify_layout(const PreparedJob& prepared, const std::vector<PlacedLuminaire>& layout,
                            const ProgressCallback& progress) {
+  const JobConfig& job = prepared.job;
+  const RunOptions& run = prepared.run;
   Verification out;
   const VerificationSettings& settings = job.verification;
   if (settings.method == VerificationMethod::none) return out;
   const auto start = Clock::now();
   Scene scene = prepared.loaded.scene;
-  add_layout(scene, *job.search, layout);
+  add_layout(scene, prepared.plan.search.luminaire, layout);
   // auto resolves by the cost model: exact while its sparse rows fit, else a sample that fits.
   const VerificationPlan plan =
       plan_verification(job, scene.patches.size(), reflecting_patches(scene).size(), prepared.model.goal_patches.size(),
-                        static_cast<int>(layout.size()), memory_budget_bytes(job.max_memory_bytes));
+                        static_cast<int>(layout.size()), memory_budget_bytes(run.max_memory_bytes));
   const bool exact = plan.method == VerificationMethod::exact;
   out.rays_per_patch = settings.rays_per_patch;
   if (exact) {
-    ExactSolveOptions options = exact_solve_options(job);
+    ExactSolveOptions options = exact_options(job, run);
     options.form_factors.rays_per_patch = settings.rays_per_patch;
     options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
     options.direct_light.seed = options.form_factors.seed;
@@ -57,16 +59,16 @@ Verification verify_layout(const PreparedJob& prepared, const JobConfig& job, co
     out.lux = solution.radiosity.total_lux;
     out.direct_lux = solution.radiosity.direct_lux;
     if (!prepared.model.goal_points.empty()) {
-      const RayCaster caster(scene, job.form_factors.threads);
+      const RayCaster caster(scene, worker_threads(job, run));
       const PointIlluminance at = exact_point_illuminance(scene, caster, solution.radiosity, prepared.model.goal_points,
                                                           options.form_factors, options.direct_light, progress);
       out.point_lux = at.total_lux;
       out.point_direct_lux = at.direct_lux;
     }
   } else {
-    const RayCaster caster(scene, job.form_factors.threads);
+    const RayCaster caster(scene, worker_threads(job, run));
     const std::vector<LightSource> sources = scene_light_sources(scene);
-    SampleOperatorOptions options = sample_operator_options(job);
+    SampleOperatorOptions options = operator_options(job, run);
     options.form_factors.rays_per_patch = settings.rays_per_patch;
     options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
     options.direct_light.seed = options.form_factors.seed;
@@ -110,12 +112,12 @@ namespace {
 // The flux scale that makes the verified values just meet the lower-bound goals
 // (min_power) or fit the average targets best (closest_to_target): illuminance is
 // linear in flux, so scaling every flux scales the verified values exactly.
-double verified_flux_scale(const JobConfig& job, const std::vector<GoalJudgement>& verified,
+double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgement>& verified,
                            const std::vector<PlacedLuminaire>& layout, bool& limited) {
   limited = false;
   double scale = 0.0, num = 0.0, den = 0.0;
   for (const GoalJudgement& g : verified) {
-    if (g.metric == GoalMetric::average && job.objective == Objective::closest_to_target) {
+    if (g.metric == GoalMetric::average && spec.objective == Objective::closest_to_target) {
       num += g.value / g.target;
       den += g.value * g.value / (g.target * g.target);
     } else if (metric_rule(g.metric).scale_closed_form && g.target > 0.0) {
@@ -123,7 +125,7 @@ double verified_flux_scale(const JobConfig& job, const std::vector<GoalJudgement
       scale = std::max(scale, g.target / g.value);
     }
   }
-  if (job.objective == Objective::closest_to_target) scale = den > 0.0 ? num / den : 1.0;
+  if (spec.objective == Objective::closest_to_target) scale = den > 0.0 ? num / den : 1.0;
   if (!(scale > 0.0)) return 1.0;
   double flux_high = 0.0, flux_low = std::numeric_limits<double>::infinity();
   for (const PlacedLuminaire& l : layout) {
@@ -131,27 +133,17 @@ double verified_flux_scale(const JobConfig& job, const std::vector<GoalJudgement
     flux_low = std::min(flux_low, l.flux_lm);
   }
   const double wanted = scale;
-  if (flux_high > 0.0) scale = std::min(scale, job.search->flux_max_lm / flux_high);
-  if (flux_low > 0.0) scale = std::max(scale, job.search->flux_min_lm / flux_low);
+  if (flux_high > 0.0) scale = std::min(scale, spec.luminaire.flux_max_lm / flux_high);
+  if (flux_low > 0.0) scale = std::max(scale, spec.luminaire.flux_min_lm / flux_low);
   limited = std::abs(scale - wanted) > 1e-12 * wanted;
   return scale;
 }
 
 }  // namespace
 
-void add_layout(Scene& scene, const LuminaireSearch& search, const std::vector<PlacedLuminaire>& layout) {
+void add_layout(Scene& scene, const SearchLuminaire& search, const std::vector<PlacedLuminaire>& layout) {
   for (std::size_t j = 0; j < layout.size(); ++j)
     add_luminaire(scene, luminaire_name(j), search.type, {layout[j].position_m, search.rotation_deg}, layout[j].flux_lm);
-}
-
-std::vector<JobVariant> job_variants(const JobConfig& job) {
-  if (!job.search || job.search->products.empty()) return {JobVariant{job, std::nullopt}};
-  std::vector<JobVariant> out;
-  for (ProductVariant& v : product_variants(*job.search)) {
-    JobConfig j = job_for_variant(job, v);
-    out.push_back({std::move(j), std::move(v)});
-  }
-  return out;
 }
 
 bool better_outcome(const JobOutcome& a, const JobOutcome& b) {
@@ -166,22 +158,20 @@ std::string luminaire_name(std::size_t j) {
   return name.append(std::to_string(j + 1));
 }
 
-PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, const std::string& cache_dir,
-                        const LogSink& log) {
+PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const RunOptions& run,
+                        const ProgressCallback& progress, const std::string& cache_dir, const LogSink& log) {
   auto emit = [&](const std::vector<std::string>& lines, std::size_t from) {
     if (log)
       for (std::size_t k = from; k < lines.size(); ++k) log(lines[k]);
   };
-  if (!job.search)
-    throw ConfigError(job.path + ": luminaires.mounting_surface is missing: an inverse job says where luminaires may "
-                                 "go (see docs/user-guide.md)");
-  if (job.goals.empty()) throw ConfigError(job.path + ": goals are missing: an inverse job says what surfaces must receive");
   PreparedJob out;
   out.job = job;
+  out.plan = plan;
+  out.run = run;
   auto start = Clock::now();
   // Meshing stops before it makes more patches than the memory could ever hold
   // (a scene, its BVH and the least build take about 1 kB a patch).
-  const std::optional<double> budget = memory_budget_bytes(job.max_memory_bytes);
+  const std::optional<double> budget = memory_budget_bytes(run.max_memory_bytes);
   JobConfig scene_job = job;
   if (budget) scene_job.scene.max_patches = std::min(job.scene.max_patches, static_cast<std::size_t>(*budget / 1024.0));
   try {
@@ -194,9 +184,9 @@ PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, 
   out.scene_seconds = seconds_since(start);
   emit(out.loaded.log, 0);
   start = Clock::now();
-  out.caster = std::make_unique<RayCaster>(out.loaded.scene, job.form_factors.threads);
+  out.caster = std::make_unique<RayCaster>(out.loaded.scene, worker_threads(job, run));
   out.bvh_seconds = seconds_since(start);
-  out.model = lighting_model_geometry(out.loaded.scene, job);
+  out.model = lighting_model_geometry(out.loaded.scene, plan.model);
   {
     // The cost model: printed, and a job that cannot fit is refused now, not minutes later.
     // (Kept apart from the model's log, which the cache compares with the file's.)
@@ -209,13 +199,13 @@ PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, 
   }
   const std::size_t geometry_lines = out.model.log.size();
   if (cache_dir.empty()) {
-    compute_lighting_operator(out.model, out.loaded.scene, *out.caster, job, progress);
+    compute_lighting_operator(out.model, out.loaded.scene, *out.caster, plan.model, progress);
     emit(out.model.log, geometry_lines);
     return out;
   }
 
   start = Clock::now();
-  const std::string key = lighting_model_key(job);
+  const std::string key = lighting_model_key(job, plan.model);
   const std::string file = (std::filesystem::path(cache_dir) / (key + ".ilpmodel")).string();
   const std::optional<std::string> not_used = load_lighting_model(file, key, out.model);
   out.cache_seconds = seconds_since(start);
@@ -228,7 +218,7 @@ PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, 
     emit(out.model.log, geometry_lines);
     return out;
   }
-  compute_lighting_operator(out.model, out.loaded.scene, *out.caster, job, progress);
+  compute_lighting_operator(out.model, out.loaded.scene, *out.caster, plan.model, progress);
   emit(out.model.log, geometry_lines);
   // The file was missing, or is replaced: a failure to write it leaves the job as it is.
   const std::string previous = *not_used == "no cache file" ? "" : "the cached file was not used: " + *not_used;
@@ -249,30 +239,59 @@ PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress, 
 
 namespace {
 
-// One search (with the search targets of `search_job`) and its verification, judged
-// against the real targets of `job`.
-JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, const JobConfig& search_job,
+// The power density's floor: a grid's surface whose upward patches lie at the room's
+// lowest level (a grid over a table top is a task area, not the floor); else the
+// mounting surface's plan area.
+void set_floor_area(JobOutcome& out, const PreparedJob& prepared) {
+  out.floor_area_m2 = out.mounting_area_m2;
+  out.floor_area_source = "plan area of the mounting surface '" + prepared.plan.model.candidates.mounting_surface + "'";
+  constexpr double kFloorLevelTolerance_m = 0.2;
+  for (const CalcGridSetting& g : prepared.plan.model.grids)
+    if (g.kind == GridKind::horizontal && !g.over_surface.empty()) {
+      const Scene& scene = prepared.loaded.scene;
+      const int surface = scene.find_surface(g.over_surface);
+      double area = 0.0, highest_m = -std::numeric_limits<double>::infinity();
+      for (const Patch& p : scene.patches)
+        if (p.surface == surface && p.normal.z() >= 0.9) {
+          area += p.area_m2;
+          highest_m = std::max(highest_m, p.centroid_m.z());
+        }
+      if (area > 0.0 && highest_m <= scene.bounds_m.min().z() + kFloorLevelTolerance_m) {
+        out.floor_area_m2 = area;
+        out.floor_area_source = "floor '" + g.over_surface + "' (under grid '" + g.name + "')";
+      }
+      break;
+    }
+}
+
+// The search layout's direct light at the goal rows, through the candidates' direct columns.
+Eigen::VectorXd predicted_direct_lux(const LightingModel& model, const LayoutEvaluation& best) {
+  Eigen::VectorXd a = model.fixed_direct_lux;
+  for (const PlacedLuminaire& l : best.luminaires)
+    for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
+      if (l.blend.candidates[k] >= 0)
+        a += (l.flux_lm * l.blend.weights[k]) * model.candidate_direct_lux_per_lm.col(l.blend.candidates[k]);
+  return a.cwiseMax(0.0);
+}
+
+// One search (at the targets of `searched`) and its verification, judged against the
+// real targets of `real`.
+JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real, const SearchSpec& searched,
                              const ProgressCallback& progress, const SearchBounds& bounds) {
   const LightingModel& model = prepared.model;
+  const SearchSpec& job = real;
   JobOutcome out;
-  out.search = search_layout(model, search_job, progress, bounds);
+  out.search = search_layout(model, searched, progress, bounds);
   if (out.search.beaten) return out;  // nothing to verify
   const LayoutEvaluation& best = out.search.best;
   out.luminaires = best.luminaires;
   out.predicted_lux = best.lux;
-  {
-    Eigen::VectorXd a = model.fixed_direct_lux;
-    for (const PlacedLuminaire& l : best.luminaires)
-      for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
-        if (l.blend.candidates[k] >= 0)
-          a += (l.flux_lm * l.blend.weights[k]) * model.candidate_direct_lux_per_lm.col(l.blend.candidates[k]);
-    out.predicted_direct_lux = a.cwiseMax(0.0);
-  }
+  out.predicted_direct_lux = predicted_direct_lux(model, best);
   // Met as predicted is judged on the search's own layout, before any flux correction.
   const std::vector<GoalJudgement> as_searched = judge_goals(model, job, out.predicted_lux);
   std::vector<GoalJudgement> predicted = as_searched;
 
-  out.verification = verify_layout(prepared, job, out.luminaires, progress);
+  out.verification = verify_layout(prepared, out.luminaires, progress);
   out.verify_seconds = out.verification.seconds;
   std::optional<std::vector<GoalJudgement>> verified;
   if (out.verification.method != "none") {
@@ -300,28 +319,8 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, 
   for (const PlacedLuminaire& l : out.luminaires) out.power_w += l.power_w;
   out.fixed_flux_lm = model.fixed_flux_lm;
   out.mounting_area_m2 = model.grid.mounting_area_m2();
-  out.maintenance_factor = job.maintenance_factor;
-  out.floor_area_m2 = out.mounting_area_m2;
-  out.floor_area_source = "plan area of the mounting surface '" + job.search->mounting_surface + "'";
-  // The floor: a grid's surface whose upward patches lie at the room's lowest level
-  // (a grid over a table top is a task area, not the floor).
-  constexpr double kFloorLevelTolerance_m = 0.2;
-  for (const CalcGridSetting& g : job.grids)
-    if (g.kind == GridKind::horizontal && !g.over_surface.empty()) {
-      const Scene& scene = prepared.loaded.scene;
-      const int surface = scene.find_surface(g.over_surface);
-      double area = 0.0, highest_m = -std::numeric_limits<double>::infinity();
-      for (const Patch& p : scene.patches)
-        if (p.surface == surface && p.normal.z() >= 0.9) {
-          area += p.area_m2;
-          highest_m = std::max(highest_m, p.centroid_m.z());
-        }
-      if (area > 0.0 && highest_m <= scene.bounds_m.min().z() + kFloorLevelTolerance_m) {
-        out.floor_area_m2 = area;
-        out.floor_area_source = "floor '" + g.over_surface + "' (under grid '" + g.name + "')";
-      }
-      break;
-    }
+  out.maintenance_factor = prepared.plan.maintenance_factor;
+  set_floor_area(out, prepared);
   out.power_density_w_per_m2 = out.floor_area_m2 > 0.0 ? out.power_w / out.floor_area_m2 : 0.0;
   // Feasible as predicted: against the real targets, with the distance constraint.
   out.feasible = best.distance_violation <= 1e-4;
@@ -329,7 +328,7 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, 
   for (std::size_t g = 0; g < predicted.size(); ++g) {
     GoalOutcome o;
     o.predicted = predicted[g];
-    o.tolerance = goal_tolerance(job, predicted[g].metric);
+    o.tolerance = goal_tolerance(job.objective, predicted[g].metric);
     // The closed-form scale meets goals to round-off; allow for it.
     const bool predicted_met = as_searched[g].violation <= o.tolerance + 1e-9;
     if (!(job.objective == Objective::closest_to_target && predicted[g].metric == GoalMetric::average))
@@ -346,7 +345,7 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const JobConfig& job, 
   }
   for (const GoalOutcome& o : out.goals)
     if (o.predicted.metric == GoalMetric::average) {
-      const double maintained = (o.verified ? o.verified->value : o.predicted.value) * job.maintenance_factor;
+      const double maintained = (o.verified ? o.verified->value : o.predicted.value) * out.maintenance_factor;
       if (maintained > 0.0) out.power_density_w_per_m2_per_100_lx = out.power_density_w_per_m2 / (maintained / 100.0);
       break;
     }
@@ -378,8 +377,13 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
   SearchBounds bounds;
   bounds.power_to_beat_w = power_to_beat_w;
   double search_seconds = 0.0, verify_seconds = 0.0;
+  const double mf = prepared.plan.maintenance_factor;
+  SearchSpec real = prepared.plan.search;
+  real.goals = goal_specs(job, mf);
   for (int round = 0; round < rounds; ++round) {
-    JobOutcome outcome = search_and_verify(prepared, job, search_job, progress, bounds);
+    SearchSpec searched = real;
+    searched.goals = goal_specs(search_job, mf);
+    JobOutcome outcome = search_and_verify(prepared, real, searched, progress, bounds);
     if (outcome.search.beaten) {
       if (!best) return outcome;  // nothing could beat the power given: nothing searched
       // A later round whose every count drew no less at the easier targets than the
@@ -412,7 +416,7 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
       if (!next) continue;
       goal.target = *next;
       outcome.calibration.push_back(
-          calibration_line(round, job, job.goals[g], o.predicted.value, o.verified->value, goal.target));
+          calibration_line(round, mf, job.goals[g], o.predicted.value, o.verified->value, goal.target));
       recalibrated = true;
     }
     std::vector<std::string> calibration = best ? best->calibration : std::vector<std::string>{};

@@ -13,7 +13,7 @@
 
 #include "job/config.h"
 #include "job/job_scene.h"
-#include "job/products.h"
+#include "job/plan.h"
 #include "core/base/progress.h"
 #include "core/rays/ray_caster.h"
 #include "optimizer/layout_search.h"
@@ -24,6 +24,8 @@ namespace ilp {
 // The expensive part, independent of goal targets.
 struct PreparedJob {
   JobConfig job;
+  VariantPlan plan;            // the product searched and the stages' specs
+  RunOptions run;
   JobScene loaded;
   std::unique_ptr<RayCaster> caster;
   LightingModel model;         // loaded from the cache: build_seconds is the original build's
@@ -47,8 +49,8 @@ struct PreparedJob {
 // scene's before the operator is built, which can take a minute); they are also kept
 // in loaded.log and model.log.
 using LogSink = std::function<void(const std::string& line)>;
-PreparedJob prepare_job(const JobConfig& job, const ProgressCallback& progress = {}, const std::string& cache_dir = "",
-                        const LogSink& log = {});
+PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const RunOptions& run = {},
+                        const ProgressCallback& progress = {}, const std::string& cache_dir = "", const LogSink& log = {});
 
 struct GoalOutcome {
   GoalJudgement predicted;                 // through the operator
@@ -73,8 +75,8 @@ struct Verification {
 // Places `layout` as real luminaires in the job's scene and solves it as
 // job.verification says (exact, or a sample of verification.sample_fraction), with
 // rays independent of the operator's. Method "none" returns an empty Verification.
-Verification verify_layout(const PreparedJob& prepared, const JobConfig& job,
-                           const std::vector<PlacedLuminaire>& layout, const ProgressCallback& progress = {});
+Verification verify_layout(const PreparedJob& prepared, const std::vector<PlacedLuminaire>& layout,
+                           const ProgressCallback& progress = {});
 
 // The verified illuminance at the model's goal rows: goal patches, then goal points.
 Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification& verification);
@@ -105,14 +107,6 @@ struct JobOutcome {
   std::vector<std::string> calibration;     // what each round changed in the search targets
 };
 
-// The jobs a run tries: one per product and rotation (luminaires.products, through
-// job_for_variant), else the job itself with no variant.
-struct JobVariant {
-  JobConfig job;
-  std::optional<ProductVariant> variant;
-};
-std::vector<JobVariant> job_variants(const JobConfig& job);
-
 // Is a better than b: every goal met (as verified) first, then least power, then the
 // search's own order.
 bool better_outcome(const JobOutcome& a, const JobOutcome& b);
@@ -120,7 +114,7 @@ bool better_outcome(const JobOutcome& a, const JobOutcome& b);
 // Adds the layout's luminaires to `scene` as real ones, named L1, L2, ..., of the
 // search's type at its rotation: how a layout found is placed everywhere (the
 // verification, the benchmark's full solve).
-void add_layout(Scene& scene, const LuminaireSearch& search, const std::vector<PlacedLuminaire>& layout);
+void add_layout(Scene& scene, const SearchLuminaire& luminaire, const std::vector<PlacedLuminaire>& layout);
 
 // "L1", "L2", ...: the name of the j-th (0-based) luminaire of a layout.
 std::string luminaire_name(std::size_t j);

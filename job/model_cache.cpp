@@ -128,7 +128,7 @@ void put(std::ostream& t, const std::string& s) { t << s.size() << ':' << s; }
 void put(std::ostream& t, const Eigen::Vector3d& v) { t << v.x() << ' ' << v.y() << ' ' << v.z(); }
 
 // Everything the operator depends on, one item a line, doubles exact.
-std::string key_text(const JobConfig& job) {
+std::string key_text(const JobConfig& job, const ModelSpec& model) {
   std::ostringstream t;
   t << std::setprecision(17);
   t << "ilp lighting model cache, format " << kLightingModelCacheVersion << "\n";
@@ -206,7 +206,7 @@ std::string key_text(const JobConfig& job) {
   // Luminaires: the placed ones and the candidates' grid.
   t << "luminaire size " << job.luminaire_size_m << "\n";
   if (job.search)
-    t << job.search->type.key() << " rotation " << job.search->rotation_deg << " wall " << job.search->wall_distance_m
+    t << model.candidates.type.key() << " rotation " << model.candidates.rotation_deg << " wall " << job.search->wall_distance_m
       << " module " << job.search->ceiling_module_m << "\n";
   for (const LuminaireSetting& l : job.luminaires) {
     t << "placed ";
@@ -221,10 +221,10 @@ std::string key_text(const JobConfig& job) {
     put(t, s.model);
     t << " mounting ";
     put(t, s.mounting_surface);
-    t << " offset " << s.mount_offset_m << " spacing " << s.candidate_spacing_m << "\n";
+    t << " offset " << model.candidates.mount_offset_m << " spacing " << s.candidate_spacing_m << "\n";
     // A sample size chosen for a target error is judged with every candidate at the
     // top of the flux range (compute_lighting_operator): only then does it matter.
-    if (job.sample.target_error) t << "probe flux " << s.flux_max_lm << "\n";
+    if (job.sample.target_error) t << "probe flux " << model.probe_flux_lm << "\n";
   } else {
     t << "no search\n";
   }
@@ -494,8 +494,8 @@ const std::string kSizesDiffer = "sizes do not match the scene's goal patches/ca
 
 }  // namespace
 
-std::string lighting_model_key(const JobConfig& job) {
-  const std::string text = key_text(job);
+std::string lighting_model_key(const JobConfig& job, const ModelSpec& model) {
+  const std::string text = key_text(job, model);
   return hex(canonical(XXH3_128bits(text.data(), text.size())));
 }
 

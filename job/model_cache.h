@@ -26,7 +26,7 @@ inline constexpr std::uint32_t kLightingModelCacheVersion = 5;  // 2: duplicate 
 // file (and, for OBJ, of each mtllib file it names) and a canonical text of the
 // parameters that change the operator. Never throws for a missing or unreadable
 // file (it contributes a marker instead).
-std::string lighting_model_key(const JobConfig& job);
+std::string lighting_model_key(const JobConfig& job, const ModelSpec& model);
 
 // Writes the operator part of `model` to `path`, atomically: to a temporary file
 // next to it that is renamed over `path` once complete (a previous file stays as it

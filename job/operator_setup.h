@@ -10,6 +10,7 @@
 #include "core/base/progress.h"
 #include "core/rays/ray_caster.h"
 #include "core/operator/sample_operator.h"
+#include "core/operator/sample_size.h"
 #include "core/scene/scene.h"
 
 namespace ilp {
@@ -19,16 +20,5 @@ SampleOperatorOptions sample_operator_options(const JobConfig& job);
 
 // The solver section as the exact solver's options (precise direct light everywhere).
 ExactSolveOptions exact_solve_options(const JobConfig& job);
-
-struct SampleSizeChoice {
-  int sample_size = 1;
-  std::string log;  // how it was chosen, when a prediction chose it
-};
-
-// k as configured, or (solver.target_error) the smallest whose predicted RMS error for
-// the source fluxes `flux_lm` meets the target, from pilot samples.
-SampleSizeChoice choose_sample_size(const JobConfig& job, const Scene& scene, const RayCaster& caster,
-                                    const GoalRows& goals, const Eigen::VectorXd& flux_lm,
-                                    const SampleOperatorOptions& options, const ProgressCallback& progress = {});
 
 }  // namespace ilp

@@ -97,23 +97,4 @@ std::vector<ProductVariant> product_variants(const LuminaireSearch& search) {
   return out;
 }
 
-JobConfig job_for_variant(const JobConfig& job, const ProductVariant& variant) {
-  JobConfig out = job;
-  LuminaireSearch& s = *out.search;
-  s.type = variant.type;
-  s.rotation_deg = variant.rotation_deg;
-  s.product = variant.product;
-  s.uniform_output = true;
-  s.flux_min_lm = variant.dim_min * variant.rated_flux_lm;
-  s.flux_max_lm = variant.dim_max * variant.rated_flux_lm;
-  s.efficacy_lm_per_w = variant.rated_flux_lm / variant.power_w;
-  // Maintained values depend on the product's own depreciation when it states it.
-  if (variant.maintenance_factor) out.maintenance_factor = *variant.maintenance_factor;
-  if (variant.mount_offset_m) {
-    s.mount_offset_m = *variant.mount_offset_m;
-    s.offset_loc = variant.mount_offset_loc;
-  }
-  return out;
-}
-
 }  // namespace ilp

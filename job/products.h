@@ -14,10 +14,4 @@ namespace ilp {
 // file's own line and field) or that lacks what the product needs (watts).
 std::vector<ProductVariant> product_variants(const LuminaireSearch& search);
 
-// `job` with its search set to one variant: the type, rotation, product name, a flux
-// range of the dimming range x the rated output, the efficacy of rated lumens per
-// watt, and one output for every luminaire of a layout; the product's maintenance
-// factor and mount offset (suspension) replace the job's when it gives them.
-JobConfig job_for_variant(const JobConfig& job, const ProductVariant& variant);
-
 }  // namespace ilp

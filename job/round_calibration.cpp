@@ -20,14 +20,14 @@ std::optional<double> next_search_target(GoalMetric metric, double real_target, 
   return next;
 }
 
-std::string calibration_line(int round, const JobConfig& job, const GoalSetting& goal, double predicted,
+std::string calibration_line(int round, double maintenance_factor, const GoalSetting& goal, double predicted,
                              double verified, double next_target) {
   const MetricRule& rule = metric_rule(goal.metric);
   const std::string unit = rule.unit.empty() ? "" : " " + std::string(rule.unit);
   std::ostringstream line;
   line << std::setprecision(4) << "round " << round + 1 << ": " << goal.name << " " << to_string(goal.metric)
        << " predicted " << predicted << unit << ", verified " << verified << unit;
-  const double initial = initial_target(job, goal);
+  const double initial = rule.lux ? goal.target / maintenance_factor : goal.target;
   if (rule.lux && initial != goal.target) line << " (initial, for " << initial << unit << ")";
   line << "; the next search aims at " << next_target << unit << " for " << goal.target << unit;
   return line.str();

@@ -29,9 +29,9 @@ constexpr double kTargetTolerance = 0.05;
 
 using Clock = std::chrono::steady_clock;
 
-std::vector<int> goal_areas(const LightingModel& model, const JobConfig& job) {
+std::vector<int> goal_areas(const LightingModel& model, const SearchSpec& spec) {
   std::vector<int> out;
-  for (const GoalSetting& g : job.goals) {
+  for (const GoalSpec& g : spec.goals) {
     const int a = find_goal_area(model, g.name);
     if (a < 0) throw std::invalid_argument("goal '" + g.name + "' is not in the lighting model");
     out.push_back(a);
@@ -45,18 +45,19 @@ double area_average(const GoalArea& area, const Eigen::VectorXd& lux) {
   return sum;
 }
 
-std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConfig& job, const std::vector<int>& areas,
+std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchSpec& spec, const std::vector<int>& areas,
                                        const Eigen::VectorXd& lux);
 
 // One search variable layout: how a point x of the search space becomes positions
 // and relative fluxes.
 class LayoutCoding {
  public:
-  LayoutCoding(const LightingModel& model, const JobConfig& job, int luminaires) : job_(job), n_(luminaires) {
-    const LuminaireSearch& s = *job.search;
+  LayoutCoding(const LightingModel& model, const SearchSpec& spec, int luminaires) : family_(spec.layout.family), n_(luminaires) {
+    const SearchLuminaire& s = spec.luminaire;
+    const LayoutSpec& layout = spec.layout;
     lo_ = model.grid.lower_m();
     hi_ = model.grid.upper_m();
-    if (s.layout == LayoutFamily::free) {
+    if (family_ == LayoutFamily::free) {
       // One output for all (a product) or a fixed package: positions only; else a
       // relative flux each (a zero-width flux range would stall NLopt's local stage).
       const bool own_flux = !s.uniform_output && s.flux_min_lm < s.flux_max_lm;
@@ -85,24 +86,24 @@ class LayoutCoding {
     }
     // Array: per axis an offset (first centre) and a spacing, each fixed or searched.
     const Eigen::Vector2d surface_min = lo_ - s.type.half_footprint_m(s.rotation_deg);
-    const int counts[2] = {s.array_columns, s.array_rows};
+    const int counts[2] = {layout.array_columns, layout.array_rows};
     for (int axis = 0; axis < 2; ++axis) {
       Axis& a = axes_[axis];
       a.count = counts[axis];
       a.lo = lo_[axis];
       a.hi = hi_[axis];
-      if (s.array_offset_m) a.offset = surface_min[axis] + (*s.array_offset_m)[axis];
-      if (s.array_spacing_m) a.spacing = (*s.array_spacing_m)[axis];
+      if (layout.array_offset_m) a.offset = surface_min[axis] + (*layout.array_offset_m)[axis];
+      if (layout.array_spacing_m) a.spacing = (*layout.array_spacing_m)[axis];
       const double tolerance = 1e-9 * (1.0 + std::abs(a.hi));
       if (a.offset && (*a.offset < a.lo - tolerance || *a.offset > a.hi + tolerance))
-        throw ConfigError(located(s.layout_loc, "luminaires.array.offset_m: the first luminaire would not lie wholly on '" +
-                                                    s.mounting_surface + "'"));
+        throw ConfigError(located(layout.loc, "luminaires.array.offset_m: the first luminaire would not lie wholly on '" +
+                                                    layout.mounting_surface + "'"));
       const double reach = a.spacing ? *a.spacing * (a.count - 1) : 0.0;
       if (a.offset && a.spacing && *a.offset + reach > a.hi + tolerance)
-        throw ConfigError(located(s.layout_loc, "luminaires.array: the array does not fit on '" + s.mounting_surface + "'"));
+        throw ConfigError(located(layout.loc, "luminaires.array: the array does not fit on '" + layout.mounting_surface + "'"));
       if (a.spacing && !a.offset && a.lo + reach > a.hi + tolerance)
-        throw ConfigError(located(s.layout_loc, "luminaires.array.spacing_m: the array is wider than '" +
-                                                    s.mounting_surface + "'"));
+        throw ConfigError(located(layout.loc, "luminaires.array.spacing_m: the array is wider than '" +
+                                                    layout.mounting_surface + "'"));
       const double even = (a.hi - a.lo) / a.count;
       if (!a.offset) {
         a.offset_var = static_cast<int>(lower_.size());
@@ -128,7 +129,7 @@ class LayoutCoding {
   void decode(const double* x, std::vector<Eigen::Vector2d>& xy, std::vector<double>& w) const {
     xy.resize(static_cast<std::size_t>(n_));
     w.resize(static_cast<std::size_t>(n_));
-    if (job_.search->layout == LayoutFamily::free) {
+    if (family_ == LayoutFamily::free) {
       const int k = per_luminaire_;
       for (int j = 0; j < n_; ++j) {
         xy[static_cast<std::size_t>(j)] = Eigen::Vector2d(x[k * j], x[k * j + 1]);
@@ -159,7 +160,7 @@ class LayoutCoding {
     std::optional<double> offset, spacing;
     int offset_var = -1, spread_var = -1;  // spacing = spread * (hi - offset) / (count - 1)
   };
-  const JobConfig& job_;
+  LayoutFamily family_;
   int n_ = 0;
   int per_luminaire_ = 3;  // free layout: variables per luminaire (x, y and, unless uniform, w)
   Eigen::Vector2d lo_, hi_;
@@ -169,17 +170,17 @@ class LayoutCoding {
 
 class Evaluator {
  public:
-  Evaluator(const LightingModel& model, const JobConfig& job)
+  Evaluator(const LightingModel& model, const SearchSpec& spec)
       : model_(model),
-        job_(job),
-        areas_(goal_areas(model, job)),
+        spec_(spec),
+        areas_(goal_areas(model, spec)),
         candidates_(model.candidate_lux_per_lm.cast<float>()),
-        arena_(std::make_unique<tbb::task_arena>(arena_threads(job))),
+        arena_(std::make_unique<tbb::task_arena>(arena_threads(spec.options.threads))),
         column_weight_(static_cast<std::size_t>(candidates_.cols())),
         column_used_(static_cast<std::size_t>(candidates_.cols())) {}
 
   LayoutEvaluation operator()(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& w) const {
-    const LuminaireSearch& s = *job_.search;
+    const SearchLuminaire& s = spec_.luminaire;
     const std::size_t n = xy.size();
     LayoutEvaluation out;
     out.luminaires.resize(n);
@@ -230,20 +231,20 @@ class Evaluator {
     const double scale_hi = w_max > 0.0 ? s.flux_max_lm / w_max : 0.0;
     const double scale_lo = w_min > 0.0 ? std::min(scale_hi, s.flux_min_lm / w_min) : 0.0;
     double scale = 0.0;
-    if (job_.objective == Objective::min_power) {
-      for (std::size_t g = 0; g < job_.goals.size(); ++g) {
-        const GoalSetting& goal = job_.goals[g];
+    if (spec_.objective == Objective::min_power) {
+      for (std::size_t g = 0; g < spec_.goals.size(); ++g) {
+        const GoalSpec& goal = spec_.goals[g];
         const GoalArea& area = model_.areas[static_cast<std::size_t>(areas_[g])];
         if (metric_rule(goal.metric).scale_closed_form)
-          scale = std::max(scale, least_flux_scale(goal.metric, area, f, a, initial_target(job_, goal)));
+          scale = std::max(scale, least_flux_scale(goal.metric, area, f, a, goal.target));
       }
     } else {
       double num = 0.0, den = 0.0;
-      for (std::size_t g = 0; g < job_.goals.size(); ++g) {
-        const GoalSetting& goal = job_.goals[g];
+      for (std::size_t g = 0; g < spec_.goals.size(); ++g) {
+        const GoalSpec& goal = spec_.goals[g];
         if (goal.metric != GoalMetric::average) continue;
         const GoalArea& area = model_.areas[static_cast<std::size_t>(areas_[g])];
-        const double target = initial_target(job_, goal);
+        const double target = goal.target;
         const double t2 = target * target, gain = area_average(area, a);
         num += (target - area_average(area, f)) * gain / t2;
         den += gain * gain / t2;
@@ -253,13 +254,13 @@ class Evaluator {
     scale = std::clamp(scale, scale_lo, scale_hi);
 
     out.lux = f + scale * a;
-    out.goals = judge_goals(model_, job_, areas_, out.lux);
+    out.goals = judge_goals(model_, spec_, areas_, out.lux);
     for (std::size_t j = 0; j < n; ++j) {
       out.luminaires[j].flux_lm = scale * w[j];
       out.luminaires[j].power_w = out.luminaires[j].flux_lm / s.efficacy_lm_per_w;
       out.power_w += out.luminaires[j].power_w;
     }
-    const double d_min = job_.constraints.min_distance_m;
+    const double d_min = spec_.layout.min_distance_m;
     if (d_min > 0.0)
       for (std::size_t j = 0; j < n; ++j)
         for (std::size_t k = j + 1; k < n; ++k) {
@@ -269,7 +270,7 @@ class Evaluator {
     double penalty = out.distance_violation, deviation = 0.0;
     out.feasible = out.distance_violation <= kConstraintTolerance;
     for (const GoalJudgement& g : out.goals) {
-      if (job_.objective == Objective::closest_to_target && g.metric == GoalMetric::average) {
+      if (spec_.objective == Objective::closest_to_target && g.metric == GoalMetric::average) {
         deviation += g.violation * g.violation;
         continue;
       }
@@ -277,7 +278,7 @@ class Evaluator {
       out.feasible = out.feasible && g.violation <= kConstraintTolerance;
     }
     const double reference_power_w = std::max(1e-300, static_cast<double>(n) * s.flux_max_lm / s.efficacy_lm_per_w);
-    out.objective = (job_.objective == Objective::min_power ? out.power_w / reference_power_w : deviation) +
+    out.objective = (spec_.objective == Objective::min_power ? out.power_w / reference_power_w : deviation) +
                     kPenaltyWeight * penalty;
     return out;
   }
@@ -285,14 +286,14 @@ class Evaluator {
  private:
   // By value: binding tbb::task_arena::automatic to make_unique's reference would need
   // its address, which the shared TBB library does not give a position-independent binary.
-  static int arena_threads(const JobConfig& job) {
+  static int arena_threads(int threads) {
     const int automatic = tbb::task_arena::automatic;
-    return job.form_factors.threads > 0 ? job.form_factors.threads : automatic;
+    return threads > 0 ? threads : automatic;
   }
   // Rows per parallel block: large enough that a block's work outweighs scheduling it.
   static constexpr Eigen::Index kRowBlock = 512;
   const LightingModel& model_;
-  const JobConfig& job_;
+  const SearchSpec& spec_;
   std::vector<int> areas_;
   // T's candidate columns in single precision: the blend streams them through memory
   // once per evaluation, and float halves the bytes. A lux value is good to about
@@ -341,14 +342,14 @@ constexpr double kBlendOvershootMargin = 1.25;
 // one lumen adds to the goal's average at the best candidate (times the blend's
 // margin). 0 when no average goal is short; infinite when one is short and no
 // candidate lights it.
-double least_total_flux_lm(const LightingModel& model, const JobConfig& job) {
+double least_total_flux_lm(const LightingModel& model, const SearchSpec& spec) {
   double flux_lm = 0.0;
-  for (const GoalSetting& goal : job.goals) {
+  for (const GoalSpec& goal : spec.goals) {
     if (goal.metric != GoalMetric::average) continue;
     const int a = find_goal_area(model, goal.name);
     if (a < 0) continue;
     const GoalArea& area = model.areas[static_cast<std::size_t>(a)];
-    const double deficit = initial_target(job, goal) - area_average(area, model.fixed_lux);
+    const double deficit = goal.target - area_average(area, model.fixed_lux);
     if (!(deficit > 0.0)) continue;
     double best_gain = 0.0;
     for (Eigen::Index c = 0; c < model.candidate_lux_per_lm.cols(); ++c)
@@ -367,19 +368,17 @@ struct CountBound {
   double least_power_w = 0.0;
 };
 
-CountBound count_bound(const LuminaireSearch& s, int n, double least_flux_lm) {
+CountBound count_bound(const SearchLuminaire& s, int n, double least_flux_lm) {
   const double most_flux_lm = n * s.flux_max_lm;
   return {most_flux_lm >= least_flux_lm, std::max(n * s.flux_min_lm, least_flux_lm) / s.efficacy_lm_per_w};
 }
 
-std::vector<int> searched_counts(const JobConfig& job) {
-  const LuminaireSearch& s = *job.search;
+std::vector<int> searched_counts(const LayoutSpec& layout) {
   std::vector<int> counts;
-  if (s.layout == LayoutFamily::array) {
-    counts.push_back(s.array_rows * s.array_columns);
+  if (layout.family == LayoutFamily::array) {
+    counts.push_back(layout.array_rows * layout.array_columns);
   } else {
-    const int most = job.constraints.max_luminaires ? std::min(s.count_max, *job.constraints.max_luminaires) : s.count_max;
-    for (int n = s.count_min; n <= most; ++n) counts.push_back(n);
+    for (int n = layout.count_min; n <= layout.count_max; ++n) counts.push_back(n);
   }
   if (counts.empty()) throw std::invalid_argument("no luminaire count is allowed by luminaires.count and constraints.max_luminaires");
   return counts;
@@ -437,27 +436,27 @@ std::string skip_reason(int n, const std::vector<int>& counts, const CountBound&
 
 }  // namespace
 
-double goal_tolerance(const JobConfig& job, GoalMetric metric) {
-  return job.objective == Objective::closest_to_target && metric == GoalMetric::average ? kTargetTolerance
+double goal_tolerance(Objective objective, GoalMetric metric) {
+  return objective == Objective::closest_to_target && metric == GoalMetric::average ? kTargetTolerance
                                                                                          : kConstraintTolerance;
 }
 
-std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConfig& job, const Eigen::VectorXd& lux) {
-  return judge_goals(model, job, goal_areas(model, job), lux);
+std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchSpec& spec, const Eigen::VectorXd& lux) {
+  return judge_goals(model, spec, goal_areas(model, spec), lux);
 }
 
 namespace {
 
-std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConfig& job, const std::vector<int>& areas,
+std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchSpec& spec, const std::vector<int>& areas,
                                        const Eigen::VectorXd& lux) {
   std::vector<GoalJudgement> out;
-  for (std::size_t g = 0; g < job.goals.size(); ++g) {
-    const GoalSetting& goal = job.goals[g];
+  for (std::size_t g = 0; g < spec.goals.size(); ++g) {
+    const GoalSpec& goal = spec.goals[g];
     const GoalArea& area = model.areas[static_cast<std::size_t>(areas[g])];
-    const double target = initial_target(job, goal);  // values are initial; targets maintained / MF
+    const double target = goal.target;  // initial, as the values are
     GoalJudgement j{goal.name, goal.metric, target, 0.0, 0.0};
     j.value = metric_value(goal.metric, area_statistics(area, lux));
-    j.violation = relative_violation(goal.metric, j.value, target, job.objective == Objective::closest_to_target);
+    j.violation = relative_violation(goal.metric, j.value, target, spec.objective == Objective::closest_to_target);
     out.push_back(j);
   }
   return out;
@@ -469,9 +468,8 @@ struct LayoutEvaluator::Impl {
   Evaluator evaluate;
 };
 
-LayoutEvaluator::LayoutEvaluator(const LightingModel& model, const JobConfig& job) {
-  if (!job.search) throw std::invalid_argument("the job places no luminaires (no luminaires.mounting_surface)");
-  impl_ = std::make_unique<Impl>(Impl{Evaluator(model, job)});
+LayoutEvaluator::LayoutEvaluator(const LightingModel& model, const SearchSpec& spec) {
+  impl_ = std::make_unique<Impl>(Impl{Evaluator(model, spec)});
 }
 
 LayoutEvaluator::~LayoutEvaluator() = default;
@@ -482,17 +480,16 @@ LayoutEvaluation LayoutEvaluator::operator()(const std::vector<Eigen::Vector2d>&
   return impl_->evaluate(xy_m, relative_flux);
 }
 
-LayoutEvaluation evaluate_layout(const LightingModel& model, const JobConfig& job,
+LayoutEvaluation evaluate_layout(const LightingModel& model, const SearchSpec& spec,
                                  const std::vector<Eigen::Vector2d>& xy_m, const std::vector<double>& relative_flux) {
-  return LayoutEvaluator(model, job)(xy_m, relative_flux);
+  return LayoutEvaluator(model, spec)(xy_m, relative_flux);
 }
 
-double least_layout_power_w(const LightingModel& model, const JobConfig& job) {
-  if (!job.search) throw std::invalid_argument("the job places no luminaires (no luminaires.mounting_surface)");
-  const double least_flux_lm = least_total_flux_lm(model, job);
+double least_layout_power_w(const LightingModel& model, const SearchSpec& spec) {
+  const double least_flux_lm = least_total_flux_lm(model, spec);
   double least = kNoPowerToBeat;
-  for (const int n : searched_counts(job)) {
-    const CountBound bound = count_bound(*job.search, n, least_flux_lm);
+  for (const int n : searched_counts(spec.layout)) {
+    const CountBound bound = count_bound(spec.luminaire, n, least_flux_lm);
     if (bound.reaches_averages) least = std::min(least, bound.least_power_w);
   }
   return least;
@@ -509,10 +506,10 @@ struct CountSearch {
 // NLopt's global stage, then its local stage from the best point, over the layouts of
 // n luminaires; every evaluation counts, so the best point is kept even when NLopt
 // stops on an exception or returns a point it did not evaluate last.
-CountSearch search_count(const LightingModel& model, const JobConfig& job, const Evaluator& evaluate, int n,
+CountSearch search_count(const LightingModel& model, const SearchSpec& spec, const Evaluator& evaluate, int n,
                          Clock::time_point deadline, const ProgressCallback& progress) {
-  const OptimizerSettings& opt = job.optimizer;
-  const LayoutCoding coding(model, job, n);
+  const SearchOptions& opt = spec.options;
+  const LayoutCoding coding(model, spec, n);
   const auto start = Clock::now();
   std::vector<Eigen::Vector2d> xy;
   std::vector<double> w;
@@ -581,7 +578,7 @@ CountSearch search_count(const LightingModel& model, const JobConfig& job, const
     out.time_limited = global.time_limited || local.time_limited;
   }
   coding.decode(best_x.data(), xy, w);
-  if (job.search->ceiling_module_m > 0.0)  // the module's cell centres (the grid's nodes)
+  if (spec.layout.ceiling_module_m > 0.0)  // the module's cell centres (the grid's nodes)
     for (Eigen::Vector2d& p : xy) p = model.grid.nearest_candidate_m(p);
   out.found = evaluate(xy, w);
   out.record.evaluations = evaluations;
@@ -594,21 +591,20 @@ CountSearch search_count(const LightingModel& model, const JobConfig& job, const
 
 }  // namespace
 
-SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress,
+SearchResult search_layout(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress,
                            const SearchBounds& bounds) {
-  if (!job.search) throw std::invalid_argument("the job places no luminaires (no luminaires.mounting_surface)");
   const auto start = Clock::now();
   const auto deadline =
-      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(job.optimizer.max_seconds));
-  const std::vector<int> counts = searched_counts(job);
-  const Evaluator evaluate(model, job);
-  const double least_flux_lm = least_total_flux_lm(model, job);
+      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(spec.options.max_seconds));
+  const std::vector<int> counts = searched_counts(spec.layout);
+  const Evaluator evaluate(model, spec);
+  const double least_flux_lm = least_total_flux_lm(model, spec);
   SearchResult result;
   std::optional<LayoutEvaluation> best;
-  for (const int n : search_order(counts, bounds, job.objective)) {
+  for (const int n : search_order(counts, bounds, spec.objective)) {
     const double to_beat = std::min(bounds.power_to_beat_w, best && best->feasible ? best->power_w : kNoPowerToBeat);
-    const std::string skip = job.objective == Objective::min_power
-                                 ? skip_reason(n, counts, count_bound(*job.search, n, least_flux_lm), bounds, to_beat)
+    const std::string skip = spec.objective == Objective::min_power
+                                 ? skip_reason(n, counts, count_bound(spec.luminaire, n, least_flux_lm), bounds, to_beat)
                                  : std::string();
     if (!skip.empty()) {
       CountAttempt skipped;
@@ -617,11 +613,11 @@ SearchResult search_layout(const LightingModel& model, const JobConfig& job, con
       result.attempts.push_back(skipped);
       continue;
     }
-    CountSearch searched = search_count(model, job, evaluate, n, deadline, progress);
+    CountSearch searched = search_count(model, spec, evaluate, n, deadline, progress);
     result.attempts.push_back(searched.record);
     result.evaluations += searched.record.evaluations;
     result.time_limited = result.time_limited || searched.time_limited;
-    if (!best || better(searched.found, *best, job.objective)) best = std::move(searched.found);
+    if (!best || better(searched.found, *best, spec.objective)) best = std::move(searched.found);
   }
   std::ranges::stable_sort(result.attempts, {}, &CountAttempt::luminaires);
   result.beaten = !best;

@@ -17,9 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "job/config.h"
 #include "core/base/progress.h"
+#include "optimizer/goal_spec.h"
 #include "optimizer/lighting_model.h"
+#include "optimizer/search_spec.h"
 
 namespace ilp {
 
@@ -42,7 +43,7 @@ struct GoalJudgement {
 
 struct LayoutEvaluation {
   std::vector<PlacedLuminaire> luminaires;
-  std::vector<GoalJudgement> goals;   // in job.goals order
+  std::vector<GoalJudgement> goals;   // in SearchSpec::goals order
   double distance_violation = 0.0;    // sum over pairs of (min_distance - d) / min_distance where d is less
   double power_w = 0.0;               // of the luminaires placed by the search
   double objective = 0.0;             // what the search minimised, penalty included
@@ -51,10 +52,10 @@ struct LayoutEvaluation {
 };
 
 // Judges goals on illuminance at the goal patches (lux per LightingModel::goal_patches row).
-std::vector<GoalJudgement> judge_goals(const LightingModel& model, const JobConfig& job, const Eigen::VectorXd& lux);
+std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchSpec& spec, const Eigen::VectorXd& lux);
 // Relative violation allowed before a constraint counts as missed (and, for
 // closest_to_target, the deviation of an average goal from its target).
-double goal_tolerance(const JobConfig& job, GoalMetric metric);
+double goal_tolerance(Objective objective, GoalMetric metric);
 
 struct CountAttempt {
   int luminaires = 0;
@@ -91,9 +92,9 @@ struct SearchBounds {
   std::vector<CountAttempt> easier;
 };
 
-// Searches job.search's layout family for job.objective under job.goals and
-// job.constraints. Deterministic for job.optimizer.seed as long as the evaluation
-// budget, not max_seconds, ends each stage.
+// Searches spec.layout's family for spec.objective under spec.goals. Deterministic
+// for spec.options.seed as long as the evaluation budget, not max_seconds, ends each
+// stage.
 //
 // min_power: a count is not searched when it cannot draw less than
 // bounds.power_to_beat_w (e.g. a layout of another product already found) nor less
@@ -106,19 +107,19 @@ struct SearchBounds {
 // when no power to beat is given), or found to draw no less than a layout already
 // found. Counts bounds.easier found feasible are searched first, least power first,
 // then the rest from the fewest luminaires up; result.attempts are in count order.
-SearchResult search_layout(const LightingModel& model, const JobConfig& job, const ProgressCallback& progress = {},
+SearchResult search_layout(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress = {},
                            const SearchBounds& bounds = {});
 
 // The least electric power (W) any searched count can draw while reaching every
 // average target: the bound above, over the counts. kNoPowerToBeat when none reaches.
-double least_layout_power_w(const LightingModel& model, const JobConfig& job);
+double least_layout_power_w(const LightingModel& model, const SearchSpec& spec);
 
 // Evaluates layouts as the search does, reusing its set-up (goal areas, a thread
 // arena, scratch space) across calls: for measuring and for many evaluations of one
 // model. One call at a time: its scratch space is shared by the calls.
 class LayoutEvaluator {
  public:
-  LayoutEvaluator(const LightingModel& model, const JobConfig& job);
+  LayoutEvaluator(const LightingModel& model, const SearchSpec& spec);
   ~LayoutEvaluator();
   LayoutEvaluator(const LayoutEvaluator&) = delete;
   LayoutEvaluator& operator=(const LayoutEvaluator&) = delete;
@@ -133,7 +134,7 @@ class LayoutEvaluator {
 // The layout at given positions and relative fluxes (the scale as the search sets it):
 // for tests and for re-evaluating a saved layout. xy and relative_flux have one entry
 // per luminaire; relative fluxes in (0, 1].
-LayoutEvaluation evaluate_layout(const LightingModel& model, const JobConfig& job,
+LayoutEvaluation evaluate_layout(const LightingModel& model, const SearchSpec& spec,
                                  const std::vector<Eigen::Vector2d>& xy_m, const std::vector<double>& relative_flux);
 
 }  // namespace ilp

@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include "core/base/error.h"
-#include "job/operator_setup.h"
 
 namespace ilp {
 
@@ -20,14 +19,14 @@ int find_goal_area(const LightingModel& model, const std::string& name) {
 
 namespace {
 
-CandidateGrid make_grid(const Scene& scene, const LuminaireSearch& search) {
+CandidateGrid make_grid(const Scene& scene, const CandidateSpec& search) {
   const int surface = scene.find_surface(search.mounting_surface);
   if (surface < 0)
     throw ConfigError(located(search.mounting_loc, "luminaires.mounting_surface: unknown surface '" +
                                                        search.mounting_surface + "'"));
   try {
     return CandidateGrid(scene, surface,
-                         {.spacing_m = search.candidate_spacing_m,
+                         {.spacing_m = search.spacing_m,
                           .half_footprint_m = search.type.half_footprint_m(search.rotation_deg),
                           .wall_distance_m = search.wall_distance_m,
                           .module_m = search.ceiling_module_m,
@@ -45,79 +44,118 @@ CandidateGrid make_grid(const Scene& scene, const LuminaireSearch& search) {
 
 }  // namespace
 
-LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& job, const RayCaster* caster) {
-  if (!job.search) throw std::invalid_argument("the job has no luminaires.mounting_surface to place luminaires on");
-  if (job.goals.empty()) throw std::invalid_argument("the job has no goals");
-  const LuminaireSearch& search = *job.search;
-  LightingModel model;
-  model.scene = job_scene;
-  model.grid = make_grid(job_scene, search);
+namespace {
 
-  // Fixed sources first, in the job scene's order; then one candidate per grid position.
+// The fixed sources' flux that counts as placed luminaires (emitting surfaces do not),
+// then one virtual candidate per grid position, after the job scene's sources.
+void add_candidates(LightingModel& model, const Scene& job_scene, const CandidateSpec& spec) {
   const std::vector<LightSource> fixed = scene_light_sources(job_scene);
   const Eigen::VectorXd fixed_flux = source_flux_lm(job_scene, fixed);
   for (std::size_t l = 0; l < fixed.size(); ++l)
     if (job_scene.surfaces[static_cast<std::size_t>(fixed[l].surface)].is_luminaire())
       model.fixed_flux_lm += fixed_flux[static_cast<Eigen::Index>(l)];
   for (std::size_t c = 0; c < model.grid.size(); ++c) {
-    const int surface = add_luminaire(model.scene, std::string("candidate ").append(std::to_string(c + 1)), search.type,
-                                      {model.grid.positions_m()[c], search.rotation_deg}, 0.0);
+    const int surface = add_luminaire(model.scene, std::string("candidate ").append(std::to_string(c + 1)), spec.type,
+                                      {model.grid.positions_m()[c], spec.rotation_deg}, 0.0);
     model.scene.surfaces[static_cast<std::size_t>(surface)].is_virtual = true;
   }
+}
 
-  // Goal areas by name (a name with several metrics is one area).
-  std::vector<int> grid_of_setting(job.grids.size(), -1);
-  for (const GoalSetting& goal : job.goals) {
-    if (find_goal_area(model, goal.name) >= 0) continue;
-    GoalArea area;
-    area.name = goal.name;
-    area.surfaces = goal.surfaces;
-    if (!goal.grid.empty()) {
-      const int setting = find_grid(job, goal.grid);
-      if (setting < 0) throw std::invalid_argument("goal '" + goal.name + "': no grid '" + goal.grid + "'");
-      area.grid = setting;  // a setting index for now, a model grid index below
-    }
-    model.areas.push_back(area);
+// Every grid of the spec, in its order, with a log line each.
+void lay_grids(LightingModel& model, const Scene& job_scene, const ModelSpec& spec, const RayCaster* caster) {
+  if (spec.grids.empty()) return;
+  std::unique_ptr<RayCaster> own;
+  if (!caster) {
+    own = std::make_unique<RayCaster>(job_scene, spec.threads);
+    caster = own.get();
   }
-  // Every grid of the job, in its order, their points after the goal patches: the grids
-  // goals name and the others (reported and drawn, not judged).
-  if (!job.grids.empty()) {
-    std::unique_ptr<RayCaster> own;
-    if (!caster) {
-      own = std::make_unique<RayCaster>(job_scene, job.form_factors.threads);
-      caster = own.get();
-    }
-    for (std::size_t g = 0; g < job.grids.size(); ++g) {
-      grid_of_setting[g] = static_cast<int>(model.grids.size());
-      model.grids.push_back(make_calc_grid(job_scene, *caster, job.grids[g]));
-      const CalcGrid& grid = model.grids.back();
-      std::ostringstream line;
-      line << std::fixed << std::setprecision(3) << "grid '" << grid.name << "': " << grid.points.size() << " points ("
-           << grid.cells_u << " x " << grid.cells_v << " cells of " << grid.cell_u_m << " x " << grid.cell_v_m
-           << " m, spacing " << grid.spacing_m << " m" << (job.grids[g].spacing_m ? "" : " from EN 12464-1") << "), "
-           << grid.inside_solid << " inside solid objects dropped, " << grid.outside_outline
-           << " outside the outline less its band";
-      model.log.push_back(line.str());
-    }
+  for (const CalcGridSetting& setting : spec.grids) {
+    model.grids.push_back(make_calc_grid(job_scene, *caster, setting));
+    const CalcGrid& grid = model.grids.back();
+    std::ostringstream line;
+    line << std::fixed << std::setprecision(3) << "grid '" << grid.name << "': " << grid.points.size() << " points ("
+         << grid.cells_u << " x " << grid.cells_v << " cells of " << grid.cell_u_m << " x " << grid.cell_v_m
+         << " m, spacing " << grid.spacing_m << " m" << (setting.spacing_m ? "" : " from EN 12464-1") << "), "
+         << grid.inside_solid << " inside solid objects dropped, " << grid.outside_outline
+         << " outside the outline less its band";
+    model.log.push_back(line.str());
   }
-  std::vector<std::vector<int>> area_patches;
-  for (const GoalArea& area : model.areas) {
-    if (area.grid >= 0) {
-      area_patches.emplace_back();
-      continue;
-    }
-    area_patches.push_back(job_scene.patches_of(area.surfaces));
-    const GoalFacing facing = std::find_if(job.goals.begin(), job.goals.end(), [&](const GoalSetting& g) {
-                                return g.name == area.name;
-                              })->facing;
-    if (facing != GoalFacing::any) {
-      constexpr double kVerticalCos = 0.9;  // within about 25 degrees of straight up or down
-      std::erase_if(area_patches.back(), [&](int p) {
-        const double z = job_scene.patches[static_cast<std::size_t>(p)].normal.z();
-        return facing == GoalFacing::up ? z < kVerticalCos : z > -kVerticalCos;
-      });
-    }
-    model.goal_patches.insert(model.goal_patches.end(), area_patches.back().begin(), area_patches.back().end());
+}
+
+// The patches of an area's surfaces that face as asked (none for a grid area).
+std::vector<int> area_patches(const Scene& job_scene, const GoalAreaSpec& area) {
+  if (area.grid >= 0) return {};
+  std::vector<int> patches = job_scene.patches_of(area.surfaces);
+  if (area.facing != GoalFacing::any) {
+    constexpr double kVerticalCos = 0.9;  // within about 25 degrees of straight up or down
+    std::erase_if(patches, [&](int p) {
+      const double z = job_scene.patches[static_cast<std::size_t>(p)].normal.z();
+      return area.facing == GoalFacing::up ? z < kVerticalCos : z > -kVerticalCos;
+    });
+  }
+  return patches;
+}
+
+// A grid area's rows (its points, equal weights) or a surface area's (its patches'
+// rows, weighted by area).
+GoalArea make_area(const LightingModel& model, const Scene& job_scene, const GoalAreaSpec& spec,
+                   const std::vector<int>& patches) {
+  GoalArea area;
+  area.name = spec.name;
+  area.surfaces = spec.surfaces;
+  area.grid = spec.grid;
+  if (area.grid >= 0) {
+    const CalcGrid& grid = model.grids[static_cast<std::size_t>(area.grid)];
+    const Eigen::Index first = model.grid_first_row[static_cast<std::size_t>(area.grid)];
+    for (std::size_t q = 0; q < grid.points.size(); ++q) area.rows.push_back(first + static_cast<Eigen::Index>(q));
+    area.area_weights = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(grid.points.size()),
+                                                  1.0 / static_cast<double>(grid.points.size()));
+    area.area_m2 = grid.area_m2;
+    return area;
+  }
+  area.area_weights.resize(static_cast<Eigen::Index>(patches.size()));
+  for (int p : patches) {
+    const auto row = std::lower_bound(model.goal_patches.begin(), model.goal_patches.end(), p) - model.goal_patches.begin();
+    area.area_weights[static_cast<Eigen::Index>(area.rows.size())] = job_scene.patches[static_cast<std::size_t>(p)].area_m2;
+    area.rows.push_back(row);
+    area.area_m2 += job_scene.patches[static_cast<std::size_t>(p)].area_m2;
+  }
+  if (!(area.area_m2 > 0.0))
+    throw std::invalid_argument("goal '" + area.name + "' has no area (no patch of its surfaces faces as asked)");
+  area.area_weights /= area.area_m2;
+  return area;
+}
+
+void log_candidates(LightingModel& model, const CandidateSpec& spec) {
+  std::ostringstream grid;
+  grid << std::fixed << std::setprecision(3) << "candidates: " << model.grid.size() << " positions on '"
+       << spec.mounting_surface << "' (" << model.grid.nodes_x() << " x " << model.grid.nodes_y() << " grid, "
+       << model.grid.spacing_m().x() << " x " << model.grid.spacing_m().y() << " m apart, centres in x ["
+       << model.grid.lower_m().x() << ", " << model.grid.upper_m().x() << "] y [" << model.grid.lower_m().y() << ", "
+       << model.grid.upper_m().y() << "] m, faces at z = " << model.grid.positions_m().front().z() << " m)";
+  model.log.push_back(grid.str());
+  if (model.grid.ignored_patches() > 0)
+    model.log.push_back("candidates: " + std::to_string(model.grid.ignored_patches()) + " patches of '" +
+                        spec.mounting_surface + "' do not face down and hold no luminaire");
+}
+
+}  // namespace
+
+LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& spec, const RayCaster* caster) {
+  if (spec.areas.empty()) throw std::invalid_argument("the job has no goals");
+  for (const GoalAreaSpec& area : spec.areas)
+    if (area.grid >= static_cast<int>(spec.grids.size()))
+      throw std::invalid_argument("goal '" + area.name + "': no such grid");
+  LightingModel model;
+  model.scene = job_scene;
+  model.grid = make_grid(job_scene, spec.candidates);
+  add_candidates(model, job_scene, spec.candidates);
+  // Goal rows: the areas' patches (ascending, each once), then every grid's points.
+  lay_grids(model, job_scene, spec, caster);
+  std::vector<std::vector<int>> patches;
+  for (const GoalAreaSpec& area : spec.areas) {
+    patches.push_back(area_patches(job_scene, area));
+    model.goal_patches.insert(model.goal_patches.end(), patches.back().begin(), patches.back().end());
   }
   std::sort(model.goal_patches.begin(), model.goal_patches.end());
   model.goal_patches.erase(std::unique(model.goal_patches.begin(), model.goal_patches.end()), model.goal_patches.end());
@@ -125,56 +163,25 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& j
     model.grid_first_row.push_back(static_cast<Eigen::Index>(model.goal_patches.size() + model.goal_points.size()));
     model.goal_points.insert(model.goal_points.end(), grid.points.begin(), grid.points.end());
   }
-  for (std::size_t a = 0; a < model.areas.size(); ++a) {
-    GoalArea& area = model.areas[a];
-    if (area.grid >= 0) {
-      area.grid = grid_of_setting[static_cast<std::size_t>(area.grid)];
-      const CalcGrid& grid = model.grids[static_cast<std::size_t>(area.grid)];
-      const Eigen::Index first = model.grid_first_row[static_cast<std::size_t>(area.grid)];
-      for (std::size_t q = 0; q < grid.points.size(); ++q) area.rows.push_back(first + static_cast<Eigen::Index>(q));
-      area.area_weights = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(grid.points.size()),
-                                                    1.0 / static_cast<double>(grid.points.size()));
-      area.area_m2 = grid.area_m2;
-      continue;
-    }
-    area.area_weights.resize(static_cast<Eigen::Index>(area_patches[a].size()));
-    for (int p : area_patches[a]) {
-      const auto row = std::lower_bound(model.goal_patches.begin(), model.goal_patches.end(), p) - model.goal_patches.begin();
-      area.area_weights[static_cast<Eigen::Index>(area.rows.size())] = job_scene.patches[static_cast<std::size_t>(p)].area_m2;
-      area.rows.push_back(row);
-      area.area_m2 += job_scene.patches[static_cast<std::size_t>(p)].area_m2;
-    }
-    if (!(area.area_m2 > 0.0))
-      throw std::invalid_argument("goal '" + area.name + "' has no area (no patch of its surfaces faces as asked)");
-    area.area_weights /= area.area_m2;
-  }
-  std::ostringstream grid;
-  grid << std::fixed << std::setprecision(3) << "candidates: " << model.grid.size() << " positions on '"
-       << search.mounting_surface << "' (" << model.grid.nodes_x() << " x " << model.grid.nodes_y() << " grid, "
-       << model.grid.spacing_m().x() << " x " << model.grid.spacing_m().y() << " m apart, centres in x ["
-       << model.grid.lower_m().x() << ", " << model.grid.upper_m().x() << "] y [" << model.grid.lower_m().y() << ", "
-       << model.grid.upper_m().y() << "] m, faces at z = " << model.grid.positions_m().front().z() << " m)";
-  model.log.push_back(grid.str());
-  if (model.grid.ignored_patches() > 0)
-    model.log.push_back("candidates: " + std::to_string(model.grid.ignored_patches()) + " patches of '" +
-                        search.mounting_surface + "' do not face down and hold no luminaire");
+  for (std::size_t a = 0; a < spec.areas.size(); ++a) model.areas.push_back(make_area(model, job_scene, spec.areas[a], patches[a]));
+  log_candidates(model, spec.candidates);
   return model;
 }
 
 void compute_lighting_operator(LightingModel& model, const Scene& job_scene, const RayCaster& caster,
-                               const JobConfig& job, const ProgressCallback& progress) {
+                               const ModelSpec& spec, const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<LightSource> fixed = scene_light_sources(job_scene);
   const Eigen::VectorXd fixed_flux = source_flux_lm(job_scene, fixed);
   const std::vector<LightSource> sources = scene_light_sources(model.scene);
-  SampleOperatorOptions options = sample_operator_options(job);
+  SampleOperatorOptions options = spec.operator_options;
   const GoalRows goal_rows =
       compute_goal_rows(model.scene, caster, model.goal_patches, model.goal_points, sources, options, progress);
   // A sample size chosen for a target error is judged on every candidate at the same flux.
   Eigen::VectorXd probe_flux = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sources.size()));
   probe_flux.head(fixed_flux.size()) = fixed_flux;
-  probe_flux.tail(static_cast<Eigen::Index>(model.grid.size())).setConstant(job.search->flux_max_lm);
-  const SampleSizeChoice choice = choose_sample_size(job, model.scene, caster, goal_rows, probe_flux, options, progress);
+  probe_flux.tail(static_cast<Eigen::Index>(model.grid.size())).setConstant(spec.probe_flux_lm);
+  const SampleSizeChoice choice = choose_sample_size(spec.sample_size, model.scene, caster, goal_rows, probe_flux, options, progress);
   if (!choice.log.empty()) model.log.push_back(choice.log);
   options.sample_size = choice.sample_size;
   const SampleOperator op = build_sample_operator(model.scene, caster, goal_rows, options, progress);
@@ -189,13 +196,6 @@ void compute_lighting_operator(LightingModel& model, const Scene& job_scene, con
 
   model.log.insert(model.log.end(), op.log.begin(), op.log.end());
   model.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-LightingModel build_lighting_model(const Scene& job_scene, const RayCaster& caster, const JobConfig& job,
-                                   const ProgressCallback& progress) {
-  LightingModel model = lighting_model_geometry(job_scene, job);
-  compute_lighting_operator(model, job_scene, caster, job, progress);
-  return model;
 }
 
 }  // namespace ilp

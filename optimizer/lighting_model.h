@@ -13,14 +13,50 @@
 #include <vector>
 
 #include "core/grid/calc_grid.h"
-#include "job/config.h"
+#include "core/base/error.h"
+#include "core/light/luminaire.h"
+#include "core/operator/sample_size.h"
 #include "core/base/progress.h"
 #include "core/rays/ray_caster.h"
 #include "core/operator/sample_operator.h"
 #include "core/scene/scene.h"
 #include "optimizer/candidate_grid.h"
+#include "optimizer/goal_spec.h"
 
 namespace ilp {
+
+// Where the candidates go: one luminaire type at one rotation on a mounting surface.
+// The locations point a refusal (a surface that holds no luminaire) at the job's key.
+struct CandidateSpec {
+  std::string mounting_surface;
+  LuminaireType type = LuminaireType::square_lambertian(0.6);
+  double rotation_deg = 0.0;
+  double spacing_m = 0.5;          // at most this between candidates
+  double wall_distance_m = 0.0;    // an outline keeps at least this from the surface's edges
+  double ceiling_module_m = 0.0;   // > 0: centres at a ceiling module's cell centres
+  double mount_offset_m = 0.02;    // the emitting face this far below the surface
+  FileLoc mounting_loc, spacing_loc, offset_loc;
+};
+
+// One named goal area to lay: the patches of some surfaces (those facing as asked), or
+// the points of one calculation grid.
+struct GoalAreaSpec {
+  std::string name;
+  std::vector<std::string> surfaces;
+  GoalFacing facing = GoalFacing::any;
+  int grid = -1;  // into ModelSpec::grids, or -1 for surfaces
+};
+
+// Everything the lighting model is built from, besides the job's scene.
+struct ModelSpec {
+  CandidateSpec candidates;
+  std::vector<GoalAreaSpec> areas;      // in the job's goal order, each name once
+  std::vector<CalcGridSetting> grids;   // every grid of the job (named by goals or only reported)
+  SampleOperatorOptions operator_options;  // sample_size chosen by sample_size
+  SampleSizeRule sample_size;
+  double probe_flux_lm = 0.0;           // each candidate's flux when a target error chooses k (the range's top)
+  int threads = 0;                      // for the grids' inside-solid test; 0: every core
+};
 
 // The rows one named goal is measured over: the patches of its surfaces (weighted by
 // area), or the points of its calculation grid (equal weights: each stands for one cell).
@@ -60,18 +96,14 @@ int find_goal_area(const LightingModel& model, const std::string& name);
 // The cheap part of the model: the candidate grid, the scene with the candidates,
 // the goal patches, the grids' points and the areas, fixed_flux_lm. Throws ConfigError
 // pointing at the config for a mounting surface that cannot hold luminaires or a grid
-// that cannot be laid (core/calc_grid.h). `caster` (the job scene's) finds grid points
-// inside solids; without it a temporary one is built when the job has grids.
-LightingModel lighting_model_geometry(const Scene& job_scene, const JobConfig& job, const RayCaster* caster = nullptr);
+// that cannot be laid (core/grid/calc_grid.h). `caster` (the job scene's) finds grid points
+// inside solids; without it a temporary one is built when the spec has grids.
+LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& spec, const RayCaster* caster = nullptr);
 
 // The expensive part, on a model from lighting_model_geometry: builds the operator
 // and fills fixed_lux, the candidate columns, sample_size, stats, build_seconds and
 // the log. `caster` is the job scene's (the candidates are not in it).
 void compute_lighting_operator(LightingModel& model, const Scene& job_scene, const RayCaster& caster,
-                               const JobConfig& job, const ProgressCallback& progress = {});
-
-// Both, in order: the model for job.search and job.goals on the job's scene.
-LightingModel build_lighting_model(const Scene& scene, const RayCaster& caster, const JobConfig& job,
-                                   const ProgressCallback& progress = {});
+                               const ModelSpec& spec, const ProgressCallback& progress = {});
 
 }  // namespace ilp

@@ -1,0 +1,148 @@
+#include "job/plan.h"
+
+#include <sstream>
+
+#include "job/products.h"
+
+namespace ilp {
+namespace {
+
+// The plain panel of luminaires.size_m at the flux_lm range and efficacy keys, as a
+// product whose luminaires each take their own flux.
+ProductVariant plain_panel(const JobConfig& job) {
+  const LuminaireSearch& s = *job.search;
+  ProductVariant p;
+  p.product = "square Lambertian panel " + (std::ostringstream() << job.luminaire_size_m).str() + " m";
+  p.source = "square_lambertian";
+  p.type = LuminaireType::square_lambertian(job.luminaire_size_m);
+  p.rated_flux_lm = s.flux_max_lm;
+  p.power_w = s.flux_max_lm / s.efficacy_lm_per_w;
+  p.dim_min = s.flux_max_lm > 0.0 ? s.flux_min_lm / s.flux_max_lm : 0.0;
+  p.dim_max = 1.0;
+  return p;
+}
+
+CandidateSpec candidate_spec(const LuminaireSearch& s, const ProductVariant& product) {
+  CandidateSpec c;
+  c.mounting_surface = s.mounting_surface;
+  c.type = product.type;
+  c.rotation_deg = product.rotation_deg;
+  c.spacing_m = s.candidate_spacing_m;
+  c.wall_distance_m = s.wall_distance_m;
+  c.ceiling_module_m = s.ceiling_module_m;
+  c.mount_offset_m = product.mount_offset_m.value_or(s.mount_offset_m);
+  c.mounting_loc = s.mounting_loc;
+  c.spacing_loc = s.spacing_loc;
+  c.offset_loc = product.mount_offset_m ? product.mount_offset_loc : s.offset_loc;
+  return c;
+}
+
+// One area per goal name, in the goals' order, with the first goal's facing.
+std::vector<GoalAreaSpec> area_specs(const JobConfig& job) {
+  std::vector<GoalAreaSpec> out;
+  for (const GoalSetting& goal : job.goals) {
+    bool seen = false;
+    for (const GoalAreaSpec& a : out) seen = seen || a.name == goal.name;
+    if (seen) continue;
+    GoalAreaSpec area{goal.name, goal.surfaces, goal.facing, -1};
+    if (!goal.grid.empty()) {
+      area.grid = find_grid(job, goal.grid);
+      if (area.grid < 0) throw std::invalid_argument("goal '" + goal.name + "': no grid '" + goal.grid + "'");
+    }
+    out.push_back(area);
+  }
+  return out;
+}
+
+ModelSpec model_spec(const JobConfig& job, const ProductVariant& product, const RunOptions& run) {
+  ModelSpec m;
+  m.candidates = candidate_spec(*job.search, product);
+  m.areas = area_specs(job);
+  m.grids = job.grids;
+  m.operator_options = operator_options(job, run);
+  m.sample_size = job.sample.rule();
+  m.probe_flux_lm = product.dim_max * product.rated_flux_lm;
+  m.threads = worker_threads(job, run);
+  return m;
+}
+
+SearchSpec search_spec(const JobConfig& job, const VariantPlan& plan, const RunOptions& run) {
+  const LuminaireSearch& s = *job.search;
+  const ProductVariant& p = plan.product;
+  SearchSpec spec;
+  if (plan.listed)  // one output for all, within the product's dimming range
+    spec.luminaire = {p.type, p.rotation_deg, p.product, true, p.dim_min * p.rated_flux_lm, p.dim_max * p.rated_flux_lm,
+                      p.rated_flux_lm / p.power_w};
+  else  // the plain panel: each its own flux in the flux_lm range
+    spec.luminaire = {p.type, p.rotation_deg, std::string(), false, s.flux_min_lm, s.flux_max_lm, s.efficacy_lm_per_w};
+  LayoutSpec& layout = spec.layout;
+  layout.family = s.layout;
+  layout.count_min = s.count_min;
+  layout.count_max = job.constraints.max_luminaires ? std::min(s.count_max, *job.constraints.max_luminaires) : s.count_max;
+  layout.array_rows = s.array_rows;
+  layout.array_columns = s.array_columns;
+  layout.array_spacing_m = s.array_spacing_m;
+  layout.array_offset_m = s.array_offset_m;
+  layout.ceiling_module_m = s.ceiling_module_m;
+  layout.min_distance_m = job.constraints.min_distance_m;
+  layout.mounting_surface = s.mounting_surface;
+  layout.loc = s.layout_loc;
+  spec.goals = goal_specs(job, plan.maintenance_factor);
+  spec.objective = job.objective;
+  spec.options = job.optimizer;
+  spec.options.threads = worker_threads(job, run);
+  return spec;
+}
+
+}  // namespace
+
+int worker_threads(const JobConfig& job, const RunOptions& run) { return run.threads.value_or(job.form_factors.threads); }
+
+SampleOperatorOptions operator_options(const JobConfig& job, const RunOptions& run) {
+  SampleOperatorOptions options;
+  options.strategy = job.sample.strategy;
+  options.sample_seed = job.sample.seed;
+  options.indirect = job.sample.indirect;
+  options.form_factors = job.form_factors;
+  options.direct_light = job.direct_light;
+  options.form_factors.threads = options.direct_light.threads = worker_threads(job, run);
+  return options;
+}
+
+ExactSolveOptions exact_options(const JobConfig& job, const RunOptions& run) {
+  ExactSolveOptions options;
+  options.form_factors = job.form_factors;
+  options.direct_light = job.direct_light;
+  options.radiosity = job.radiosity;
+  options.form_factors.threads = options.direct_light.threads = worker_threads(job, run);
+  return options;
+}
+
+std::vector<GoalSpec> goal_specs(const JobConfig& job, double maintenance_factor) {
+  std::vector<GoalSpec> out;
+  for (const GoalSetting& g : job.goals)
+    out.push_back({g.name, g.metric, metric_rule(g.metric).lux ? g.target / maintenance_factor : g.target});
+  return out;
+}
+
+std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
+  if (!job.search)
+    throw ConfigError(job.path + ": luminaires.mounting_surface is missing: an inverse job says where luminaires may "
+                                 "go (see docs/user-guide.md)");
+  if (job.goals.empty()) throw ConfigError(job.path + ": goals are missing: an inverse job says what surfaces must receive");
+  const bool listed = !job.search->products.empty();
+  const std::vector<ProductVariant> products = listed ? product_variants(*job.search) : std::vector{plain_panel(job)};
+  std::vector<VariantPlan> out;
+  for (const ProductVariant& product : products) {
+    VariantPlan plan;
+    plan.product = product;
+    plan.listed = listed;
+    plan.maintenance_factor = product.maintenance_factor.value_or(job.maintenance_factor);
+    plan.model = model_spec(job, product, run);
+    plan.search = search_spec(job, plan, run);
+    out.push_back(std::move(plan));
+  }
+  return out;
+}
+
+}  // namespace ilp
