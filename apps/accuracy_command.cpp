@@ -122,9 +122,9 @@ void write_plot(const std::string& path, const std::map<std::string, std::vector
 }
 
 // Every grid of the job laid on the scene, its points to measure.
-std::vector<AccuracyGrid> lay_grids(const Scene& scene, const JobConfig& job) {
+std::vector<AccuracyGrid> lay_grids(const Scene& scene, const JobConfig& job, int threads) {
   if (job.grids.empty()) return {};
-  const RayCaster caster(scene, job.form_factors.threads);
+  const RayCaster caster(scene, threads);
   std::vector<AccuracyGrid> out;
   for (const CalcGridSetting& setting : job.grids) {
     CalcGrid grid = make_calc_grid(scene, caster, setting);
@@ -153,7 +153,7 @@ void print_grid_errors(const std::map<std::string, std::vector<Point>>& summary,
 
 int run_accuracy(const AccuracyArgs& args) {
   JobConfig job = load_job_config(args.config);
-  if (args.threads >= 0) job.form_factors.threads = job.direct_light.threads = args.threads;
+  const RunOptions run = run_options(args.threads, "");
   const JobScene loaded = load_job_scene(job);
   const Scene& scene = loaded.scene;
   for (const std::string& line : loaded.log) std::cerr << line << "\n";
@@ -182,8 +182,9 @@ int run_accuracy(const AccuracyArgs& args) {
   options.reference_rays = args.reference_rays;
   options.error_samples = args.error_samples;
   options.pilot_fraction = args.pilot_fraction;
-  options.base.form_factors = job.form_factors;
-  options.base.direct_light = job.direct_light;
+  const SampleOperatorOptions solver = operator_options(job, run);
+  options.base.form_factors = solver.form_factors;
+  options.base.direct_light = solver.direct_light;
   options.base.sample_seed = job.sample.seed;
   const std::vector<std::string>& goal_surfaces = args.goals.empty() ? job.report_surfaces : args.goals;
   if (goal_surfaces.empty() && job.grids.empty())
@@ -194,7 +195,7 @@ int run_accuracy(const AccuracyArgs& args) {
   } catch (const std::invalid_argument& e) {
     throw ConfigError(args.config + ": goal " + e.what());
   }
-  const std::vector<AccuracyGrid> grids = lay_grids(scene, job);
+  const std::vector<AccuracyGrid> grids = lay_grids(scene, job, worker_threads(job, run));
 
   OutputSet set(args.out_dir, {"accuracy.csv", "accuracy.svg"});  // one set: the folder never mixes two studies
   const AccuracyStudy study = run_accuracy_study(scene, goals, grids, options, make_progress(args.quiet));

@@ -16,7 +16,6 @@
 #include "job/config.h"
 #include "core/operator/cost_model.h"
 #include "core/exact/exact_solver.h"
-#include "job/operator_setup.h"
 #include "job/job_runner.h"
 
 namespace ilp::cli {
@@ -52,8 +51,7 @@ void random_layout(const LightingModel& model, int count, std::mt19937_64& rng, 
 int run_bench(const BenchArgs& args) {
   const auto start = Clock::now();
   JobConfig job = load_job_config(args.config);
-  if (!args.max_memory.empty()) job.max_memory_bytes = parse_bytes(args.max_memory);
-  if (args.threads >= 0) job.form_factors.threads = job.direct_light.threads = args.threads;
+  const RunOptions run = run_options(args.threads, args.max_memory);
   if (args.patch_edge_m > 0.0) job.scene.max_patch_edge_m = args.patch_edge_m;
   if (args.sample_fraction > 0.0) {
     job.sample.size.reset();
@@ -64,11 +62,12 @@ int run_bench(const BenchArgs& args) {
   job.search->layout = LayoutFamily::free;
   job.search->count_min = job.search->count_max = args.luminaires;
   job.constraints.max_luminaires.reset();
-  job = job_variants(job).front().job;  // products: the first product at its first rotation
+  const VariantPlan plan = plan_job(job, run).front();  // products: the first product at its first rotation
   const ProgressCallback progress = make_progress(args.quiet);
 
   // Build (no cache: the build is what is measured).
-  const PreparedJob prepared = prepare_job(job, progress, "", [](const std::string& line) { std::cerr << line << "\n"; });
+  const PreparedJob prepared =
+      prepare_job(job, plan, run, progress, "", [](const std::string& line) { std::cerr << line << "\n"; });
   const LightingModel& model = prepared.model;
   const SampleOperatorStats& st = model.stats;
   const double build_memory_gb = peak_memory_gb();
@@ -78,7 +77,7 @@ int run_bench(const BenchArgs& args) {
   std::vector<Eigen::Vector2d> xy;
   std::vector<double> w;
   std::vector<double> rates;
-  const LayoutEvaluator evaluate(model, job);
+  const LayoutEvaluator evaluate(model, plan.search);
   volatile double sink = 0.0;  // keeps the evaluations from being optimised away
   for (int batch = 0; batch < 7; ++batch) {
     const auto t0 = Clock::now();
@@ -93,7 +92,7 @@ int run_bench(const BenchArgs& args) {
   const double evaluations_per_second = median(rates);
 
   // The search as configured, without verification.
-  const SearchResult search = search_layout(model, job, progress);
+  const SearchResult search = search_layout(model, plan.search, progress);
 
   // What one configuration costs without the operator: the luminaires of a layout
   // placed in the scene and the whole radiosity system solved (every form-factor row,
@@ -102,11 +101,11 @@ int run_bench(const BenchArgs& args) {
   std::size_t full_patches = 0;
   if (!args.skip_full_solve) {
     random_layout(model, args.luminaires, rng, xy, w);
-    const LayoutEvaluation layout = evaluate_layout(model, job, xy, w);
+    const LayoutEvaluation layout = evaluate_layout(model, plan.search, xy, w);
     Scene scene = prepared.loaded.scene;
-    add_layout(scene, *job.search, layout.luminaires);
+    add_layout(scene, plan.search.luminaire, layout.luminaires);
     const auto t0 = Clock::now();
-    const ExactSolution exact = solve_exact(scene, exact_solve_options(job), progress);
+    const ExactSolution exact = solve_exact(scene, exact_options(job, run), progress);
     full_solve_seconds = seconds_since(t0);
     full_rays_per_second = exact.summary.rays_per_second;
     full_patches = exact.summary.patches;
@@ -119,7 +118,7 @@ int run_bench(const BenchArgs& args) {
   table << "patches " << prepared.loaded.scene.patches.size() << ", goal patches " << model.goal_patches.size()
         << ", goal points " << model.goal_points.size() << ", candidates " << model.grid.size() << ", k = " << model.sample_size << " of " << st.population
         << ", channels " << st.channels << ", rays per row " << job.form_factors.rays_per_patch << ", threads "
-        << (job.form_factors.threads == 0 ? std::string("all") : std::to_string(job.form_factors.threads)) << "\n";
+        << (worker_threads(job, run) == 0 ? std::string("all") : std::to_string(worker_threads(job, run))) << "\n";
   table << "| phase | s |\n|---|---|\n";
   table << "| scene (load, mesh) | " << prepared.scene_seconds << " |\n";
   table << "| BVH | " << prepared.bvh_seconds << " |\n";

@@ -1,5 +1,7 @@
 #include "apps/cli_support.h"
 
+#include "core/operator/cost_model.h"
+
 #include <sys/resource.h>
 
 #include <chrono>
@@ -68,6 +70,13 @@ double peak_memory_gb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<double>(usage.ru_maxrss) / (1024.0 * 1024.0);  // Linux reports KB
+}
+
+RunOptions run_options(int threads, const std::string& max_memory) {
+  RunOptions run;
+  if (threads >= 0) run.threads = threads;
+  if (!max_memory.empty()) run.max_memory_bytes = parse_bytes(max_memory);
+  return run;
 }
 
 }  // namespace ilp::cli

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "job/config.h"
+#include "job/plan.h"
 #include "core/base/progress.h"
 
 namespace ilp::cli {
@@ -18,6 +19,9 @@ std::string csv_field(const std::string& text);
 // The folder a job's files go to: `override_dir` if given, else output.directory, else
 // results/<config stem>.
 std::string output_directory(const JobConfig& job, const std::string& override_dir);
+
+// --threads (negative: not given) and --max-memory ("" : not given) as run options.
+RunOptions run_options(int threads, const std::string& max_memory);
 
 // Peak resident memory of this process so far, GB.
 double peak_memory_gb();

@@ -9,10 +9,12 @@
 #include <numeric>
 #include <sstream>
 
+#include "apps/cli_support.h"
 #include "apps/commands.h"
 #include "job/config.h"
 #include "core/operator/cost_model.h"
 #include "job/job_scene.h"
+#include "job/plan.h"
 #include "core/rays/ray_caster.h"
 #include "core/scene/scene_inspect.h"
 #include "job/job_cost.h"
@@ -44,8 +46,6 @@ JobConfig job_for(const InspectArgs& args) {
   if (args.patch_edge_m > 0.0) job.scene.max_patch_edge_m = args.patch_edge_m;
   if (args.connected) job.surface_split.connected = true;
   if (args.weld_m > 0.0) job.surface_split.weld_tolerance_m = args.weld_m;
-  if (args.threads >= 0) job.form_factors.threads = job.direct_light.threads = args.threads;
-  if (!args.max_memory.empty()) job.max_memory_bytes = parse_bytes(args.max_memory);
   return job;
 }
 
@@ -103,13 +103,14 @@ void print_suggestion(const char* what, const SceneInspection& in, int index, bo
 int run_inspect(const InspectArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   const JobConfig job = job_for(args);
+  const RunOptions run = run_options(args.threads, args.max_memory);
   TriangleMesh mesh;
   const JobScene loaded = load_job_scene(job, &mesh);
   const Scene& scene = loaded.scene;
-  const RayCaster caster(scene, job.form_factors.threads);
+  const RayCaster caster(scene, worker_threads(job, run));
   InspectOptions options;
   options.weld_tolerance_m = job.surface_split.weld_tolerance_m;
-  options.threads = job.form_factors.threads;
+  options.threads = worker_threads(job, run);
   options.two_sided.assign(scene.surfaces.size(), job.two_sided_all);
   for (const std::string& name : job.two_sided_surfaces)
     if (const int s = scene.find_surface(name); s >= 0) options.two_sided[static_cast<std::size_t>(s)] = true;
@@ -137,8 +138,8 @@ int run_inspect(const InspectArgs& args) {
   // The cost of running the job, for an inverse job.
   if (job.search && !job.goals.empty()) {
     try {
-      const LightingModel geometry = lighting_model_geometry(scene, job);
-      const std::optional<double> budget = memory_budget_bytes(job.max_memory_bytes);
+      const LightingModel geometry = lighting_model_geometry(scene, plan_job(job, run).front().model);
+      const std::optional<double> budget = memory_budget_bytes(run.max_memory_bytes);
       const CostCounts counts = job_cost_counts(job, scene, geometry, budget);
       const CostEstimate estimate = estimate_job_cost(counts);
       std::cout << "cost estimate of `ilp run` (" << geometry.goal_patches.size() << " goal patches, "

@@ -18,6 +18,8 @@
 #include "core/operator/cost_model.h"
 #include "optimizer/goal_metrics.h"
 #include "job/job_runner.h"
+#include "job/result_mapping.h"
+#include "job/variant_search.h"
 #include "output/atomic_file.h"
 #include "output/colour_map.h"
 #include "output/plan_svg.h"
@@ -33,20 +35,13 @@ constexpr const char* kVersion = "ilp 0.1.0";
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-JobConfig load_for_run(const std::string& path, int threads, const std::string& max_memory) {
-  JobConfig job = load_job_config(path);
-  if (!max_memory.empty()) job.max_memory_bytes = parse_bytes(max_memory);
-  if (threads >= 0) job.form_factors.threads = job.direct_light.threads = threads;
-  return job;
-}
-
 std::string cache_folder(const std::string& requested, bool disabled) {
   if (disabled) return {};
   return requested.empty() ? default_cache_dir() : requested;
 }
 
-PreparedJob prepare_and_log(const JobConfig& job, const ProgressCallback& progress, const std::string& cache_dir) {
-  PreparedJob prepared = prepare_job(job, progress, cache_dir, [](const std::string& line) { std::cerr << line << "\n"; });
+// Prints the operator's build line after the prepared variant's log.
+void log_build(const PreparedJob& prepared) {
   if (!prepared.cache_status.empty()) std::cerr << prepared.cache_status << "\n";
   const SampleOperatorStats& st = prepared.model.stats;
   std::cerr << std::fixed << std::setprecision(3)
@@ -56,108 +51,14 @@ PreparedJob prepare_and_log(const JobConfig& job, const ProgressCallback& progre
             << " s, direct light " << st.direct_seconds << " s, solve " << st.solve_seconds << " s, T "
             << st.response_seconds << " s): " << prepared.model.goal_patches.size() << " goal patches x "
             << prepared.model.grid.size() << " candidates\n";
-  return prepared;
 }
 
-std::string unit_of(GoalMetric metric) { return std::string(metric_rule(metric).unit); }
+void log_line(const std::string& line) { std::cerr << line << "\n"; }
 
-// Every variant of the job (each product at each rotation) prepared, its notes logged.
-std::vector<PreparedJob> prepare_variants(const std::vector<JobVariant>& variants, const ProgressCallback& progress,
-                                          const std::string& cache_dir) {
-  std::vector<PreparedJob> out;
-  for (const JobVariant& v : variants) {
-    if (v.variant) {
-      std::cerr << "variant " << out.size() + 1 << " of " << variants.size() << ": " << v.variant->product << " at "
-                << v.variant->rotation_deg << " degrees\n";
-      for (const std::string& note : v.variant->notes) std::cerr << note << "\n";
-    }
-    out.push_back(prepare_and_log(v.job, progress, cache_dir));
-  }
-  return out;
-}
-
-struct Chosen {
-  std::size_t variant = 0;
-  JobOutcome outcome;
-  std::vector<std::string> tried;  // one line per variant
-  double search_seconds = 0.0;      // every variant's search, all rounds
-  double verify_seconds = 0.0;      // every variant's verification, all rounds
-};
-
-// Solves each variant with its job adjusted by `adjust` (a sweep point's targets) and
-// keeps the best outcome (every goal met, then least power). min_power: the variants
-// are tried in the order of the least power they could draw, and each is searched only
-// for the counts that could draw less than the best layout found so far with every
-// goal met (optimizer/layout_search.h), so a product that cannot win costs nothing.
-Chosen solve_variants(const std::vector<PreparedJob>& prepared, const std::vector<JobVariant>& variants,
-                      const std::function<void(JobConfig&)>& adjust, const ProgressCallback& progress) {
-  std::vector<JobConfig> jobs;
-  std::vector<double> least_w;
-  for (const JobVariant& v : variants) {
-    jobs.push_back(v.job);
-    adjust(jobs.back());
-    least_w.push_back(least_layout_power_w(prepared[jobs.size() - 1].model, jobs.back()));
-  }
-  std::vector<std::size_t> order(variants.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  const bool bounded = variants.size() > 1 && variants.front().job.objective == Objective::min_power;
-  if (bounded) std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return least_w[a] < least_w[b]; });
-  Chosen best;
-  bool have = false;
-  best.tried.resize(variants.size());
-  for (const std::size_t v : order) {
-    const double to_beat = bounded && have && best.outcome.all_met ? best.outcome.power_w : kNoPowerToBeat;
-    JobOutcome outcome = solve_prepared(prepared[v], jobs[v], progress, to_beat);
-    if (variants[v].variant) {
-      std::ostringstream line;
-      line << std::fixed << std::setprecision(1) << variants[v].variant->product << " at "
-           << variants[v].variant->rotation_deg << " deg: ";
-      if (outcome.search.beaten && !std::isfinite(least_w[v]))
-        line << "not searched: no count reaches an average target at full output";
-      else if (outcome.search.beaten)
-        line << "not searched: at least " << least_w[v] << " W, no less than the " << to_beat << " W already found";
-      else
-        line << outcome.luminaires.size() << " luminaires, " << outcome.power_w << " W, "
-             << (outcome.all_met ? "every goal met" : "goals missed") << std::setprecision(2) << " (search "
-             << outcome.search.seconds << " s, verification " << outcome.verify_seconds << " s)";
-      best.tried[v] = line.str();
-      std::cerr << "variant " << v + 1 << ": " << line.str() << "\n";
-    }
-    best.search_seconds += outcome.search.seconds;
-    best.verify_seconds += outcome.verify_seconds;
-    if (outcome.search.beaten) continue;
-    if (!have || better_outcome(outcome, best.outcome)) {
-      best.variant = v;
-      best.outcome = std::move(outcome);
-      have = true;
-    }
-  }
-  if (!variants.front().variant) best.tried.clear();
-  return best;
-}
-
-// Product x count, watts each and in all.
-std::vector<BillLine> bill_of_materials(const JobVariant& variant, const JobOutcome& outcome) {
-  if (outcome.luminaires.empty()) return {};
-  BillLine line;
-  line.count = static_cast<int>(outcome.luminaires.size());
-  line.total_power_w = outcome.power_w;
-  if (variant.variant) {
-    line.product = variant.variant->product;
-    line.source = variant.variant->source;
-    line.rated_flux_lm = variant.variant->rated_flux_lm;
-    line.unit_power_w = variant.variant->power_w;
-    line.output_fraction = outcome.luminaires.front().flux_lm / line.rated_flux_lm;
-  } else {
-    const LuminaireSearch& s = *variant.job.search;
-    line.product = "square Lambertian panel " + (std::ostringstream() << s.type.length_m).str() + " m";
-    line.source = "square_lambertian";
-    line.rated_flux_lm = s.flux_max_lm;
-    line.unit_power_w = s.flux_max_lm / s.efficacy_lm_per_w;
-    line.output_fraction = s.uniform_output ? outcome.luminaires.front().flux_lm / s.flux_max_lm : 1.0;
-    if (!s.uniform_output) line.product += " (each at its own flux)";
-  }
-  return {line};
+// Every variant of the job prepared, each one's build logged.
+std::vector<PreparedJob> prepare_all(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
+                                     const std::string& cache_dir) {
+  return prepare_variants(job, plan_job(job, run), run, progress, cache_dir, log_line, log_build);
 }
 
 // Every grid of the job with its light: verified where the job was verified (after the
@@ -175,72 +76,12 @@ std::vector<GridResult> run_grid_results(const PreparedJob& prepared, const JobC
     r.light.total_initial_lux = verified ? v.point_lux.segment(first - patches, n) : outcome.predicted_lux.segment(first, n);
     r.light.direct_initial_lux =
         verified ? v.point_direct_lux.segment(first - patches, n) : outcome.predicted_direct_lux.segment(first, n);
-    r.light.maintenance_factor = job.maintenance_factor;
+    r.light.maintenance_factor = outcome.maintenance_factor;
     r.light.target_lux = grid_target_lux(job, grid.name);
     r.light.basis = verified ? "verified, " + v.method : "predicted";
     out.push_back(std::move(r));
   }
   return out;
-}
-
-ResultRecord make_record(const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
-                         const std::vector<GridResult>& grids, const std::vector<std::pair<std::string, double>>& timings) {
-  ResultRecord r;
-  r.program_version = kVersion;
-  r.config = job.path;
-  r.objective = job.objective == Objective::min_power ? "min_power" : "closest_to_target";
-  for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
-    const PlacedLuminaire& l = outcome.luminaires[j];
-    r.luminaires.push_back({luminaire_name(j), l.position_m.x(), l.position_m.y(), l.position_m.z(), l.flux_lm, l.power_w,
-                            job.search->product, job.search->rotation_deg});
-  }
-  for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
-    const GoalOutcome& o = outcome.goals[g];
-    GoalRecord rec;
-    rec.name = o.predicted.name;
-    rec.surfaces = job.goals[g].surfaces;
-    rec.grid = job.goals[g].grid;
-    rec.metric = std::string(to_string(o.predicted.metric));
-    rec.unit = unit_of(o.predicted.metric);
-    // The report shows maintained values, as the job states its targets.
-    const double mf = metric_rule(o.predicted.metric).lux ? job.maintenance_factor : 1.0;
-    rec.target = job.goals[g].target;
-    rec.predicted = o.predicted.value * mf;
-    if (o.verified) rec.verified = o.verified->value * mf;
-    rec.met = o.met;
-    rec.fails_only_on_verification = o.fails_only_on_verification;
-    rec.tolerance = o.tolerance;
-    r.goals.push_back(rec);
-  }
-  r.power_w = outcome.power_w;
-  r.mounting_area_m2 = outcome.mounting_area_m2;
-  r.power_density_w_per_m2 = outcome.power_density_w_per_m2;
-  r.floor_area_m2 = outcome.floor_area_m2;
-  r.floor_area_source = outcome.floor_area_source;
-  r.power_density_w_per_m2_per_100_lx = outcome.power_density_w_per_m2_per_100_lx;
-  r.maintenance_factor = job.maintenance_factor;
-  for (const GridResult& g : grids) r.grids.push_back(grid_record(g, outcome.verification.method != "none"));
-  r.fixed_flux_lm = outcome.fixed_flux_lm;
-  r.feasible = outcome.feasible;
-  r.all_met = outcome.all_met;
-  r.flux_correction = outcome.flux_correction;
-  r.flux_correction_limited = outcome.flux_correction_limited;
-  r.verification = outcome.verification.method;
-  r.verification_rays_per_patch = outcome.verification.rays_per_patch;
-  r.sample_size = prepared.model.sample_size;
-  r.population = static_cast<int>(prepared.model.stats.population);
-  r.patches = static_cast<int>(prepared.loaded.scene.patches.size());
-  r.candidates = static_cast<int>(prepared.model.grid.size());
-  r.seed = job.form_factors.seed;
-  r.optimizer_seed = job.optimizer.seed;
-  r.evaluations = outcome.search.evaluations;
-  r.searches = outcome.searches;
-  r.calibration = outcome.calibration;
-  r.time_limited = outcome.search.time_limited;
-  r.timings_s = timings;
-  for (const CountAttempt& a : outcome.search.attempts)
-    r.attempts.push_back({a.luminaires, a.evaluations, a.seconds, a.feasible, a.power_w, a.global_stop, a.local_stop});
-  return r;
 }
 
 // Verified illuminance per scene patch where known (NaN elsewhere).
@@ -318,7 +159,7 @@ void stage_plan_svg(OutputSet& set, const RunProducts& p) {
   view.goal_patches = p.prepared.model.goal_patches;
   view.goal_lux = picture_goal_lux(p.prepared, p.outcome);
   view.outline_patches = p.prepared.model.grid.mounting_patches();
-  const LuminaireSearch& s = *p.job.search;
+  const SearchLuminaire& s = p.prepared.plan.search.luminaire;
   for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j) {
     PlanLuminaire l{luminaire_name(j), p.outcome.luminaires[j].position_m, s.type.length_m, p.outcome.luminaires[j].flux_lm,
                     {}, s.product};
@@ -342,7 +183,7 @@ void stage_scene_ply(OutputSet& set, const RunProducts& p) {
 
 // The layout found (L1, L2, ... as the report names them) and the luminaires placed in the config.
 std::vector<DrawnLuminaire> run_luminaires(const RunProducts& p) {
-  const LuminaireSearch& s = *p.job.search;
+  const SearchLuminaire& s = p.prepared.plan.search.luminaire;
   std::vector<DrawnLuminaire> out = scene_luminaires(p.prepared.loaded.scene);
   for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j)
     out.push_back({luminaire_name(j), s.product, s.type, {p.outcome.luminaires[j].position_m, s.rotation_deg}});
@@ -428,15 +269,14 @@ std::string default_cache_dir() {
 
 int run_job(const RunArgs& args) {
   const auto start = Clock::now();
-  const JobConfig loaded = load_for_run(args.config, args.threads, args.max_memory);
+  const JobConfig job = load_job_config(args.config);
+  const RunOptions run = run_options(args.threads, args.max_memory);
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.
-  OutputSet set(output_directory(loaded, args.out_dir), run_output_names(loaded, false));
-  const std::vector<JobVariant> variants = job_variants(loaded);
-  const std::vector<PreparedJob> all = prepare_variants(variants, progress, cache_folder(args.cache_dir, args.no_cache));
-  const Chosen chosen = solve_variants(all, variants, [](JobConfig&) {}, progress);
+  OutputSet set(output_directory(job, args.out_dir), run_output_names(job, false));
+  const std::vector<PreparedJob> all = prepare_all(job, run, progress, cache_folder(args.cache_dir, args.no_cache));
+  const VariantChoice chosen = solve_variants(all, job, progress, log_line);
   const PreparedJob& prepared = all[chosen.variant];
-  const JobConfig& job = variants[chosen.variant].job;
   const JobOutcome& outcome = chosen.outcome;
   // Every variant's phases, summed: what the run cost.
   double scene_s = 0.0, bvh_s = 0.0, operator_s = 0.0;
@@ -453,8 +293,10 @@ int run_job(const RunArgs& args) {
       {"verification", chosen.verify_seconds},
       {"total", seconds_since(start)}};
   const std::vector<GridResult> grids = run_grid_results(prepared, job, outcome);
-  ResultRecord record = make_record(prepared, job, outcome, grids, timings);
-  record.bill_of_materials = bill_of_materials(variants[chosen.variant], outcome);
+  std::vector<GridRecord> grid_records;
+  for (const GridResult& g : grids) grid_records.push_back(grid_record(g, outcome.verification.method != "none"));
+  ResultRecord record = make_record(kVersion, prepared, job, outcome, grid_records, timings);
+  record.bill_of_materials = bill_of_materials(prepared.plan, outcome);
   record.variants = chosen.tried;
   record.files = run_output_names(job, true);
   print_result(std::cout, record);
@@ -466,7 +308,8 @@ int run_job(const RunArgs& args) {
 
 int run_sweep(const SweepArgs& args) {
   const auto start = Clock::now();
-  const JobConfig job = load_for_run(args.config, args.threads, args.max_memory);
+  const JobConfig job = load_job_config(args.config);
+  const RunOptions run = run_options(args.threads, args.max_memory);
   SweepSetting sweep;
   if (!args.set.empty()) {
     sweep = parse_set(args.set);
@@ -480,8 +323,7 @@ int run_sweep(const SweepArgs& args) {
   }
   const ProgressCallback progress = make_progress(args.quiet);
   OutputSet set(output_directory(job, args.out_dir), {"sweep.csv", "sweep.svg"});
-  const std::vector<JobVariant> variants = job_variants(job);
-  const std::vector<PreparedJob> prepared = prepare_variants(variants, progress, cache_folder(args.cache_dir, args.no_cache));
+  const std::vector<PreparedJob> prepared = prepare_all(job, run, progress, cache_folder(args.cache_dir, args.no_cache));
 
   std::ostringstream csv;
   csv << std::setprecision(9) << csv_field(sweep.key)
@@ -498,10 +340,9 @@ int run_sweep(const SweepArgs& args) {
   for (std::size_t i = 0; i < sweep.values.size(); ++i) {
     std::cerr << "sweep point " << i + 1 << " of " << sweep.values.size() << ": " << sweep.key << " = "
               << sweep.values[i] << "\n";
-    const JobOutcome outcome =
-        solve_variants(prepared, variants, [&](JobConfig& point) { set_goal_parameter(point, sweep.key, sweep.values[i]); },
-                       progress)
-            .outcome;
+    JobConfig point = job;
+    set_goal_parameter(point, sweep.key, sweep.values[i]);
+    const JobOutcome outcome = solve_variants(prepared, point, progress, log_line).outcome;
     csv << sweep.values[i] << ',' << outcome.luminaires.size() << ',' << outcome.power_w << ','
         << outcome.power_density_w_per_m2 << ',' << outcome.feasible << ',' << outcome.all_met << ','
         << outcome.flux_correction << ',' << outcome.search.evaluations << ',' << outcome.search.seconds << ','

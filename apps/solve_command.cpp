@@ -14,7 +14,7 @@
 #include "core/exact/exact_solver.h"
 #include "job/job_scene.h"
 #include "core/rays/point_gather.h"
-#include "job/operator_setup.h"
+#include "job/plan.h"
 #include "core/operator/sample_operator.h"
 #include "optimizer/illuminance_metrics.h"
 #include "output/atomic_file.h"
@@ -97,20 +97,20 @@ void report_grids(const JobConfig& job, const std::string& out_dir, const Scene&
   for (const std::string& file : set.commit()) std::cout << "wrote " << file << "\n";
 }
 
-int solve_with_sample(const JobConfig& job, const JobScene& loaded, const SolveArgs& args) {
+int solve_with_sample(const JobConfig& job, const RunOptions& run, const JobScene& loaded, const SolveArgs& args) {
   const bool full_scene = !args.csv.empty(), quiet = args.quiet;
   const std::string& csv = args.csv;
   const Scene& scene = loaded.scene;
   const ProgressCallback progress = make_progress(quiet);
   auto start = std::chrono::steady_clock::now();
-  const RayCaster caster(scene, job.form_factors.threads);
+  const RayCaster caster(scene, worker_threads(job, run));
   const double bvh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::vector<LightSource> sources = scene_light_sources(scene);
   const Eigen::VectorXd flux = source_flux_lm(scene, sources);
   const std::vector<int> goals = full_scene ? scene.all_patches() : scene.patches_of(job.report_surfaces);
   const SolveGrids laid = lay_grids(scene, caster, job);
 
-  SampleOperatorOptions options = sample_operator_options(job);
+  SampleOperatorOptions options = operator_options(job, run);
   const GoalRows goal_rows = compute_goal_rows(scene, caster, goals, laid.points, sources, options, progress);
   const SampleSizeChoice choice = choose_sample_size(job.sample.rule(), scene, caster, goal_rows, flux, options, progress);
   if (!choice.log.empty()) std::cerr << choice.log << "\n";
@@ -142,10 +142,10 @@ int solve_with_sample(const JobConfig& job, const JobScene& loaded, const SolveA
   return 0;
 }
 
-int solve_exactly(const JobConfig& job, const JobScene& loaded, const SolveArgs& args) {
+int solve_exactly(const JobConfig& job, const RunOptions& run, const JobScene& loaded, const SolveArgs& args) {
   const Scene& scene = loaded.scene;
   const std::string& csv = args.csv;
-  const ExactSolveOptions options = exact_solve_options(job);
+  const ExactSolveOptions options = exact_options(job, run);
   const ExactSolution solution = solve_exact(scene, options, make_progress(args.quiet));
   std::cerr << solution.summary << "\n";
   // A closed model with consistent winding absorbs little on back faces; more hints at flipped faces.
@@ -166,7 +166,7 @@ int solve_exactly(const JobConfig& job, const JobScene& loaded, const SolveArgs&
   print_table(scene, scene.all_patches(), solution.radiosity.total_lux, job.report_surfaces);
   if (!job.grids.empty()) {
     // The points as the verification of `ilp run` computes them: each point's gather over the exact radiosity.
-    const RayCaster caster(scene, job.form_factors.threads);
+    const RayCaster caster(scene, worker_threads(job, run));
     const SolveGrids laid = lay_grids(scene, caster, job);
     const PointIlluminance at = exact_point_illuminance(scene, caster, solution.radiosity, laid.points,
                                                         options.form_factors, options.direct_light, make_progress(args.quiet));
@@ -180,8 +180,7 @@ int solve_exactly(const JobConfig& job, const JobScene& loaded, const SolveArgs&
 int run_solve(const SolveArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   JobConfig job = load_job_config(args.config);
-  if (!args.max_memory.empty()) job.max_memory_bytes = parse_bytes(args.max_memory);
-  if (args.threads >= 0) job.form_factors.threads = job.direct_light.threads = args.threads;
+  const RunOptions run = run_options(args.threads, args.max_memory);
   if (args.method == "exact") job.method = SolveMethod::exact;
   if (args.method == "sample") job.method = SolveMethod::sample;
   const JobScene loaded = load_job_scene(job);
@@ -208,15 +207,15 @@ int run_solve(const SolveArgs& args) {
                                          static_cast<double>(c.population), job.sample.size_for(c.population)))
                                    : 0;
     }
-    const std::optional<double> budget = memory_budget_bytes(job.max_memory_bytes);
+    const std::optional<double> budget = memory_budget_bytes(run.max_memory_bytes);
     const CostEstimate estimate = estimate_job_cost(c);
     for (const std::string& line : format_estimate(estimate)) std::cerr << line << "\n";
     require_fits(estimate, budget, job.path);
   }
   SolveArgs resolved = args;
   resolved.out_dir = args.out_dir.empty() ? (std::filesystem::path(output_directory(job, "")) / "solve").string() : args.out_dir;
-  if (job.method == SolveMethod::exact) solve_exactly(job, loaded, resolved);
-  else solve_with_sample(job, loaded, resolved);
+  if (job.method == SolveMethod::exact) solve_exactly(job, run, loaded, resolved);
+  else solve_with_sample(job, run, loaded, resolved);
   std::cout << "total time " << std::fixed << std::setprecision(2)
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
   if (!args.csv.empty()) std::cout << "per-patch results: " << args.csv << "\n";

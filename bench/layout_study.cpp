@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "job/config.h"
+#include "job/plan.h"
 #include "job/job_runner.h"
 
 namespace {
@@ -49,12 +50,12 @@ void prediction_study(const ilp::PreparedJob& prepared, int layouts) {
       xy.emplace_back(lo.x() + unit(rng) * (hi.x() - lo.x()), lo.y() + unit(rng) * (hi.y() - lo.y()));
       w.push_back(w_lo + unit(rng) * (1.0 - w_lo));
     }
-    const ilp::LayoutEvaluation predicted = ilp::evaluate_layout(model, job, xy, w);
+    const ilp::LayoutEvaluation predicted = ilp::evaluate_layout(model, prepared.plan.search, xy, w);
     const auto start = std::chrono::steady_clock::now();
-    const ilp::Verification v = ilp::verify_layout(prepared, job, predicted.luminaires);
+    const ilp::Verification v = ilp::verify_layout(prepared, predicted.luminaires);
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     const Eigen::VectorXd verified = ilp::verified_goal_lux(model, v);
-    const std::vector<ilp::GoalJudgement> judged = ilp::judge_goals(model, job, verified);
+    const std::vector<ilp::GoalJudgement> judged = ilp::judge_goals(model, prepared.plan.search, verified);
     for (std::size_t g = 0; g < judged.size(); ++g)
       errors[g].push_back(predicted.goals[g].value / judged[g].value - 1.0);
     double sum = 0.0, area = 0.0;
@@ -95,13 +96,13 @@ void search_study(const ilp::PreparedJob& prepared) {
       std::vector<double> power, evaluations, secs;
       int feasible = 0;
       for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-        ilp::JobConfig job = prepared.job;
-        job.optimizer.global_algorithm = c.global;
-        job.optimizer.local_algorithm = c.local;
-        job.optimizer.max_evaluations = budget;
-        job.optimizer.max_seconds = 600;
-        job.optimizer.seed = seed;
-        const ilp::SearchResult r = ilp::search_layout(prepared.model, job);
+        ilp::SearchSpec spec = prepared.plan.search;
+        spec.options.global_algorithm = c.global;
+        spec.options.local_algorithm = c.local;
+        spec.options.max_evaluations = budget;
+        spec.options.max_seconds = 600;
+        spec.options.seed = seed;
+        const ilp::SearchResult r = ilp::search_layout(prepared.model, spec);
         if (r.best.feasible) {
           ++feasible;
           power.push_back(r.best.power_w);
@@ -122,7 +123,7 @@ int main(int argc, char** argv) {
   try {
     const ilp::JobConfig job = ilp::load_job_config(argc > 1 ? argv[1] : ILP_SOURCE_DIR "/configs/office.yaml");
     const int layouts = argc > 2 ? std::stoi(argv[2]) : 12;
-    const ilp::PreparedJob prepared = ilp::prepare_job(job);
+    const ilp::PreparedJob prepared = ilp::prepare_job(job, ilp::plan_job(job).front());
     std::printf("# Layout study: %s (%zu patches, %zu goal patches, %zu candidates, k = %d, operator %.2f s)\n\n",
                 job.path.c_str(), prepared.loaded.scene.patches.size(), prepared.model.goal_patches.size(),
                 prepared.model.grid.size(), prepared.model.sample_size, prepared.model.build_seconds);

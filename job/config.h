@@ -240,9 +240,6 @@ struct JobConfig {
   VerificationSettings verification;
   OutputSettings output;
   std::optional<SweepSetting> sweep;
-  // Not from the file: a memory budget set on the command line (--max-memory); the
-  // cost model refuses a job whose estimate exceeds it or the machine's available memory.
-  std::optional<double> max_memory_bytes;
   // Not from the file: every triangle takes default_reflectance, whatever its MTL Kd
   // (`ilp inspect MESH`, where reflectances do not matter).
   bool ignore_material_kd = false;

@@ -293,7 +293,7 @@ class Evaluator {
   // Rows per parallel block: large enough that a block's work outweighs scheduling it.
   static constexpr Eigen::Index kRowBlock = 512;
   const LightingModel& model_;
-  const SearchSpec& spec_;
+  const SearchSpec spec_;  // a copy: an evaluator may outlive the spec it was made from
   std::vector<int> areas_;
   // T's candidate columns in single precision: the blend streams them through memory
   // once per evaluation, and float halves the bytes. A lux value is good to about

@@ -2,6 +2,7 @@
 // (against the inverse-square law, the file's own interpolant and conservation of
 // flux), and the variants a job's products give.
 #include "core/light/luminaire_product.h"
+#include "job/plan.h"
 #include "job/products.h"
 
 #include <gtest/gtest.h>
@@ -157,12 +158,48 @@ TEST(ProductVariants, RotationsWattsAndFluxComeFromTheFileUnlessGiven) {
 
   JobConfig job;
   job.search.emplace();
-  const JobConfig j = job_for_variant(job, v[2]);
-  EXPECT_TRUE(j.search->uniform_output);
-  EXPECT_EQ(j.search->rotation_deg, 90.0);
-  EXPECT_NEAR(j.search->flux_min_lm, 0.3 * 4222.4, 1e-9);
-  EXPECT_NEAR(j.search->flux_max_lm, 4222.4, 1e-9);
-  EXPECT_NEAR(j.search->flux_max_lm / j.search->efficacy_lm_per_w, v[2].power_w, 1e-9);
+  job.search->mounting_surface = "ceiling";
+  job.search->products = {iku, linear};
+  job.goals.push_back(GoalSetting{});
+  const std::vector<VariantPlan> plans = plan_job(job);
+  ASSERT_EQ(plans.size(), 3u);
+  const SearchLuminaire& l = plans[2].search.luminaire;
+  EXPECT_TRUE(l.uniform_output);
+  EXPECT_EQ(l.rotation_deg, 90.0);
+  EXPECT_EQ(plans[2].model.candidates.rotation_deg, 90.0);
+  EXPECT_NEAR(l.flux_min_lm, 0.3 * 4222.4, 1e-9);
+  EXPECT_NEAR(l.flux_max_lm, 4222.4, 1e-9);
+  EXPECT_NEAR(l.flux_max_lm / l.efficacy_lm_per_w, v[2].power_w, 1e-9);
+  EXPECT_EQ(l.product, "linear");
+}
+
+TEST(ProductVariants, ThePlainPanelIsAProductWhoseLuminairesEachTakeTheirOwnFlux) {
+  JobConfig job;
+  job.search.emplace();
+  job.search->mounting_surface = "ceiling";
+  job.search->flux_min_lm = 1000.0;
+  job.search->flux_max_lm = 5000.0;
+  job.search->efficacy_lm_per_w = 125.0;
+  job.luminaire_size_m = 0.6;
+  job.maintenance_factor = 0.8;
+  GoalSetting goal;
+  goal.name = "desk";
+  goal.surfaces = {"desk"};
+  goal.target = 500.0;
+  job.goals.push_back(goal);
+  const std::vector<VariantPlan> plans = plan_job(job);
+  ASSERT_EQ(plans.size(), 1u);
+  EXPECT_FALSE(plans[0].listed);
+  EXPECT_EQ(plans[0].product.product, "square Lambertian panel 0.6 m");
+  EXPECT_NEAR(plans[0].product.power_w, 40.0, 1e-12);
+  const SearchLuminaire& l = plans[0].search.luminaire;
+  EXPECT_FALSE(l.uniform_output);
+  EXPECT_EQ(l.product, "");
+  EXPECT_EQ(l.flux_min_lm, 1000.0);
+  EXPECT_EQ(l.flux_max_lm, 5000.0);
+  EXPECT_EQ(l.efficacy_lm_per_w, 125.0);
+  ASSERT_EQ(plans[0].search.goals.size(), 1u);
+  EXPECT_DOUBLE_EQ(plans[0].search.goals[0].target, 625.0) << "searched at the initial target, 500 / 0.8";
 }
 
 TEST(ProductVariants, AProductsMaintenanceFactorAndMountOffsetReplaceTheJobsOnlyWhenGiven) {
@@ -175,12 +212,22 @@ TEST(ProductVariants, AProductsMaintenanceFactorAndMountOffsetReplaceTheJobsOnly
   ASSERT_EQ(v.size(), 2u);
   JobConfig job;
   job.search.emplace();
+  job.search->mounting_surface = "ceiling";
+  job.search->products = {clean, dusty};
+  GoalSetting goal;
+  goal.name = "desk";
+  goal.surfaces = {"desk"};
+  goal.target = 500.0;
+  job.goals.push_back(goal);
   job.maintenance_factor = 0.8;
-  EXPECT_EQ(job_for_variant(job, v[0]).maintenance_factor, 0.8) << "no factor of its own: the job's";
-  EXPECT_EQ(job_for_variant(job, v[1]).maintenance_factor, 0.67) << "the product's own";
   job.search->mount_offset_m = 0.05;
-  EXPECT_EQ(job_for_variant(job, v[0]).search->mount_offset_m, 0.05);
-  EXPECT_EQ(job_for_variant(job, v[1]).search->mount_offset_m, 0.6) << "hung on its own suspension";
+  const std::vector<VariantPlan> plans = plan_job(job);
+  ASSERT_EQ(plans.size(), 2u);
+  EXPECT_EQ(plans[0].maintenance_factor, 0.8) << "no factor of its own: the job's";
+  EXPECT_EQ(plans[1].maintenance_factor, 0.67) << "the product's own";
+  EXPECT_DOUBLE_EQ(plans[1].search.goals[0].target, 500.0 / 0.67) << "its targets follow its own factor";
+  EXPECT_EQ(plans[0].model.candidates.mount_offset_m, 0.05);
+  EXPECT_EQ(plans[1].model.candidates.mount_offset_m, 0.6) << "hung on its own suspension";
 }
 
 TEST(ProductVariants, AFileThatCannotBeReadNamesTheConfigAndTheFile) {

@@ -89,23 +89,23 @@ void expect_same_operator(const LightingModel& a, const LightingModel& b, bool t
 
 // A model with only the geometry part, as prepare_job has it before the cache.
 LightingModel geometry_of(const PreparedJob& prepared) {
-  return lighting_model_geometry(prepared.loaded.scene, prepared.job);
+  return lighting_model_geometry(prepared.loaded.scene, test::model_spec(prepared.job));
 }
 
 std::string cache_file(const std::string& cache_dir, const JobConfig& job) {
-  return (std::filesystem::path(cache_dir) / (lighting_model_key(job) + ".ilpmodel")).string();
+  return (std::filesystem::path(cache_dir) / (lighting_model_key(job, test::model_spec(job)) + ".ilpmodel")).string();
 }
 
 TEST(ModelCache, SavedAndLoadedModelIsTheBuiltOneBitForBit) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
-  const PreparedJob built = prepare_job(job);
+  const PreparedJob built = test::prepare(job);
   ASSERT_GT(built.model.sample_size, 0) << "reflectance 0.5: the operator has a sample";
   ASSERT_GT(built.model.candidate_lux_per_lm.size(), 0);
   EXPECT_FALSE(built.loaded_from_cache);
   EXPECT_EQ(built.cache_status, "") << "no cache folder, no cache";
 
-  const std::string key = lighting_model_key(job);
+  const std::string key = lighting_model_key(job, test::model_spec(job));
   EXPECT_EQ(key.size(), 32u);
   save_lighting_model(dir.file("model.ilpmodel"), built.model, key);
   LightingModel loaded = geometry_of(built);
@@ -115,7 +115,7 @@ TEST(ModelCache, SavedAndLoadedModelIsTheBuiltOneBitForBit) {
   expect_same_operator(built.model, loaded, true);
 
   // The search on it finds the same layout along the same path.
-  const SearchResult a = search_layout(built.model, job), b = search_layout(loaded, job);
+  const SearchResult a = search_layout(built.model, test::spec(job)), b = search_layout(loaded, test::spec(job));
   EXPECT_EQ(a.evaluations, b.evaluations);
   ASSERT_EQ(a.best.luminaires.size(), b.best.luminaires.size());
   ASSERT_EQ(a.best.luminaires.size(), 1u);
@@ -130,7 +130,7 @@ TEST(ModelCache, SecondPrepareLoadsTheOperator) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
   const std::string cache = dir.file("cache");  // created by prepare_job
-  const PreparedJob first = prepare_job(job, {}, cache);
+  const PreparedJob first = test::prepare(job, cache);
   EXPECT_FALSE(first.loaded_from_cache);
   EXPECT_EQ(first.cache_status, "operator built and cached in " + cache_file(cache, job));
   ASSERT_TRUE(std::filesystem::is_regular_file(cache_file(cache, job)));
@@ -138,12 +138,12 @@ TEST(ModelCache, SecondPrepareLoadsTheOperator) {
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(cache)) ++files;
   EXPECT_EQ(files, 1) << "the cache file alone: no temporary left behind";
 
-  const PreparedJob second = prepare_job(job, {}, cache);
+  const PreparedJob second = test::prepare(job, cache);
   EXPECT_TRUE(second.loaded_from_cache);
   EXPECT_TRUE(StartsWith(second.cache_status, "operator loaded from cache " + cache_file(cache, job) + " (built in "));
   expect_same_operator(first.model, second.model, true);
   // And both are what a build without a cache gives.
-  expect_same_operator(prepare_job(job).model, second.model, false);
+  expect_same_operator(test::prepare(job).model, second.model, false);
   // The geometry part is the job's own, untouched by the cache.
   EXPECT_EQ(second.model.goal_patches, first.model.goal_patches);
   EXPECT_EQ(second.model.grid.size(), first.model.grid.size());
@@ -152,12 +152,12 @@ TEST(ModelCache, SecondPrepareLoadsTheOperator) {
 TEST(ModelCache, TargetsAndSearchSettingsKeepTheKey) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
-  const std::string key = lighting_model_key(job);
-  EXPECT_EQ(lighting_model_key(job), key) << "the key is a function of the job";
+  const std::string key = lighting_model_key(job, test::model_spec(job));
+  EXPECT_EQ(lighting_model_key(job, test::model_spec(job)), key) << "the key is a function of the job";
   auto same = [&](const char* what, auto change) {
     JobConfig other = job;
     change(other);
-    EXPECT_EQ(lighting_model_key(other), key) << what;
+    EXPECT_EQ(lighting_model_key(other, test::model_spec(other)), key) << what;
   };
   same("goal target", [](JobConfig& j) { set_goal_parameter(j, "goals.mat.average_lux", 400.0); });
   same("another metric on the same goal", [](JobConfig& j) {
@@ -185,11 +185,11 @@ TEST(ModelCache, TargetsAndSearchSettingsKeepTheKey) {
 TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
-  const std::string key = lighting_model_key(job);
+  const std::string key = lighting_model_key(job, test::model_spec(job));
   auto differs = [&](const char* what, auto change) {
     JobConfig other = job;
     change(other);
-    EXPECT_NE(lighting_model_key(other), key) << what;
+    EXPECT_NE(lighting_model_key(other, test::model_spec(other)), key) << what;
   };
   differs("default reflectance", [](JobConfig& j) { j.default_reflectance = Eigen::Vector3d::Constant(0.6); });
   differs("a surface's reflectance", [](JobConfig& j) {
@@ -211,12 +211,12 @@ TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
   on_grid.grids.push_back(plane);
   on_grid.goals[0].grid = "plane";
   on_grid.goals[0].surfaces.clear();
-  EXPECT_NE(lighting_model_key(on_grid), key) << "a goal on a grid";
-  const std::string grid_key = lighting_model_key(on_grid);
+  EXPECT_NE(lighting_model_key(on_grid, test::model_spec(on_grid)), key) << "a goal on a grid";
+  const std::string grid_key = lighting_model_key(on_grid, test::model_spec(on_grid));
   auto grid_differs = [&](const char* what, auto change) {
     JobConfig other = on_grid;
     change(other.grids[0]);
-    EXPECT_NE(lighting_model_key(other), grid_key) << what;
+    EXPECT_NE(lighting_model_key(other, test::model_spec(other)), grid_key) << what;
   };
   grid_differs("grid height", [](CalcGridSetting& g) { g.height_m = 0.75; });
   grid_differs("grid band", [](CalcGridSetting& g) { g.border_m = 0.3; });
@@ -241,7 +241,7 @@ TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
     std::ofstream obj(job.mesh_path, std::ios::app | std::ios::binary);
     obj << "# a comment\n";
   }
-  EXPECT_NE(lighting_model_key(job), key) << "the mesh file's bytes";
+  EXPECT_NE(lighting_model_key(job, test::model_spec(job)), key) << "the mesh file's bytes";
 }
 
 TEST(ModelCache, MaterialFilesAreInTheKey) {
@@ -249,29 +249,29 @@ TEST(ModelCache, MaterialFilesAreInTheKey) {
   JobConfig job = cache_job(dir);
   dir.write("room.obj", "mtllib room.mtl\n" + room_obj({{"mat", {1.3, 1.7}}, {"other", {3.0, 2.5}}}));
   dir.write("room.mtl", "newmtl white\nKd 0.5 0.5 0.5\n");
-  const std::string with_mtl = lighting_model_key(job);
+  const std::string with_mtl = lighting_model_key(job, test::model_spec(job));
   dir.write("room.mtl", "newmtl white\nKd 0.6 0.6 0.6\n");
-  const std::string changed = lighting_model_key(job);
+  const std::string changed = lighting_model_key(job, test::model_spec(job));
   EXPECT_NE(changed, with_mtl) << "the MTL's bytes";
   std::filesystem::remove(dir.file("room.mtl"));
-  const std::string missing = lighting_model_key(job);  // no throw: a missing MTL contributes a marker
+  const std::string missing = lighting_model_key(job, test::model_spec(job));  // no throw: a missing MTL contributes a marker
   EXPECT_NE(missing, with_mtl);
   EXPECT_NE(missing, changed);
   dir.write("room.mtl", "newmtl white\nKd 0.5 0.5 0.5\n");
-  EXPECT_EQ(lighting_model_key(job), with_mtl) << "the same bytes, the same key";
+  EXPECT_EQ(lighting_model_key(job, test::model_spec(job)), with_mtl) << "the same bytes, the same key";
 }
 
 TEST(ModelCache, TheFluxRangeCountsOnlyWithATargetError) {
   TempDir dir;
   JobConfig job = cache_job(dir);
   job.sample.target_error = 0.05;  // k is then chosen with every candidate at the top of the flux range
-  const std::string key = lighting_model_key(job);
+  const std::string key = lighting_model_key(job, test::model_spec(job));
   JobConfig other = job;
   other.search->flux_max_lm = 5000.0;
-  EXPECT_NE(lighting_model_key(other), key);
+  EXPECT_NE(lighting_model_key(other, test::model_spec(other)), key);
   other = job;
   other.search->flux_min_lm = 100.0;
-  EXPECT_EQ(lighting_model_key(other), key);
+  EXPECT_EQ(lighting_model_key(other, test::model_spec(other)), key);
 }
 
 // A damaged or foreign cache file: load_lighting_model says why and leaves the model
@@ -280,15 +280,15 @@ TEST(ModelCache, TheFluxRangeCountsOnlyWithATargetError) {
 void expect_rebuilt(const TempDir& dir, const JobConfig& job, const std::string& reason_start,
                     const std::function<void(const std::string& file, const LightingModel& model)>& damage) {
   const std::string cache = dir.file("cache");
-  const PreparedJob fresh = prepare_job(job);
-  const PreparedJob first = prepare_job(job, {}, cache);
+  const PreparedJob fresh = test::prepare(job);
+  const PreparedJob first = test::prepare(job, cache);
   ASSERT_FALSE(first.loaded_from_cache);
   const std::string file = cache_file(cache, job);
   damage(file, first.model);
 
   LightingModel model = geometry_of(first);
   const std::size_t log_lines = model.log.size();
-  const std::optional<std::string> not_used = load_lighting_model(file, lighting_model_key(job), model);
+  const std::optional<std::string> not_used = load_lighting_model(file, lighting_model_key(job, test::model_spec(job)), model);
   ASSERT_TRUE(not_used) << "the damaged file was used";
   EXPECT_TRUE(StartsWith(*not_used, reason_start));
   EXPECT_EQ(model.fixed_lux.size(), 0) << "the model was touched";
@@ -296,13 +296,13 @@ void expect_rebuilt(const TempDir& dir, const JobConfig& job, const std::string&
   EXPECT_EQ(model.sample_size, 0);
   EXPECT_EQ(model.log.size(), log_lines);
 
-  const PreparedJob second = prepare_job(job, {}, cache);
+  const PreparedJob second = test::prepare(job, cache);
   EXPECT_FALSE(second.loaded_from_cache);
   EXPECT_TRUE(Contains(second.cache_status, "operator built and cached in " + file));
   EXPECT_TRUE(Contains(second.cache_status, "the cached file was not used: " + reason_start));
   expect_same_operator(fresh.model, second.model, false);
 
-  const PreparedJob third = prepare_job(job, {}, cache);
+  const PreparedJob third = test::prepare(job, cache);
   EXPECT_TRUE(third.loaded_from_cache) << third.cache_status;
   expect_same_operator(second.model, third.model, true);
 }
@@ -368,9 +368,9 @@ TEST(ModelCache, AnotherFormatVersionIsNotUsed) {
 TEST(ModelCache, MissingOrForeignFilesAreReported) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
-  const PreparedJob built = prepare_job(job);
+  const PreparedJob built = test::prepare(job);
   LightingModel model = geometry_of(built);
-  const std::string key = lighting_model_key(job);
+  const std::string key = lighting_model_key(job, test::model_spec(job));
   EXPECT_EQ(load_lighting_model(dir.file("none.ilpmodel"), key, model), "no cache file");
   EXPECT_TRUE(StartsWith(load_lighting_model(dir.write("foreign.ilpmodel", "hello, world\n"), key, model).value(),
                          "corrupt: not an ilp model cache file"));
@@ -378,7 +378,7 @@ TEST(ModelCache, MissingOrForeignFilesAreReported) {
   // A model of other sizes under the right key: the sizes are checked against the scene.
   JobConfig coarse = job;
   coarse.search->candidate_spacing_m = 1.0;
-  const PreparedJob other = prepare_job(coarse);
+  const PreparedJob other = test::prepare(coarse);
   ASSERT_NE(other.model.grid.size(), built.model.grid.size());
   save_lighting_model(dir.file("other.ilpmodel"), other.model, key);
   EXPECT_TRUE(StartsWith(load_lighting_model(dir.file("other.ilpmodel"), key, model).value(),
@@ -394,11 +394,11 @@ TEST(ModelCache, UnwritableCacheFolderStillCompletesTheJob) {
   job.verification.method = VerificationMethod::none;
   // A folder inside a regular file can be neither created nor written (even as root).
   const std::string cache = dir.write("not_a_folder", "") + "/cache";
-  const PreparedJob prepared = prepare_job(job, {}, cache);
+  const PreparedJob prepared = test::prepare(job, cache);
   EXPECT_FALSE(prepared.loaded_from_cache);
   EXPECT_TRUE(StartsWith(prepared.cache_status, "operator built; cache not used: ")) << prepared.cache_status;
   EXPECT_TRUE(Contains(prepared.cache_status, cache));
-  expect_same_operator(prepare_job(job).model, prepared.model, false);
+  expect_same_operator(test::prepare(job).model, prepared.model, false);
   const JobOutcome outcome = solve_prepared(prepared, job);
   EXPECT_EQ(outcome.luminaires.size(), 1u);
   EXPECT_TRUE(outcome.feasible);
@@ -417,8 +417,8 @@ TEST(ModelCache, FormatAndKeyCoverEveryField) {
   EXPECT_EQ(sizeof(DirectLightOptions), 88u) << "DirectLightOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(SceneOptions), 32u) << "SceneOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(MeshReadOptions), 4u) << "MeshReadOptions changed: is the new field in lighting_model_key?";
-  EXPECT_EQ(sizeof(LuminaireSearch), 592u) << "LuminaireSearch changed: does the new field shape the candidates?";
-  EXPECT_EQ(sizeof(JobConfig), 1904u) << "JobConfig changed: does the new setting change the operator?";
+  EXPECT_EQ(sizeof(LuminaireSearch), 480u) << "LuminaireSearch changed: does the new field shape the candidates?";
+  EXPECT_EQ(sizeof(JobConfig), 1792u) << "JobConfig changed: does the new setting change the operator?";
 #else
   GTEST_SKIP() << "struct sizes are checked on x86-64 with libstdc++ only";
 #endif

@@ -41,18 +41,18 @@ TEST(RoundCalibration, TheLineSaysLuxAreInitialWhereAMaintenanceFactorApplies) {
   floor.metric = GoalMetric::minimum;
   floor.target = 100.0;
   job.maintenance_factor = 0.8;
-  const std::string line = calibration_line(1, job, floor, 137.2, 106.3, 129.4);
+  const std::string line = calibration_line(1, job.maintenance_factor, floor, 137.2, 106.3, 129.4);
   EXPECT_EQ(line, "round 2: floor minimum predicted 137.2 lx, verified 106.3 lx (initial, for 125 lx); "
                   "the next search aims at 129.4 lx for 100 lx");
   job.maintenance_factor = 1.0;
-  EXPECT_EQ(calibration_line(0, job, floor, 137.2, 106.3, 129.4),
+  EXPECT_EQ(calibration_line(0, job.maintenance_factor, floor, 137.2, 106.3, 129.4),
             "round 1: floor minimum predicted 137.2 lx, verified 106.3 lx; the next search aims at 129.4 lx for 100 lx");
   GoalSetting u0;
   u0.name = "work_plane";
   u0.metric = GoalMetric::uniformity;
   u0.target = 0.6;
   job.maintenance_factor = 0.8;
-  EXPECT_EQ(calibration_line(0, job, u0, 0.6005, 0.5927, 0.609),
+  EXPECT_EQ(calibration_line(0, job.maintenance_factor, u0, 0.6005, 0.5927, 0.609),
             "round 1: work_plane uniformity predicted 0.6005, verified 0.5927; the next search aims at 0.609 for 0.6");
 }
 

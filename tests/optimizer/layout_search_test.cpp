@@ -38,7 +38,7 @@ JobConfig mat_job(const TempDir& dir, double target_lux, const std::string& refl
 TEST(LayoutSearch, OneLuminaireLandsOverTheTargetCentre) {
   TempDir dir;
   const JobConfig job = mat_job(dir, 200.0);
-  const PreparedJob prepared = prepare_job(job);
+  const PreparedJob prepared = test::prepare(job);
   ASSERT_EQ(prepared.model.sample_size, 0) << "a black room needs no sample";
   const JobOutcome outcome = solve_prepared(prepared, job);
   ASSERT_EQ(outcome.luminaires.size(), 1u);
@@ -77,8 +77,8 @@ TEST(LayoutSearch, CountsThatCannotDrawLessThanALayoutFoundAreNotSearched) {
   TempDir dir;
   const JobConfig job = mat_job(dir, 100.0, "0", kFixedPackage);
   ASSERT_EQ(job.search->flux_min_lm, job.search->flux_max_lm);
-  const PreparedJob prepared = prepare_job(job);
-  const SearchResult all = search_layout(prepared.model, job);
+  const PreparedJob prepared = test::prepare(job);
+  const SearchResult all = search_layout(prepared.model, test::spec(job));
   ASSERT_FALSE(all.beaten);
   ASSERT_TRUE(all.best.feasible);
   ASSERT_EQ(all.best.luminaires.size(), 1u) << "one 3000 lm panel gives the mat about 490 lx";
@@ -88,16 +88,16 @@ TEST(LayoutSearch, CountsThatCannotDrawLessThanALayoutFoundAreNotSearched) {
     EXPECT_EQ(all.attempts[a].evaluations, 0) << all.attempts[a].luminaires;
     EXPECT_NE(all.attempts[a].global_stop.find("needs at least"), std::string::npos) << all.attempts[a].global_stop;
   }
-  EXPECT_NEAR(least_layout_power_w(prepared.model, job), 30.0, 1e-9);
+  EXPECT_NEAR(least_layout_power_w(prepared.model, test::spec(job)), 30.0, 1e-9);
 
-  const SearchResult beaten = search_layout(prepared.model, job, {}, {.power_to_beat_w = 29.9, .easier = {}});
+  const SearchResult beaten = search_layout(prepared.model, test::spec(job), {}, {.power_to_beat_w = 29.9, .easier = {}});
   EXPECT_TRUE(beaten.beaten);
   EXPECT_EQ(beaten.evaluations, 0);
   const JobOutcome outcome = solve_prepared(prepared, job, {}, 29.9);
   EXPECT_TRUE(outcome.search.beaten);
   EXPECT_EQ(outcome.verification.method, "none") << "nothing searched, nothing verified";
 
-  const SearchResult not_beaten = search_layout(prepared.model, job, {}, {.power_to_beat_w = 30.1, .easier = {}});
+  const SearchResult not_beaten = search_layout(prepared.model, test::spec(job), {}, {.power_to_beat_w = 30.1, .easier = {}});
   ASSERT_FALSE(not_beaten.beaten);
   EXPECT_EQ(not_beaten.best.power_w, all.best.power_w);
 }
@@ -118,8 +118,8 @@ SearchBounds found_infeasible(std::initializer_list<int> counts) {
 TEST(LayoutSearch, CountsFoundInfeasibleAtEasierTargetsAreNotSearchedAgain) {
   TempDir dir;
   const JobConfig job = mat_job(dir, 100.0, "0", kFixedPackage);
-  const PreparedJob prepared = prepare_job(job);
-  const SearchResult again = search_layout(prepared.model, job, {}, found_infeasible({1, 2}));
+  const PreparedJob prepared = test::prepare(job);
+  const SearchResult again = search_layout(prepared.model, test::spec(job), {}, found_infeasible({1, 2}));
   ASSERT_EQ(again.attempts.size(), 4u);
   EXPECT_EQ(again.attempts[0].evaluations, 0);
   EXPECT_NE(again.attempts[0].global_stop.find("earlier round"), std::string::npos) << again.attempts[0].global_stop;
@@ -128,7 +128,7 @@ TEST(LayoutSearch, CountsFoundInfeasibleAtEasierTargetsAreNotSearchedAgain) {
   ASSERT_TRUE(again.best.feasible);
   EXPECT_EQ(again.best.luminaires.size(), 3u);
   // The largest count is searched even when listed, unless another layout is to be beaten.
-  const SearchResult last = search_layout(prepared.model, job, {}, found_infeasible({1, 2, 3, 4}));
+  const SearchResult last = search_layout(prepared.model, test::spec(job), {}, found_infeasible({1, 2, 3, 4}));
   EXPECT_GT(last.attempts[3].evaluations, 0);
   EXPECT_FALSE(last.beaten);
 }
@@ -141,14 +141,14 @@ TEST(LayoutSearch, CountsFoundInfeasibleAtEasierTargetsAreNotSearchedAgain) {
 TEST(LayoutSearch, CountsThatDrewMoreAtEasierTargetsThanALayoutFoundAreNotSearched) {
   TempDir dir;
   const JobConfig job = mat_job(dir, 300.0, "0.5", kDimmablePanels);
-  const PreparedJob prepared = prepare_job(job);
-  const SearchResult first = search_layout(prepared.model, job);
+  const PreparedJob prepared = test::prepare(job);
+  const SearchResult first = search_layout(prepared.model, test::spec(job));
   ASSERT_TRUE(first.best.feasible);
   ASSERT_EQ(first.attempts.size(), 3u);
   for (const CountAttempt& a : first.attempts) ASSERT_GT(a.evaluations, 0) << a.luminaires << ": searched the first time";
   const int least = static_cast<int>(first.best.luminaires.size());
 
-  const SearchResult again = search_layout(prepared.model, job, {}, {.power_to_beat_w = kNoPowerToBeat, .easier = first.attempts});
+  const SearchResult again = search_layout(prepared.model, test::spec(job), {}, {.power_to_beat_w = kNoPowerToBeat, .easier = first.attempts});
   ASSERT_EQ(again.attempts.size(), 3u);
   for (std::size_t a = 0; a < 3; ++a) {
     const CountAttempt& attempt = again.attempts[a];
@@ -166,10 +166,10 @@ TEST(LayoutSearch, CountsThatDrewMoreAtEasierTargetsThanALayoutFoundAreNotSearch
 
   // Given a power to beat above the bound but below what every count drew: nothing
   // is searched, each count for what it drew.
-  const double bound_w = least_layout_power_w(prepared.model, job);
+  const double bound_w = least_layout_power_w(prepared.model, test::spec(job));
   ASSERT_LT(bound_w, first.best.power_w);
   const double to_beat_w = 0.5 * (bound_w + first.best.power_w);
-  const SearchResult beaten = search_layout(prepared.model, job, {}, {.power_to_beat_w = to_beat_w, .easier = first.attempts});
+  const SearchResult beaten = search_layout(prepared.model, test::spec(job), {}, {.power_to_beat_w = to_beat_w, .easier = first.attempts});
   EXPECT_TRUE(beaten.beaten);
   EXPECT_EQ(beaten.evaluations, 0);
   for (const CountAttempt& attempt : beaten.attempts)
@@ -180,10 +180,10 @@ TEST(LayoutSearch, TheBoundOnPowerNeverExceedsThePowerFound) {
   // Dimmable panels in a grey room: the bound comes from the best candidate's gain.
   TempDir dir;
   const JobConfig job = mat_job(dir, 300.0, "0.5", kDimmablePanels);
-  const PreparedJob prepared = prepare_job(job);
-  const SearchResult found = search_layout(prepared.model, job);
+  const PreparedJob prepared = test::prepare(job);
+  const SearchResult found = search_layout(prepared.model, test::spec(job));
   ASSERT_TRUE(found.best.feasible);
-  const double bound_w = least_layout_power_w(prepared.model, job);
+  const double bound_w = least_layout_power_w(prepared.model, test::spec(job));
   EXPECT_GT(bound_w, 0.5 * found.best.power_w) << "a bound worth having";
   EXPECT_LE(bound_w, found.best.power_w);
 }
@@ -191,7 +191,7 @@ TEST(LayoutSearch, TheBoundOnPowerNeverExceedsThePowerFound) {
 TEST(LayoutSearch, DoublingTheTargetDoublesTheFlux) {
   TempDir dir;
   const JobConfig job = mat_job(dir, 200.0);
-  const PreparedJob prepared = prepare_job(job);
+  const PreparedJob prepared = test::prepare(job);
   JobConfig doubled = job;
   set_goal_parameter(doubled, "goals.mat.average_lux", 400.0);
   const JobOutcome once = solve_prepared(prepared, job), twice = solve_prepared(prepared, doubled);
@@ -212,7 +212,7 @@ TEST(LayoutSearch, UnreachableGoalIsReportedWithTheClosestLayout) {
   const std::string weak = std::string(kOneLuminaire).replace(std::string(kOneLuminaire).find("[10, 20000]"), 11,
                                                               "[10, 500]");
   const JobConfig job = mat_job(dir, 200.0, "0", weak);
-  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  const JobOutcome outcome = solve_prepared(test::prepare(job), job);
   EXPECT_FALSE(outcome.feasible);
   EXPECT_FALSE(outcome.all_met);
   ASSERT_EQ(outcome.luminaires.size(), 1u);
@@ -232,7 +232,7 @@ TEST(LayoutSearch, ContradictoryGoalsAreInfeasible) {
       "job.yaml", room_job("0", kOneLuminaire,
                            "  - surface: mat\n    average_lux: 300\n  - name: mat_cap\n    surface: mat\n    max_lux: 100\n",
                            kOptimizer)));
-  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  const JobOutcome outcome = solve_prepared(test::prepare(job), job);
   EXPECT_FALSE(outcome.feasible);
   EXPECT_FALSE(outcome.all_met);
   int missed = 0;
@@ -252,7 +252,7 @@ TEST(LayoutSearch, SameSeedSameLayoutWhateverTheThreads) {
     job.form_factors.threads = job.direct_light.threads = threads;
     job.optimizer.seed = static_cast<std::uint64_t>(seed);
     job.verification.method = VerificationMethod::none;
-    return solve_prepared(prepare_job(job), job);
+    return solve_prepared(test::prepare(job), job);
   };
   const JobOutcome a = run(1, 4), b = run(2, 4), c = run(2, 5);
   ASSERT_EQ(a.luminaires.size(), b.luminaires.size());
@@ -279,7 +279,7 @@ TEST(LayoutSearch, MinimumDistanceKeepsLuminairesApart) {
   const std::string goals = "  - surface: left\n    average_lux: 300\n  - surface: right\n    average_lux: 300\n";
   const JobConfig job = load_job_config(dir.write(
       "job.yaml", room_job("0", luminaires, goals, std::string(kOptimizer) + "constraints:\n  min_distance_m: 2.5\n")));
-  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  const JobOutcome outcome = solve_prepared(test::prepare(job), job);
   ASSERT_EQ(outcome.luminaires.size(), 2u);
   const double d = (outcome.luminaires[0].position_m - outcome.luminaires[1].position_m).head<2>().norm();
   EXPECT_GE(d, 2.5 * (1.0 - 1e-4));
@@ -294,7 +294,7 @@ TEST(LayoutSearch, FixedArrayIsPlacedAsConfigured) {
       "  candidate_spacing_m: 0.5\n  layout: array\n  array: {rows: 2, columns: 3, spacing_m: [1.2, 2.0], offset_m: [0.8, 1.0]}\n";
   const JobConfig job = load_job_config(
       dir.write("job.yaml", room_job("0", luminaires, "  - surface: mat\n    average_lux: 250\n", kOptimizer)));
-  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  const JobOutcome outcome = solve_prepared(test::prepare(job), job);
   ASSERT_EQ(outcome.luminaires.size(), 6u);
   for (int r = 0; r < 2; ++r)
     for (int c = 0; c < 3; ++c) {
@@ -316,7 +316,7 @@ TEST(LayoutSearch, ArraySpacingIsSearched) {
       "  candidate_spacing_m: 0.5\n  layout: array\n  array: {rows: 2, columns: 2}\n";
   const JobConfig job = load_job_config(
       dir.write("job.yaml", room_job("0", luminaires, "  - surface: mat\n    average_lux: 250\n", kOptimizer)));
-  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  const JobOutcome outcome = solve_prepared(test::prepare(job), job);
   ASSERT_EQ(outcome.luminaires.size(), 4u);
   // The least power over a central mat puts the array's centre over it.
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -341,7 +341,7 @@ TEST(LayoutSearch, ClosestToTargetHitsEachAverage) {
   const std::string goals = "  - surface: left\n    average_lux: 300\n  - surface: right\n    average_lux: 100\n";
   const JobConfig job = load_job_config(
       dir.write("job.yaml", room_job("0", luminaires, goals, std::string(kOptimizer) + "objective: closest_to_target\n")));
-  const JobOutcome outcome = solve_prepared(prepare_job(job), job);
+  const JobOutcome outcome = solve_prepared(test::prepare(job), job);
   ASSERT_EQ(outcome.goals.size(), 2u);
   // Two luminaires can serve two mats 2.6 m apart separately: both targets within 1 %
   // as predicted, and met (within the 5 % a target allows) on verification.
@@ -358,12 +358,12 @@ TEST(LayoutSearch, ClosestToTargetHitsEachAverage) {
 TEST(LayoutSearch, PlacedLuminairesAreFixedLightTheSearchBuildsOn) {
   TempDir dir;
   const JobConfig alone = mat_job(dir, 200.0);
-  const JobOutcome without = solve_prepared(prepare_job(alone), alone);
+  const JobOutcome without = solve_prepared(test::prepare(alone), alone);
   // The same job with a fixed panel in a corner that already lights the mat a little.
   const std::string with_placed = std::string(kOneLuminaire) +
                                   "  placed:\n    - {name: old, position_m: [0.5, 0.5, 2.4], flux_lm: 2000}\n";
   const JobConfig job = mat_job(dir, 200.0, "0", with_placed);
-  const PreparedJob prepared = prepare_job(job);
+  const PreparedJob prepared = test::prepare(job);
   const GoalArea& mat = prepared.model.areas[0];
   double fixed = 0.0;
   for (std::size_t r = 0; r < mat.rows.size(); ++r) fixed += mat.area_weights[static_cast<Eigen::Index>(r)] * prepared.model.fixed_lux[mat.rows[r]];
@@ -386,11 +386,11 @@ TEST(LayoutSearch, FacingUpKeepsOnlyTheTopsOfAGoalSurface) {
   const std::string goals_up = "  - surface: [floor, walls]\n    facing: up\n    average_lux: 100\n";
   const JobConfig job = load_job_config(dir.write("job.yaml", room_job("0", kOneLuminaire, goals_up, kOptimizer)));
   const JobScene loaded = load_job_scene(job);
-  const LightingModel model = lighting_model_geometry(loaded.scene, job);
+  const LightingModel model = lighting_model_geometry(loaded.scene, test::model_spec(job));
   EXPECT_EQ(model.goal_patches, loaded.scene.patches_of({"floor"}));
   const std::string walls_up = "  - surface: walls\n    facing: up\n    average_lux: 100\n";
   const JobConfig bad = load_job_config(dir.write("bad.yaml", room_job("0", kOneLuminaire, walls_up, kOptimizer)));
-  EXPECT_THROW(lighting_model_geometry(load_job_scene(bad).scene, bad), std::invalid_argument);
+  EXPECT_THROW(lighting_model_geometry(load_job_scene(bad).scene, test::model_spec(bad)), std::invalid_argument);
 }
 
 TEST(LayoutSearch, EvaluationIsBitForBitTheSameWhateverTheThreads) {
@@ -400,14 +400,14 @@ TEST(LayoutSearch, EvaluationIsBitForBitTheSameWhateverTheThreads) {
   const std::string goals = "  - surface: [floor, walls]\n    average_lux: 100\n";
   const std::string luminaires = std::string(kOneLuminaire).replace(std::string(kOneLuminaire).find("count: 1"), 8, "count: 3");
   JobConfig job = load_job_config(dir.write("job.yaml", room_job("0.5", luminaires, goals, kOptimizer)));
-  const PreparedJob prepared = prepare_job(job);
+  const PreparedJob prepared = test::prepare(job);
   ASSERT_GT(prepared.model.goal_patches.size(), 2048u);
   const std::vector<Eigen::Vector2d> xy{{0.7, 0.9}, {2.2, 3.1}, {3.4, 1.3}};
   const std::vector<double> w{1.0, 0.6, 0.8};
   job.form_factors.threads = 1;
-  const LayoutEvaluation one = evaluate_layout(prepared.model, job, xy, w);
+  const LayoutEvaluation one = evaluate_layout(prepared.model, test::spec(job), xy, w);
   job.form_factors.threads = 2;
-  const LayoutEvaluation two = evaluate_layout(prepared.model, job, xy, w);
+  const LayoutEvaluation two = evaluate_layout(prepared.model, test::spec(job), xy, w);
   ASSERT_EQ(one.lux.size(), two.lux.size());
   EXPECT_TRUE((one.lux.array() == two.lux.array()).all());
   EXPECT_EQ(one.objective, two.objective);
@@ -422,11 +422,11 @@ TEST(LayoutSearch, LuminairesSharingCandidateColumnsEachAddTheirOwnLight) {
   const std::string luminaires = std::string(kOneLuminaire).replace(std::string(kOneLuminaire).find("count: 1"), 8, "count: 3");
   const JobConfig job = load_job_config(
       dir.write("job.yaml", room_job("0.5", luminaires, "  - surface: [floor, walls]\n    average_lux: 100\n", kOptimizer)));
-  const PreparedJob prepared = prepare_job(job);
+  const PreparedJob prepared = test::prepare(job);
   const LightingModel& model = prepared.model;
   const std::vector<Eigen::Vector2d> xy{{1.2, 1.6}, {1.45, 1.75}, {3.4, 1.3}};
   const std::vector<double> w{1.0, 0.6, 0.8};
-  const LayoutEvaluation found = evaluate_layout(model, job, xy, w);
+  const LayoutEvaluation found = evaluate_layout(model, test::spec(job), xy, w);
   ASSERT_EQ(found.luminaires.size(), 3u);
   int shared = 0;
   for (const int a : found.luminaires[0].blend.candidates)
@@ -450,7 +450,7 @@ TEST(LayoutSearch, ReflectedLightIsPredictedAsVerified) {
   // prediction falls far short of the verification.
   TempDir dir;
   const JobConfig job = mat_job(dir, 200.0, "0.6");
-  const PreparedJob prepared = prepare_job(job);
+  const PreparedJob prepared = test::prepare(job);
   ASSERT_GT(prepared.model.sample_size, 0);
   JobConfig once = job;
   once.verification.rounds = 1;
@@ -475,14 +475,14 @@ TEST(LayoutSearch, PowerDensityIsPerFloorAreaNotPerTaskArea) {
       "job.yaml", "grids:\n  - {name: plane, over_surface: floor, height_m: 0.8}\n" +
                       room_job("0", kOneLuminaire, "  - {grid: plane, average_lux: 100}\n", kOptimizer)));
   base.verification.method = VerificationMethod::none;
-  const JobOutcome on_floor = solve_prepared(prepare_job(base), base);
+  const JobOutcome on_floor = solve_prepared(test::prepare(base), base);
   EXPECT_NEAR(on_floor.floor_area_m2, 16.0, 1e-6);
   EXPECT_NE(on_floor.floor_area_source.find("floor 'floor'"), std::string::npos) << on_floor.floor_area_source;
   JobConfig table = base;
   table.grids[0].over_surface = "table";
   table.grids[0].height_m = 0.01;
   table.grids[0].border_m = 0.0;
-  const JobOutcome on_table = solve_prepared(prepare_job(table), table);
+  const JobOutcome on_table = solve_prepared(test::prepare(table), table);
   EXPECT_NE(on_table.floor_area_source.find("mounting surface"), std::string::npos) << on_table.floor_area_source;
   EXPECT_GT(on_table.floor_area_m2, 10.0) << "not the 0.16 m2 table top";
 }
@@ -495,7 +495,7 @@ TEST(LayoutSearch, GridGoalIsSearchedAndVerifiedAtItsPoints) {
       "maintenance_factor: 0.8\n";
   const std::string text = room_job("0.5", kOneLuminaire, "  - {grid: plane, average_lux: 200}\n", kOptimizer);
   const JobConfig job = load_job_config(dir.write("job.yaml", grids + text));
-  const PreparedJob prepared = prepare_job(job);
+  const PreparedJob prepared = test::prepare(job);
   ASSERT_EQ(prepared.model.grids.size(), 1u);
   const CalcGrid& grid = prepared.model.grids[0];
   EXPECT_EQ(grid.cells_u * grid.cells_v, 25);  // 1 m: p = 0.2 m, 5 x 5 points

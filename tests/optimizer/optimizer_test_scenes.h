@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "job/job_runner.h"
+#include "job/plan.h"
 #include "tests/test_support.h"
 
 namespace ilp::test {
@@ -58,5 +60,13 @@ inline std::string room_job(const std::string& reflectance, const std::string& l
          "verification:\n  rays_per_patch: 256\n" +
          rest;
 }
+
+// The job's first variant as the runner plans it: prepared (scene, model, operator),
+// its search spec, its model spec.
+inline PreparedJob prepare(const JobConfig& job, const std::string& cache_dir = "") {
+  return prepare_job(job, plan_job(job).front(), {}, {}, cache_dir);
+}
+inline SearchSpec spec(const JobConfig& job) { return plan_job(job).front().search; }
+inline ModelSpec model_spec(const JobConfig& job) { return plan_job(job).front().model; }
 
 }  // namespace ilp::test

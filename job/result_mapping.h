@@ -1,0 +1,24 @@
+// From a job's outcome to the result record the outputs are written from
+// (output/result_record.h): the layout, each goal's line in maintained values, the
+// bill of materials, how it was verified.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "job/job_runner.h"
+#include "output/result_record.h"
+
+namespace ilp {
+
+// Product x count, watts each and in all (empty when the outcome has no layout).
+std::vector<BillLine> bill_of_materials(const VariantPlan& plan, const JobOutcome& outcome);
+
+// The record of the chosen variant's outcome, goals judged against `job`'s targets,
+// with the grids' records and the run's phase timings.
+ResultRecord make_record(const std::string& program_version, const PreparedJob& prepared, const JobConfig& job,
+                         const JobOutcome& outcome, const std::vector<GridRecord>& grids,
+                         const std::vector<std::pair<std::string, double>>& timings);
+
+}  // namespace ilp

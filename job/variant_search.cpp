@@ -1,0 +1,86 @@
+#include "job/variant_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <numeric>
+#include <sstream>
+
+namespace ilp {
+namespace {
+
+// The search luminaire's least power for every count, at the targets of `goals_job`.
+double least_power_w(const PreparedJob& prepared, const JobConfig& goals_job) {
+  SearchSpec spec = prepared.plan.search;
+  spec.goals = goal_specs(goals_job, prepared.plan.maintenance_factor);
+  return least_layout_power_w(prepared.model, spec);
+}
+
+// "PRODUCT at R deg: ..." for the run log and result.json's variants.
+std::string tried_line(const VariantPlan& plan, const JobOutcome& outcome, double least_w, double to_beat) {
+  std::ostringstream line;
+  line << std::fixed << std::setprecision(1) << plan.product.product << " at " << plan.product.rotation_deg << " deg: ";
+  if (outcome.search.beaten && !std::isfinite(least_w))
+    line << "not searched: no count reaches an average target at full output";
+  else if (outcome.search.beaten)
+    line << "not searched: at least " << least_w << " W, no less than the " << to_beat << " W already found";
+  else
+    line << outcome.luminaires.size() << " luminaires, " << outcome.power_w << " W, "
+         << (outcome.all_met ? "every goal met" : "goals missed") << std::setprecision(2) << " (search "
+         << outcome.search.seconds << " s, verification " << outcome.verify_seconds << " s)";
+  return line.str();
+}
+
+}  // namespace
+
+std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vector<VariantPlan>& plans,
+                                          const RunOptions& run, const ProgressCallback& progress,
+                                          const std::string& cache_dir, const LogSink& log,
+                                          const std::function<void(const PreparedJob&)>& prepared_log) {
+  std::vector<PreparedJob> out;
+  for (const VariantPlan& plan : plans) {
+    if (plan.listed && log) {
+      std::ostringstream line;
+      line << "variant " << out.size() + 1 << " of " << plans.size() << ": " << plan.product.product << " at "
+           << plan.product.rotation_deg << " degrees";
+      log(line.str());
+      for (const std::string& note : plan.product.notes) log(note);
+    }
+    out.push_back(prepare_job(job, plan, run, progress, cache_dir, log));
+    if (prepared_log) prepared_log(out.back());
+  }
+  return out;
+}
+
+VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const JobConfig& goals_job,
+                             const ProgressCallback& progress, const LogSink& log) {
+  std::vector<double> least_w;
+  for (const PreparedJob& p : prepared) least_w.push_back(least_power_w(p, goals_job));
+  std::vector<std::size_t> order(prepared.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const bool bounded = prepared.size() > 1 && goals_job.objective == Objective::min_power;
+  if (bounded) std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return least_w[a] < least_w[b]; });
+  VariantChoice best;
+  bool have = false;
+  best.tried.resize(prepared.size());
+  for (const std::size_t v : order) {
+    const double to_beat = bounded && have && best.outcome.all_met ? best.outcome.power_w : kNoPowerToBeat;
+    JobOutcome outcome = solve_prepared(prepared[v], goals_job, progress, to_beat);
+    if (prepared[v].plan.listed) {
+      best.tried[v] = tried_line(prepared[v].plan, outcome, least_w[v], to_beat);
+      if (log) log("variant " + std::to_string(v + 1) + ": " + best.tried[v]);
+    }
+    best.search_seconds += outcome.search.seconds;
+    best.verify_seconds += outcome.verify_seconds;
+    if (outcome.search.beaten) continue;
+    if (!have || better_outcome(outcome, best.outcome)) {
+      best.variant = v;
+      best.outcome = std::move(outcome);
+      have = true;
+    }
+  }
+  if (!prepared.front().plan.listed) best.tried.clear();
+  return best;
+}
+
+}  // namespace ilp
