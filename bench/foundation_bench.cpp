@@ -7,7 +7,7 @@
 //   ./build/bench/ilp_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
 // Embree is used directly here only for the baseline; the library keeps it in
-// core/ray_caster.cpp.
+// core/rays/ray_caster.cpp.
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
@@ -21,7 +21,7 @@
 
 #include "job/config.h"
 #include "core/exact/exact_solver.h"
-#include "job/operator_setup.h"
+#include "job/plan.h"
 #include "core/rays/form_factors.h"
 #include "job/job_scene.h"
 #include "core/rays/ray_caster.h"
@@ -145,7 +145,7 @@ void BM_PlainEmbreeSameRays(benchmark::State& state) {
 
 void BM_ExactSolve(benchmark::State& state) {
   const Fixture& f = fixture();
-  ilp::ExactSolveOptions options = ilp::exact_solve_options(f.job);
+  ilp::ExactSolveOptions options = ilp::exact_options(f.job, {});
   options.form_factors.threads = options.direct_light.threads = static_cast<int>(state.range(0));
   ilp::ExactSolveSummary last;
   for (auto _ : state) last = ilp::solve_exact(f.scene, options).summary;

@@ -11,7 +11,7 @@
 
 #include "job/config.h"
 #include "core/exact/exact_solver.h"
-#include "job/operator_setup.h"
+#include "job/plan.h"
 #include "job/job_scene.h"
 
 int main(int argc, char** argv) {
@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
     std::vector<Eigen::VectorXd> lux;
     std::vector<double> seconds;
     for (int rays : ray_counts) {
-      ilp::ExactSolveOptions options = ilp::exact_solve_options(job);
+      ilp::ExactSolveOptions options = ilp::exact_options(job, {});
       options.form_factors.rays_per_patch = rays;
       const ilp::ExactSolution solution = ilp::solve_exact(scene, options);
       lux.push_back(solution.radiosity.total_lux);

@@ -1,4 +1,4 @@
-// libFuzzer harness: the job config loader (core/config.cpp, yaml-cpp) on any bytes.
+// libFuzzer harness: the job config loader (job/config.cpp, yaml-cpp) on any bytes.
 // Every input must give a JobConfig or an IlpError (ConfigError); anything else (a
 // crash, a sanitizer report, another exception) is a finding.
 #include <cstddef>

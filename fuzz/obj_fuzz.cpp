@@ -1,4 +1,4 @@
-// libFuzzer harness: the OBJ and MTL readers (core/mesh_io.cpp). The input is an OBJ
+// libFuzzer harness: the OBJ and MTL readers (core/scene/mesh_io.cpp). The input is an OBJ
 // file; from a line "#mtl" on it is the MTL file room.mtl beside it (seeds say
 // "mtllib room.mtl"). Every input must give a mesh or a SceneError (an IlpError).
 #include <cstddef>

@@ -1,4 +1,4 @@
-// libFuzzer harness: the PLY and OFF readers (core/mesh_io.cpp over OpenMesh). The
+// libFuzzer harness: the PLY and OFF readers (core/scene/mesh_io.cpp over OpenMesh). The
 // first byte picks the format (even: .ply, odd: .off), the rest is the file. Every
 // input must give a mesh or a SceneError (an IlpError); a header's counts must never
 // make it allocate more than the file could hold.

@@ -173,7 +173,7 @@ void reject_duplicate_keys(const Value& map) {
 // A YAML map whose keys must all be known.
 class Map {
  public:
-  Map(const Value& value, std::initializer_list<const char*> allowed) : value_(value) {
+  Map(const Value& value, const std::vector<std::string>& allowed) : value_(value) {
     if (!value.node().IsMap()) value.fail("must be a map of keys");
     std::set<std::string> known(allowed.begin(), allowed.end());
     reject_duplicate_keys(value);
@@ -181,7 +181,7 @@ class Map {
       const std::string name = item.first.Scalar();
       if (!known.count(name)) {
         std::string expected;
-        for (const char* k : allowed) expected += std::string(expected.empty() ? "" : ", ") + k;
+        for (const std::string& k : allowed) expected += (expected.empty() ? "" : ", ") + k;
         const YAML::Mark mark = item.first.Mark();
         throw ConfigError(located({file(), mark.line + 1, mark.column + 1},
                                   "unknown key '" + prefix() + name + "' (expected one of: " + expected + ")"));
@@ -639,12 +639,18 @@ void read_grids(const Value& section, JobConfig& job) {
   }
 }
 
+// A goals entry's keys: where it is measured, then one per metric (optimizer/goal_spec.h).
+std::vector<std::string> goal_entry_keys() {
+  std::vector<std::string> keys{"name", "surface", "grid", "facing", "preset"};
+  for (const MetricRule& rule : metric_rules()) keys.emplace_back(rule.key);
+  return keys;
+}
+
 void read_goals(const Value& section, JobConfig& job) {
   const std::vector<Value> entries = section.list();
   if (entries.empty()) section.fail("must list at least one goal");
   for (const Value& item : entries) {
-    const Map entry(item, {"name", "surface", "grid", "facing", "preset", "average_lux", "min_lux", "max_lux",
-                           "uniformity"});
+    const Map entry(item, goal_entry_keys());
     GoalSetting base;
     if (auto v = entry.get("facing")) {
       const std::string facing = v->text();
@@ -778,11 +784,10 @@ void read_constraints(const Map& constraints, JobConfig& job) {
 }
 
 void read_objective(const Value& v, JobConfig& job) {
-  const std::string objective = v.text();
-  if (objective == "min_power") job.objective = Objective::min_power;
-  else if (objective == "closest_to_target") job.objective = Objective::closest_to_target;
-  else v.fail("must be min_power or closest_to_target");
-  if (job.objective == Objective::closest_to_target &&
+  const ObjectiveRule* rule = objective_rule_for_key(v.text());
+  if (!rule) v.fail("must be min_power or closest_to_target");
+  job.objective = rule->objective;
+  if (rule->averages_are_targets &&
       std::none_of(job.goals.begin(), job.goals.end(),
                    [](const GoalSetting& g) { return g.metric == GoalMetric::average; }))
     v.fail("needs at least one goal with average_lux");

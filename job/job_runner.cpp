@@ -117,7 +117,7 @@ double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgeme
   limited = false;
   double scale = 0.0, num = 0.0, den = 0.0;
   for (const GoalJudgement& g : verified) {
-    if (g.metric == GoalMetric::average && spec.objective == Objective::closest_to_target) {
+    if (is_target_goal(spec.objective, g.metric)) {
       num += g.value / g.target;
       den += g.value * g.value / (g.target * g.target);
     } else if (metric_rule(g.metric).scale_closed_form && g.target > 0.0) {
@@ -125,7 +125,7 @@ double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgeme
       scale = std::max(scale, g.target / g.value);
     }
   }
-  if (spec.objective == Objective::closest_to_target) scale = den > 0.0 ? num / den : 1.0;
+  if (objective_rule(spec.objective).averages_are_targets) scale = den > 0.0 ? num / den : 1.0;
   if (!(scale > 0.0)) return 1.0;
   double flux_high = 0.0, flux_low = std::numeric_limits<double>::infinity();
   for (const PlacedLuminaire& l : layout) {
@@ -331,7 +331,7 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
     o.tolerance = goal_tolerance(job.objective, predicted[g].metric);
     // The closed-form scale meets goals to round-off; allow for it.
     const bool predicted_met = as_searched[g].violation <= o.tolerance + 1e-9;
-    if (!(job.objective == Objective::closest_to_target && predicted[g].metric == GoalMetric::average))
+    if (!is_target_goal(job.objective, predicted[g].metric))
       out.feasible = out.feasible && predicted_met;
     if (verified) {
       o.verified = (*verified)[g];
@@ -362,7 +362,7 @@ double total_missed(const JobOutcome& o) {
 // deviation; otherwise less missed.
 bool better_outcome(const JobOutcome& a, const JobOutcome& b, Objective objective) {
   if (a.all_met != b.all_met) return a.all_met;
-  if (a.all_met && objective == Objective::min_power) return a.power_w < b.power_w;
+  if (a.all_met && objective_rule(objective).minimises_power) return a.power_w < b.power_w;
   return total_missed(a) < total_missed(b);
 }
 
@@ -409,7 +409,7 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
       const GoalOutcome& o = outcome.goals[g];
       if (round + 1 == rounds) break;  // no search follows
       if (!o.fails_only_on_verification) continue;
-      if (job.objective == Objective::closest_to_target && o.predicted.metric == GoalMetric::average) continue;
+      if (is_target_goal(job.objective, o.predicted.metric)) continue;
       GoalSetting& goal = search_job.goals[g];
       const std::optional<double> next =
           next_search_target(goal.metric, job.goals[g].target, goal.target, o.predicted.value, o.verified->value);

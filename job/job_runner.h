@@ -34,13 +34,13 @@ struct PreparedJob {
   bool loaded_from_cache = false;  // the operator came from the cache folder
   std::string cache_status;        // for the run log; empty without a cache folder
   double cache_seconds = 0.0;      // computing the key and reading, or writing, the cache file
-  std::vector<std::string> estimate_log;  // the cost model's estimate (core/cost_model.h), for the run log
+  std::vector<std::string> estimate_log;  // the cost model's estimate (core/operator/cost_model.h), for the run log
 };
 
 // Throws ConfigError when the job does not describe an inverse problem (no
 // luminaires.mounting_surface or no goals), naming the file.
 //
-// With a cache folder (optimizer/model_cache.h), the operator is read from
+// With a cache folder (job/model_cache.h), the operator is read from
 // cache_dir/KEY.ilpmodel when that file is valid for the job; otherwise it is built
 // and written there (the folder is created; a stale or corrupt file is replaced). A
 // cache that cannot be read or written never fails the job: cache_status says why.

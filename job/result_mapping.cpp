@@ -27,7 +27,7 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   ResultRecord r;
   r.program_version = program_version;
   r.config = job.path;
-  r.objective = job.objective == Objective::min_power ? "min_power" : "closest_to_target";
+  r.objective = std::string(objective_rule(job.objective).key);
   for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
     const PlacedLuminaire& l = outcome.luminaires[j];
     r.luminaires.push_back({luminaire_name(j), l.position_m.x(), l.position_m.y(), l.position_m.z(), l.flux_lm, l.power_w,

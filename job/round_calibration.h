@@ -1,6 +1,6 @@
 // Between verification rounds: a goal met as predicted but missed as verified is
 // searched for again with its target moved by how far the prediction overshot the
-// verified value (a defect correction; optimizer/job_runner.h runs the rounds).
+// verified value (a defect correction; job/job_runner.h runs the rounds).
 #pragma once
 
 #include <optional>

@@ -58,7 +58,7 @@ VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const Job
   for (const PreparedJob& p : prepared) least_w.push_back(least_power_w(p, goals_job));
   std::vector<std::size_t> order(prepared.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  const bool bounded = prepared.size() > 1 && goals_job.objective == Objective::min_power;
+  const bool bounded = prepared.size() > 1 && objective_rule(goals_job.objective).minimises_power;
   if (bounded) std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return least_w[a] < least_w[b]; });
   VariantChoice best;
   bool have = false;

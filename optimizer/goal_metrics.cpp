@@ -27,6 +27,24 @@ double weighted_average(const GoalArea& area, const Eigen::VectorXd& v) {
 
 const std::vector<MetricRule>& metric_rules() { return kRules; }
 
+const ObjectiveRule& objective_rule(Objective objective) {
+  static constexpr ObjectiveRule kObjectives[] = {{Objective::min_power, "min_power", true, false},
+                                                  {Objective::closest_to_target, "closest_to_target", false, true}};
+  for (const ObjectiveRule& r : kObjectives)
+    if (r.objective == objective) return r;
+  throw std::invalid_argument("objective_rule: unknown objective");
+}
+
+const ObjectiveRule* objective_rule_for_key(std::string_view key) {
+  for (Objective o : {Objective::min_power, Objective::closest_to_target})
+    if (objective_rule(o).key == key) return &objective_rule(o);
+  return nullptr;
+}
+
+bool is_target_goal(Objective objective, GoalMetric metric) {
+  return objective_rule(objective).averages_are_targets && metric == GoalMetric::average;
+}
+
 const MetricRule& metric_rule(GoalMetric metric) {
   for (const MetricRule& r : kRules)
     if (r.metric == metric) return r;

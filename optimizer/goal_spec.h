@@ -27,6 +27,24 @@ enum class Objective {
   closest_to_target,  // average goals hit their targets (least squared relative deviation); others are constraints
 };
 
+// What an objective means for the stages: its key in the job file, whether the search
+// and the choice between layouts minimise electric power (feasible layouts ranked by
+// watts, counts and products bounded by the power already found), and whether average
+// goals are targets to hit (least squared relative deviation, two-sided) instead of
+// lower bounds.
+struct ObjectiveRule {
+  Objective objective;
+  std::string_view key;     // min_power, closest_to_target
+  bool minimises_power;
+  bool averages_are_targets;
+};
+const ObjectiveRule& objective_rule(Objective objective);
+// The rule of an objective's key, or nullptr.
+const ObjectiveRule* objective_rule_for_key(std::string_view key);
+// Is a goal of this metric a target to hit under the objective (an average goal of
+// closest_to_target), rather than a bound?
+bool is_target_goal(Objective objective, GoalMetric metric);
+
 struct MetricRule {
   GoalMetric metric;
   std::string_view key;   // in goals entries and sweep keys: average_lux, min_lux, max_lux, uniformity

@@ -231,7 +231,7 @@ class Evaluator {
     const double scale_hi = w_max > 0.0 ? s.flux_max_lm / w_max : 0.0;
     const double scale_lo = w_min > 0.0 ? std::min(scale_hi, s.flux_min_lm / w_min) : 0.0;
     double scale = 0.0;
-    if (spec_.objective == Objective::min_power) {
+    if (objective_rule(spec_.objective).minimises_power) {
       for (std::size_t g = 0; g < spec_.goals.size(); ++g) {
         const GoalSpec& goal = spec_.goals[g];
         const GoalArea& area = model_.areas[static_cast<std::size_t>(areas_[g])];
@@ -270,7 +270,7 @@ class Evaluator {
     double penalty = out.distance_violation, deviation = 0.0;
     out.feasible = out.distance_violation <= kConstraintTolerance;
     for (const GoalJudgement& g : out.goals) {
-      if (spec_.objective == Objective::closest_to_target && g.metric == GoalMetric::average) {
+      if (is_target_goal(spec_.objective, g.metric)) {
         deviation += g.violation * g.violation;
         continue;
       }
@@ -278,7 +278,7 @@ class Evaluator {
       out.feasible = out.feasible && g.violation <= kConstraintTolerance;
     }
     const double reference_power_w = std::max(1e-300, static_cast<double>(n) * s.flux_max_lm / s.efficacy_lm_per_w);
-    out.objective = (spec_.objective == Objective::min_power ? out.power_w / reference_power_w : deviation) +
+    out.objective = (objective_rule(spec_.objective).minimises_power ? out.power_w / reference_power_w : deviation) +
                     kPenaltyWeight * penalty;
     return out;
   }
@@ -324,7 +324,7 @@ std::string stop_reason(nlopt::result r) {
 // penalty dominates.
 bool better(const LayoutEvaluation& a, const LayoutEvaluation& b, Objective objective) {
   if (a.feasible != b.feasible) return a.feasible;
-  if (a.feasible && objective == Objective::min_power) return a.power_w < b.power_w;
+  if (a.feasible && objective_rule(objective).minimises_power) return a.power_w < b.power_w;
   return a.objective < b.objective;
 }
 
@@ -401,7 +401,7 @@ const CountAttempt* easier_attempt(const SearchBounds& bounds, int n) {
 // found feasible, least power first (the likeliest best, whose power then bounds the
 // rest), then the others; else, and among the others, from the fewest luminaires up.
 std::vector<int> search_order(const std::vector<int>& counts, const SearchBounds& bounds, Objective objective) {
-  if (objective != Objective::min_power) return counts;
+  if (!objective_rule(objective).minimises_power) return counts;
   auto earlier_power_w = [&](int n) {
     const CountAttempt* a = easier_attempt(bounds, n);
     return a && a->feasible ? a->power_w : kNoPowerToBeat;
@@ -437,7 +437,7 @@ std::string skip_reason(int n, const std::vector<int>& counts, const CountBound&
 }  // namespace
 
 double goal_tolerance(Objective objective, GoalMetric metric) {
-  return objective == Objective::closest_to_target && metric == GoalMetric::average ? kTargetTolerance
+  return is_target_goal(objective, metric) ? kTargetTolerance
                                                                                          : kConstraintTolerance;
 }
 
@@ -456,7 +456,7 @@ std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchS
     const double target = goal.target;  // initial, as the values are
     GoalJudgement j{goal.name, goal.metric, target, 0.0, 0.0};
     j.value = metric_value(goal.metric, area_statistics(area, lux));
-    j.violation = relative_violation(goal.metric, j.value, target, spec.objective == Objective::closest_to_target);
+    j.violation = relative_violation(goal.metric, j.value, target, objective_rule(spec.objective).averages_are_targets);
     out.push_back(j);
   }
   return out;
@@ -603,7 +603,7 @@ SearchResult search_layout(const LightingModel& model, const SearchSpec& spec, c
   std::optional<LayoutEvaluation> best;
   for (const int n : search_order(counts, bounds, spec.objective)) {
     const double to_beat = std::min(bounds.power_to_beat_w, best && best->feasible ? best->power_w : kNoPowerToBeat);
-    const std::string skip = spec.objective == Objective::min_power
+    const std::string skip = objective_rule(spec.objective).minimises_power
                                  ? skip_reason(n, counts, count_bound(spec.luminaire, n, least_flux_lm), bounds, to_beat)
                                  : std::string();
     if (!skip.empty()) {

@@ -1,6 +1,6 @@
 // Direct light from luminaires without gather noise. A gather row of 256 rays sees
 // a 0.6 m luminaire 3 m away only a few times, so its F_il would be noise; here the
-// luminaire's light at a receiver comes from its type (core/luminaire.h): the
+// luminaire's light at a receiver comes from its type (core/light/luminaire.h): the
 // unoccluded illuminance in closed form or by point sources, times the visible
 // share from shadow rays.
 #pragma once

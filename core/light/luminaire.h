@@ -1,8 +1,8 @@
 // A luminaire: what it is (its type: the model, the luminous opening and how its
 // light leaves it) and where it is (position and rotation about the vertical axis).
 // Everything that places, lights, draws or caches a luminaire goes through this
-// header: the scene adds its opening as patches (add_luminaire in core/scene.h),
-// the direct light asks it for its intensity (core/direct_light.h), the candidate
+// header: the scene adds its opening as patches (add_luminaire in core/scene/scene.h),
+// the direct light asks it for its intensity (core/light/direct_light.h), the candidate
 // grid for its footprint, the operator cache for its key.
 //
 // Frames. A luminaire's own frame has z up, the opening's centre at the origin, its

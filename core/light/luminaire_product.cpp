@@ -30,7 +30,7 @@ PhotometricDistribution::PhotometricDistribution(std::shared_ptr<const Photometr
 double PhotometricDistribution::cd_per_lm(const Eigen::Vector3d& d) const {
   const double norm = d.norm();
   if (!(norm > 0.0)) return 0.0;
-  // gamma from nadir, C counter-clockwise from +x (core/photometry.h).
+  // gamma from nadir, C counter-clockwise from +x (core/light/photometry.h).
   const double gamma = std::acos(std::clamp(-d.z() / norm, -1.0, 1.0)) * (kGammaSteps / std::numbers::pi);
   double c = std::atan2(d.y(), d.x()) * (kCSteps / (2.0 * std::numbers::pi));
   if (c < 0.0) c += kCSteps;

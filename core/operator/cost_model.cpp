@@ -30,7 +30,7 @@ double d(std::size_t v) { return static_cast<double>(v); }
 // Non-zeros of `rows` rows of `rays` rays in a scene of n patches (at most one per ray).
 double row_nnz(double rows, int rays, std::size_t n) { return rows * std::min<double>(rays, d(n)); }
 
-// The interreflection solve (core/contraction_solve.h): per channel, the first
+// The interreflection solve (core/operator/contraction_solve.h): per channel, the first
 // reflection gathered through the sample rows (rays x sources each), then sweeps
 // over k rows of about 2 gathers (one sampled hit, the ambient term) x sources.
 double interreflection_flops(double k, double sources, int channels, int rays_per_patch, const MachineCosts& m) {

@@ -282,7 +282,7 @@ Eigen::MatrixXd gather_first_reflection(const Scene& scene, const SparseRows& F,
   return out;
 }
 
-// (I - K) X = rhs. By iteration (core/contraction_solve.h) when K's contraction
+// (I - K) X = rhs. By iteration (core/operator/contraction_solve.h) when K's contraction
 // factor lets it converge in kMaxSweeps or k is too large for a dense k x k matrix
 // (memory grows as k, not k^2), else by a dense LU. The condition figure in the stats
 // is the LU's 1-norm estimate, or for the iteration the infinity-norm bound
@@ -595,7 +595,7 @@ SampleOperator build_in_arena(const Scene& scene, const RayCaster& caster, const
   for (Eigen::Index b = 0; b < k; ++b) ambient[b] = scene.patches[P[b]].area_m2 * w[b];
   ambient /= ambient.sum();
   // W_PP = the sparse gathers + a rank-one ambient term for the rows that saw no
-  // sample patch (core/contraction_solve.h).
+  // sample patch (core/operator/contraction_solve.h).
   ContractionSystem W_PP;
   W_PP.ambient = ambient;
   W_PP.fallback_scale = Eigen::VectorXd::Zero(k);

@@ -14,7 +14,7 @@
 #include "core/base/error.h"
 #include "core/exact/exact_solver.h"
 #include "job/job_scene.h"
-#include "job/operator_setup.h"
+#include "job/plan.h"
 #include "core/light/direct_light.h"
 #include "core/rays/point_gather.h"
 #include "core/scene/reference_scenes.h"
@@ -358,12 +358,12 @@ TEST(PointIlluminance, OfficeWorkPlaneAtDefaultKAgreesWithTheExactPointwiseSolve
   plane.height_m = 0.8;
   plane.spacing_m = 0.25;
   const CalcGrid grid = make_calc_grid(scene, caster, plane);
-  SampleOperatorOptions o = sample_operator_options(job);
+  SampleOperatorOptions o = operator_options(job, {});
   o.sample_size = job.sample.size_for(reflecting_patches(scene).size());
   const GoalRows rows = compute_goal_rows(scene, caster, {}, grid.points, scene_light_sources(scene), o);
   const SampleOperator op = build_sample_operator(scene, caster, rows, o);
   const Eigen::VectorXd H = op.illuminance_lux(source_flux_lm(scene, op.sources));
-  ExactSolveOptions exact = exact_solve_options(job);
+  ExactSolveOptions exact = exact_options(job, {});
   exact.form_factors.rays_per_patch = 1024;
   exact.form_factors.seed = exact.direct_light.seed = 77;
   const ExactSolution solution = solve_exact(scene, exact);

@@ -1,4 +1,4 @@
-// The photometric readers (core/photometry.h) against the sixteen real files in
+// The photometric readers (core/light/photometry.h) against the sixteen real files in
 // ../shared/photometry (flux figures from its README, produced independently by summarize.py),
 // closed forms (Lambertian pi I0, isotropic 4 pi I0), the symmetry rules, and every class of
 // malformed file (table-driven over mutated copies of real files).

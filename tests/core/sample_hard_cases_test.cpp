@@ -315,7 +315,7 @@ Ingredients ingredients(const Scene& scene, const SampleOperatorOptions& o, doub
 }
 
 // T for one luminaire and every goal patch (all patches), written out from the
-// header of core/sample_operator.h for a gray scene:
+// header of core/operator/sample_operator.h for a gray scene:
 //   W_ab = s_a w_b F_ab / sum_c w_c F_ac for a sample row (own row),
 //   W_ib = s_i w_b A_b F_bi / sum_c w_c A_c F_ci for other goals (reciprocity; with
 //          the exact second bounce A_b F_bi + A_i F_ib, adding the goal's own row),
