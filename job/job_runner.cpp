@@ -145,9 +145,9 @@ void add_layout(Scene& scene, const LuminaireSearch& search, const std::vector<P
 }
 
 std::vector<JobVariant> job_variants(const JobConfig& job) {
-  if (!job.search || job.search->products.empty()) return {JobVariant{job, std::nullopt}};
+  if (!job.search || job.products.empty()) return {JobVariant{job, std::nullopt}};
   std::vector<JobVariant> out;
-  for (ProductVariant& v : product_variants(*job.search)) {
+  for (ProductVariant& v : product_variants(job.products)) {
     JobConfig j = job_for_variant(job, v);
     out.push_back({std::move(j), std::move(v)});
   }
