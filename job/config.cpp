@@ -1,6 +1,5 @@
 #include "job/config.h"
 
-
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
@@ -11,9 +10,12 @@
 #include <fstream>
 #include <iterator>
 #include <iomanip>
+#include <map>
 #include <set>
 #include <sstream>
 #include <utility>
+
+#include "job/products.h"
 
 namespace ilp {
 namespace {
@@ -334,10 +336,11 @@ void read_scene(const Map& scene, JobConfig& job) {
 }
 
 // The keys of luminaires that describe the search; each needs mounting_surface.
+// (products is not one: placed luminaires may name them without a search.)
 constexpr const char* kSearchKeys[] = {"model",          "flux_lm",             "efficacy_lm_per_w",
                                        "mount_offset_m", "candidate_spacing_m", "count",
-                                       "layout",         "array",               "products",
-                                       "wall_distance_m", "ceiling_module_m"};
+                                       "layout",         "array",               "wall_distance_m",
+                                       "ceiling_module_m"};
 
 // A list of 2 numbers [x, y], each read and checked by `check`.
 Eigen::Vector2d pair_of(const Value& v, double (*check)(const Value&)) {
@@ -364,7 +367,7 @@ void read_panel_flux(const Map& luminaires, const Value& mounting, LuminaireSear
   }
 }
 
-void read_products(const Value& section, const JobConfig& job, LuminaireSearch& search) {
+void read_products(const Value& section, JobConfig& job) {
   const std::filesystem::path base = std::filesystem::path(job.path).parent_path();
   std::set<std::string> names;
   for (const Value& item : section.list()) {
@@ -410,9 +413,9 @@ void read_products(const Value& section, const JobConfig& job, LuminaireSearch& 
       if (*p.mount_offset_m <= 0.0) v->fail("must be in (0, 10) m");
       p.mount_offset_loc = v->loc();
     }
-    search.products.push_back(p);
+    job.products.push_back(p);
   }
-  if (search.products.empty()) section.fail("must list at least one product");
+  if (job.products.empty()) section.fail("must list at least one product");
 }
 
 void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
@@ -425,10 +428,9 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
     search.model = v->text();
     if (search.model != "square_lambertian") v->fail("must be square_lambertian");
   }
-  if (auto products = luminaires.get("products")) {
+  if (!job.products.empty()) {
     for (const char* key : {"model", "flux_lm", "efficacy_lm_per_w"})
       if (auto v = luminaires.get(key)) v->fail("not with luminaires.products (each product gives its own)");
-    read_products(*products, job, search);
   } else {
     read_panel_flux(luminaires, mounting, search);
   }
@@ -484,25 +486,89 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
   }
 }
 
+// The products placed luminaires name, each resolved once (its file read once).
+using ResolvedProducts = std::map<std::string, ProductVariant>;
+
+const ProductVariant& placed_product(const Value& name, const JobConfig& job, ResolvedProducts& resolved) {
+  const std::string wanted = name.text();
+  if (auto it = resolved.find(wanted); it != resolved.end()) return it->second;
+  std::string known;
+  for (const ProductSetting& p : job.products) {
+    if (p.name == wanted) return resolved.emplace(wanted, product_base(p)).first->second;
+    known += (known.empty() ? "" : ", ") + p.name;
+  }
+  name.fail(known.empty() ? "unknown product: luminaires.products lists none"
+                          : "unknown product (luminaires.products has " + known + ")");
+}
+
+std::string dimming_range(const ProductVariant& product) {
+  return "[" + Value::shown(product.dim_min) + ", " + Value::shown(product.dim_max) + "]";
+}
+
+// flux_lm given for a product: within its dimming range x its rated flux.
+double product_flux_lm(const Value& flux, const ProductVariant& product) {
+  const double lm = flux.bounded(0.0, kMaxFlux_lm, " lm");
+  // A relative slack, so that a rated flux written out in full is taken as it.
+  constexpr double kSlack = 1e-9;
+  const double rated = product.rated_flux_lm, low = product.dim_min * rated, high = product.dim_max * rated;
+  if (lm >= low * (1.0 - kSlack) && lm <= high * (1.0 + kSlack)) return lm;
+  if (low == high)
+    flux.fail("must be product '" + product.product + "''s fixed output, " + Value::shown(low) +
+              " lm (no dimming range; leave flux_lm out for it)");
+  flux.fail("must be within product '" + product.product + "''s output, " + Value::shown(low) + " to " +
+            Value::shown(high) + " lm (dimming " + dimming_range(product) + " x rated " + Value::shown(rated) + " lm)");
+}
+
+// A product's output in lm: flux_lm, or output (a fraction of the rated flux within
+// the dimming range, default 1 = full output). `name` is the entry's product key.
+double product_output_lm(const Map& lum, const Value& name, const ProductVariant& product) {
+  const auto flux = lum.get("flux_lm"), output = lum.get("output");
+  if (flux && output) output->fail("not with flux_lm (give the output one way)");
+  if (flux) return product_flux_lm(*flux, product);
+  const double fraction = output ? output->number() : 1.0;
+  if (fraction >= product.dim_min && fraction <= product.dim_max) return fraction * product.rated_flux_lm;
+  if (!output)
+    name.fail("full output (1, the default) is outside the product's dimming range " + dimming_range(product) +
+              ": give output");
+  output->fail("must be within product '" + product.product + "''s dimming range " + dimming_range(product) +
+               " (fractions of its rated output)");
+}
+
+LuminaireSetting read_placed(const Value& item, const JobConfig& job, ResolvedProducts& resolved) {
+  const Map lum(item, {"name", "position_m", "flux_lm", "product", "rotation_deg", "output"});
+  LuminaireSetting setting;
+  if (auto name = lum.get("name")) {
+    setting.name = name->text();
+  } else {
+    setting.name = "L";  // (not "L" + ...: GCC 12 warns falsely on operator+(const char*, string&&))
+    setting.name += std::to_string(job.luminaires.size() + 1);
+  }
+  setting.position_m = lum.require("position_m").vector3();
+  if (auto v = lum.get("rotation_deg")) setting.rotation_deg = v->number_in(-360.0, 360.0, false, "[-360, 360] degrees");
+  setting.loc = item.loc();
+  if (auto product = lum.get("product")) {
+    const ProductVariant& p = placed_product(*product, job, resolved);
+    setting.product = p.product;
+    setting.type = p.type;
+    setting.flux_lm = product_output_lm(lum, *product, p);
+    return setting;
+  }
+  if (auto v = lum.get("output")) v->fail("needs product: (a fraction of a product's rated flux; the plain panel gives flux_lm)");
+  setting.type = LuminaireType::square_lambertian(job.luminaire_size_m);
+  setting.flux_lm = lum.require("flux_lm").bounded(0.0, kMaxFlux_lm, " lm");
+  return setting;
+}
+
 void read_luminaires(const Map& luminaires, JobConfig& job) {
   if (auto v = luminaires.get("size_m")) job.luminaire_size_m = v->bounded(kMinLuminaireSize_m, kMaxLuminaireSize_m, " m");
+  if (auto v = luminaires.get("products")) read_products(*v, job);
   if (auto v = luminaires.get("placed")) {
     std::set<std::string> names;
+    ResolvedProducts resolved;
     for (const Value& item : v->list()) {
-      const Map lum(item, {"name", "position_m", "flux_lm"});
-      LuminaireSetting setting;
-      if (auto name = lum.get("name")) {
-        setting.name = name->text();
-      } else {
-        setting.name = "L";  // (not "L" + ...: GCC 12 warns falsely on operator+(const char*, string&&))
-        setting.name += std::to_string(job.luminaires.size() + 1);
-      }
+      LuminaireSetting setting = read_placed(item, job, resolved);
       if (!names.insert(setting.name).second) item.fail("luminaire name '" + setting.name + "' is used twice");
-      setting.position_m = lum.require("position_m").vector3();
-      const Value flux = lum.require("flux_lm");
-      setting.flux_lm = flux.bounded(0.0, kMaxFlux_lm, " lm");
-      setting.loc = item.loc();
-      job.luminaires.push_back(setting);
+      job.luminaires.push_back(std::move(setting));
     }
   }
   if (auto mounting = luminaires.get("mounting_surface")) {

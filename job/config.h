@@ -50,11 +50,18 @@ struct EmitterSetting {
   FileLoc loc;
 };
 
+// luminaires.placed: a fixed luminaire, as the scene adds it (add_luminaire): its type,
+// where it is and its output. Without a product, the square Lambertian panel of
+// luminaires.size_m; with one, the product's type as the config loader resolved it
+// (job/products.h: its photometric file read there, once per product).
 struct LuminaireSetting {
   std::string name;
   Eigen::Vector3d position_m;  // centre of the emitting face, scene frame (z up, m)
   double flux_lm = 0.0;
   FileLoc loc;
+  std::string product;         // a product of luminaires.products; empty: the plain panel
+  LuminaireType type = LuminaireType::square_lambertian(0.6);
+  double rotation_deg = 0.0;   // about +z, counter-clockwise seen from above
 };
 
 // How `ilp solve` computes illuminance: through the sample-based operator, or the
@@ -119,7 +126,6 @@ struct LuminaireSearch {
   int count_min = 1;                        // count: N or [min, max]: how many luminaires (free layout)
   int count_max = 1;
   FileLoc count_loc;
-  std::vector<ProductSetting> products;     // luminaires.products; empty: the model/flux_lm/efficacy keys
   double wall_distance_m = 0.0;             // a luminaire's outline keeps at least this from the mounting surface's edges
   double ceiling_module_m = 0.0;            // > 0: centres snap to the module's cell centres (a 0.6 m grid ceiling)
   LayoutFamily layout = LayoutFamily::free;
@@ -217,6 +223,10 @@ struct JobConfig {
   // luminaires
   double luminaire_size_m = 0.6;
   std::vector<LuminaireSetting> luminaires;
+  // luminaires.products: what placed luminaires may name, and with mounting_surface
+  // what the search chooses from (each product at each rotation); empty: the search
+  // places the model/flux_lm/efficacy_lm_per_w panel.
+  std::vector<ProductSetting> products;
   // solver
   FormFactorOptions form_factors;
   DirectLightOptions direct_light;

@@ -14,6 +14,15 @@ std::string fmt_rgb(const Eigen::Vector3d& v) {
   return os.str();
 }
 
+// The run log's line for a placed product: what it is, how turned and at what output.
+std::string placed_product_line(const LuminaireSetting& l) {
+  std::ostringstream os;
+  os << "luminaires.placed '" << l.name << "': product '" << l.product << "', "
+     << (l.type.shape == OutlineShape::disc ? "round " : "rectangular ") << l.type.length_m << " x " << l.type.width_m
+     << " m, rotated " << l.rotation_deg << " deg, " << l.flux_lm << " lm";
+  return os.str();
+}
+
 }  // namespace
 
 JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
@@ -186,7 +195,8 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
     }
     if (scene.find_surface(l.name) >= 0)
       throw ConfigError(located(l.loc, "luminaires.placed: name '" + l.name + "' is already a surface of the mesh"));
-    add_square_luminaire(scene, l.name, l.position_m, job.luminaire_size_m, l.flux_lm);
+    add_luminaire(scene, l.name, l.type, {l.position_m, l.rotation_deg}, l.flux_lm);
+    if (!l.product.empty()) out.log.push_back(placed_product_line(l));
   }
   // A surface to report or light must keep a patch (not all excluded or degenerate).
   std::vector<std::size_t> patches_of(scene.surfaces.size(), 0);

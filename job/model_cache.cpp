@@ -208,12 +208,14 @@ std::string key_text(const JobConfig& job, const ModelSpec& model) {
   if (job.search)
     t << model.candidates.type.key() << " rotation " << model.candidates.rotation_deg << " wall " << job.search->wall_distance_m
       << " module " << job.search->ceiling_module_m << "\n";
+  // Each placed luminaire's type (its product's distribution, shape and size), turn,
+  // position and flux: the light it gives and the opening that shades.
   for (const LuminaireSetting& l : job.luminaires) {
     t << "placed ";
     put(t, l.name);
     t << ' ';
     put(t, l.position_m);
-    t << ' ' << l.flux_lm << "\n";
+    t << ' ' << l.flux_lm << ' ' << l.type.key() << " rotation " << l.rotation_deg << "\n";
   }
   if (job.search) {
     const LuminaireSearch& s = *job.search;

@@ -130,8 +130,8 @@ std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
     throw ConfigError(job.path + ": luminaires.mounting_surface is missing: an inverse job says where luminaires may "
                                  "go (see docs/user-guide.md)");
   if (job.goals.empty()) throw ConfigError(job.path + ": goals are missing: an inverse job says what surfaces must receive");
-  const bool listed = !job.search->products.empty();
-  const std::vector<ProductVariant> products = listed ? product_variants(*job.search) : std::vector{plain_panel(job)};
+  const bool listed = !job.products.empty();
+  const std::vector<ProductVariant> products = listed ? product_variants(job.products) : std::vector{plain_panel(job)};
   std::vector<VariantPlan> out;
   for (const ProductVariant& product : products) {
     VariantPlan plan;

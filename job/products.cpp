@@ -77,15 +77,20 @@ bool rotationally_symmetric(const LuminaireType& type) {
 
 }  // namespace
 
-std::vector<ProductVariant> product_variants(const LuminaireSearch& search) {
+ProductVariant product_base(const ProductSetting& p) {
+  ProductVariant base = p.photometry_path.empty() ? panel_base(p) : photometric_base(p);
+  base.dim_min = p.dim_min;
+  base.dim_max = p.dim_max;
+  base.maintenance_factor = p.maintenance_factor;
+  base.mount_offset_m = p.mount_offset_m;
+  base.mount_offset_loc = p.mount_offset_loc;
+  return base;
+}
+
+std::vector<ProductVariant> product_variants(const std::vector<ProductSetting>& products) {
   std::vector<ProductVariant> out;
-  for (const ProductSetting& p : search.products) {
-    ProductVariant base = p.photometry_path.empty() ? panel_base(p) : photometric_base(p);
-    base.dim_min = p.dim_min;
-    base.dim_max = p.dim_max;
-    base.maintenance_factor = p.maintenance_factor;
-    base.mount_offset_m = p.mount_offset_m;
-    base.mount_offset_loc = p.mount_offset_loc;
+  for (const ProductSetting& p : products) {
+    const ProductVariant base = product_base(p);
     std::vector<double> rotations = p.rotations_deg;
     if (rotations.empty()) rotations = rotationally_symmetric(base.type) ? std::vector<double>{0.0} : std::vector<double>{0.0, 90.0};
     for (double r : rotations) {

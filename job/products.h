@@ -9,9 +9,15 @@
 
 namespace ilp {
 
-// Every product at every rotation, in the job's order. Throws ConfigError naming the
-// config's file:line and key for a photometric file that cannot be read (with the
-// file's own line and field) or that lacks what the product needs (watts).
-std::vector<ProductVariant> product_variants(const LuminaireSearch& search);
+// One product as a variant at rotation 0: its type (the photometric file read here,
+// or the square panel), rated flux, watts, dimming range, maintenance factor and
+// suspension. Throws ConfigError naming the config's file:line and key for a
+// photometric file that cannot be read (with the file's own line and field) or that
+// lacks what the product needs (watts).
+ProductVariant product_base(const ProductSetting& product);
+
+// Every product at every rotation, in the job's order (product_base, then each
+// rotation). Throws as product_base.
+std::vector<ProductVariant> product_variants(const std::vector<ProductSetting>& products);
 
 }  // namespace ilp

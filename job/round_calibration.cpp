@@ -23,7 +23,8 @@ std::optional<double> next_search_target(GoalMetric metric, double real_target, 
 std::string calibration_line(int round, double maintenance_factor, const GoalSetting& goal, double predicted,
                              double verified, double next_target) {
   const MetricRule& rule = metric_rule(goal.metric);
-  const std::string unit = rule.unit.empty() ? "" : " " + std::string(rule.unit);
+  std::string unit;  // " lx", or none for U0 (appended: GCC 12 warns falsely on " " + string)
+  if (!rule.unit.empty()) unit.append(" ").append(rule.unit);
   std::ostringstream line;
   line << std::setprecision(4) << "round " << round + 1 << ": " << goal.name << " " << to_string(goal.metric)
        << " predicted " << predicted << unit << ", verified " << verified << unit;

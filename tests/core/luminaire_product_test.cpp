@@ -125,12 +125,6 @@ TEST(PhotometricLuminaire, ItsDirectLightLandsWhollyInAClosedRoomAndTheFurnaceBa
   }
 }
 
-LuminaireSearch search_with(std::vector<ProductSetting> products) {
-  LuminaireSearch s;
-  s.products = std::move(products);
-  return s;
-}
-
 // A product of a name and a photometric file, every other setting at its default.
 ProductSetting product(const std::string& name, const std::string& path) {
   ProductSetting p;
@@ -144,7 +138,7 @@ TEST(ProductVariants, RotationsWattsAndFluxComeFromTheFileUnlessGiven) {
   ProductSetting linear = product("linear", kData + "linear_led_2112lm.ldt");
   linear.flux_lm = 4222.4;  // twice the file's: the watts scale with it
   linear.dim_min = 0.3;
-  const std::vector<ProductVariant> v = product_variants(search_with({iku, linear}));
+  const std::vector<ProductVariant> v = product_variants({iku, linear});
   ASSERT_EQ(v.size(), 3u);  // the round downlight once, the linear one at 0 and 90 degrees
   EXPECT_EQ(v[0].product, "iku");
   EXPECT_NEAR(v[0].rated_flux_lm, 611.8, 0.1);
@@ -159,7 +153,7 @@ TEST(ProductVariants, RotationsWattsAndFluxComeFromTheFileUnlessGiven) {
   JobConfig job;
   job.search.emplace();
   job.search->mounting_surface = "ceiling";
-  job.search->products = {iku, linear};
+  job.products = {iku, linear};
   job.goals.push_back(GoalSetting{});
   const std::vector<VariantPlan> plans = plan_job(job);
   ASSERT_EQ(plans.size(), 3u);
@@ -208,12 +202,12 @@ TEST(ProductVariants, AProductsMaintenanceFactorAndMountOffsetReplaceTheJobsOnly
   dusty.name = "dusty";
   dusty.maintenance_factor = 0.67;
   dusty.mount_offset_m = 0.6;
-  const std::vector<ProductVariant> v = product_variants(search_with({clean, dusty}));
+  const std::vector<ProductVariant> v = product_variants({clean, dusty});
   ASSERT_EQ(v.size(), 2u);
   JobConfig job;
   job.search.emplace();
   job.search->mounting_surface = "ceiling";
-  job.search->products = {clean, dusty};
+  job.products = {clean, dusty};
   GoalSetting goal;
   goal.name = "desk";
   goal.surfaces = {"desk"};
@@ -236,7 +230,7 @@ TEST(ProductVariants, AFileThatCannotBeReadNamesTheConfigAndTheFile) {
   ProductSetting p = product("broken", bad);
   p.photometry_loc = {"job.yaml", 12, 5};
   try {
-    product_variants(search_with({p}));
+    product_variants({p});
     FAIL() << "no error";
   } catch (const ConfigError& e) {
     const std::string what = e.what();

@@ -1199,6 +1199,112 @@ INSTANTIATE_TEST_SUITE_P(
 #undef SEARCH
 #undef SCENE
 
+// ---- luminaires.placed with a product: the product's type at its rotation and output.
+
+TEST(JobConfig, PlacedProductsResolveTheirTypeRotationAndOutput) {
+  TempDir dir;
+  const std::string iku = std::string(ILP_SOURCE_DIR) + "/data/photometry/erco_iku_downlight.ldt";
+  const std::string yaml =
+      dir.write("job.yaml", "scene:\n  mesh: room.obj\n"
+                            "luminaires:\n"
+                            "  size_m: 0.3\n"
+                            "  products:\n"
+                            "    - {name: iku, photometry: " + iku + ", dimming: [0.5, 1]}\n"
+                            "    - {name: panel, model: square_lambertian, size_m: 0.6, flux_lm: 3600, power_w: 30}\n"
+                            "  placed:\n"
+                            "    - {name: A, product: iku, position_m: [1, 1, 2], rotation_deg: 30, output: 0.75}\n"
+                            "    - {name: B, product: iku, position_m: [2, 1, 2], flux_lm: 400}\n"
+                            "    - {name: C, product: iku, position_m: [3, 1, 2]}\n"
+                            "    - {name: D, product: panel, position_m: [1, 2, 2], rotation_deg: -45}\n"
+                            "    - {name: E, position_m: [2, 2, 2], flux_lm: 1000}\n");
+  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  EXPECT_FALSE(job.search.has_value()) << "products need no mounting surface";
+  ASSERT_EQ(job.products.size(), 2u);
+  ASSERT_EQ(job.luminaires.size(), 5u);
+  const ilp::LuminaireSetting &a = job.luminaires[0], &b = job.luminaires[1], &c = job.luminaires[2];
+  const ilp::LuminaireSetting &d = job.luminaires[3], &e = job.luminaires[4];
+  constexpr double kIkuLm = 611.8;  // integrated from the file (docs/photometry.md)
+  EXPECT_EQ(a.product, "iku");
+  EXPECT_EQ(a.type.shape, ilp::OutlineShape::disc);
+  EXPECT_NEAR(a.type.length_m, 0.076, 1e-9);
+  EXPECT_FALSE(a.type.lambertian());
+  EXPECT_EQ(a.rotation_deg, 30.0);
+  EXPECT_NEAR(a.flux_lm, 0.75 * kIkuLm, 0.1);
+  EXPECT_EQ(b.flux_lm, 400.0) << "flux_lm within the dimming range, as given";
+  EXPECT_NEAR(c.flux_lm, kIkuLm, 0.1) << "full output by default";
+  EXPECT_EQ(c.rotation_deg, 0.0);
+  EXPECT_EQ(a.type.distribution, c.type.distribution) << "the product's file is read once for all its luminaires";
+  EXPECT_EQ(d.product, "panel");
+  EXPECT_TRUE(d.type.lambertian());
+  EXPECT_EQ(d.type.length_m, 0.6) << "the panel product's own size, not luminaires.size_m";
+  EXPECT_EQ(d.rotation_deg, -45.0);
+  EXPECT_EQ(d.flux_lm, 3600.0);
+  EXPECT_EQ(e.product, "") << "no product: the plain panel";
+  EXPECT_TRUE(e.type.lambertian());
+  EXPECT_EQ(e.type.length_m, 0.3);
+  EXPECT_EQ(e.type.key(), ilp::LuminaireType::square_lambertian(0.3).key());
+  EXPECT_EQ(e.flux_lm, 1000.0);
+}
+
+class ConfigPlacedBadValue : public ::testing::TestWithParam<BadValue> {};
+
+TEST_P(ConfigPlacedBadValue, NamesFileLineAndKey) {
+  const BadValue& p = GetParam();
+  const std::string text = p.section;
+  const int bad_line = p.line ? p.line : static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  expect_config_error(text, bad_line, {p.key, p.rule}, p.col);
+}
+
+#define SCENE "scene:\n  mesh: room.obj\n"
+// lines 3-6: a panel product dimmable to half, a fixed photometric one (611.8 lm)
+#define PRODUCTS                                                                                            \
+  SCENE "luminaires:\n  products:\n"                                                                        \
+        "    - {name: panel, model: square_lambertian, size_m: 0.6, flux_lm: 3600, power_w: 30, dimming: [0.5, 1]}\n" \
+        "    - {name: iku, photometry: " ILP_SOURCE_DIR "/data/photometry/erco_iku_downlight.ldt}\n"
+#define PLACED PRODUCTS "  placed:\n"
+
+INSTANTIATE_TEST_SUITE_P(
+    ConfigPlaced, ConfigPlacedBadValue,
+    ::testing::Values(
+        BadValue{"UnknownProduct", PLACED "    - {product: downlight, position_m: [1, 1, 2]}\n",
+                 "luminaires.placed[0].product = downlight", "unknown product (luminaires.products has panel, iku)"},
+        BadValue{"ProductWithoutProducts", SCENE "luminaires:\n  placed:\n    - {product: iku, position_m: [1, 1, 2]}\n",
+                 "luminaires.placed[0].product = iku", "unknown product: luminaires.products lists none"},
+        BadValue{"FluxAndOutput", PLACED "    - {product: panel, position_m: [1, 1, 2], flux_lm: 3000, output: 0.8}\n",
+                 "luminaires.placed[0].output = 0.8", "not with flux_lm"},
+        BadValue{"OutputAboveRange", PLACED "    - {product: panel, position_m: [1, 1, 2], output: 1.2}\n",
+                 "luminaires.placed[0].output = 1.2", "must be within product 'panel''s dimming range [0.5, 1]"},
+        BadValue{"OutputBelowRange",
+                 PLACED "    - {product: panel, position_m: [1, 1, 2]}\n    - {product: panel, position_m: [2, 1, 2], output: 0.3}\n",
+                 "luminaires.placed[1].output = 0.3", "must be within product 'panel''s dimming range [0.5, 1]"},
+        BadValue{"OutputOfAFixedPackage", PLACED "    - {product: iku, position_m: [1, 1, 2], output: 0.9}\n",
+                 "luminaires.placed[0].output = 0.9", "must be within product 'iku''s dimming range [1, 1]"},
+        BadValue{"OutputNotANumber", PLACED "    - {product: panel, position_m: [1, 1, 2], output: full}\n",
+                 "luminaires.placed[0].output = full", "must be a number"},
+        BadValue{"FluxBelowRange", PLACED "    - {product: panel, position_m: [1, 1, 2], flux_lm: 1000}\n",
+                 "luminaires.placed[0].flux_lm = 1000",
+                 "must be within product 'panel''s output, 1800 to 3600 lm (dimming [0.5, 1] x rated 3600 lm)"},
+        BadValue{"FluxAboveAFilesRating", PLACED "    - {product: iku, position_m: [1, 1, 2], flux_lm: 700}\n",
+                 "luminaires.placed[0].flux_lm = 700", "must be product 'iku''s fixed output, 611.796 lm (no dimming range"},
+        BadValue{"OutputWithoutProduct", PLACED "    - {position_m: [1, 1, 2], flux_lm: 100, output: 0.5}\n",
+                 "luminaires.placed[0].output = 0.5", "needs product:"},
+        BadValue{"PanelWithoutFlux", PLACED "    - {position_m: [1, 1, 2], rotation_deg: 10}\n",
+                 "luminaires.placed[0].flux_lm", "required key is missing"},
+        BadValue{"RotationOutOfRange", PLACED "    - {product: panel, position_m: [1, 1, 2], rotation_deg: 400}\n",
+                 "luminaires.placed[0].rotation_deg = 400", "must be in [-360, 360] degrees"},
+        BadValue{"FullOutputOutsideTheRange",
+                 SCENE "luminaires:\n  products:\n"
+                       "    - {name: low, model: square_lambertian, flux_lm: 3600, power_w: 30, dimming: [0.2, 0.8]}\n"
+                       "  placed:\n    - {product: low, position_m: [1, 1, 2]}\n",
+                 "luminaires.placed[0].product = low", "full output (1, the default) is outside the product's dimming range [0.2, 0.8]"},
+        BadValue{"TypoPlacedKey", PLACED "    - {product: panel, position_m: [1, 1, 2], rotation: 30}\n",
+                 "'luminaires.placed[0].rotation'", "unknown key"}),
+    [](const ::testing::TestParamInfo<BadValue>& info) { return std::string(info.param.name); });
+
+#undef PLACED
+#undef PRODUCTS
+#undef SCENE
+
 // set_goal_parameter: what `ilp sweep` and `--set` use.
 
 ilp::JobConfig goal_job(const TempDir& dir) {

@@ -16,6 +16,7 @@
 #include "job/job_runner.h"
 #include "optimizer/layout_search.h"
 #include "job/model_cache.h"
+#include "job/products.h"
 #include "tests/optimizer/optimizer_test_scenes.h"
 
 namespace ilp {
@@ -229,7 +230,13 @@ TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
     j.add_floors.push_back({"extra", Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1), 0.0, Eigen::Vector3d::Constant(0.3), {}});
   });
   differs("a goal's surface", [](JobConfig& j) { j.goals[0].surfaces = {"other"}; });
-  differs("a placed luminaire", [](JobConfig& j) { j.luminaires.push_back({"old", {0.5, 0.5, 2.4}, 2000.0, {}}); });
+  differs("a placed luminaire", [](JobConfig& j) {
+    LuminaireSetting old;
+    old.name = "old";
+    old.position_m = {0.5, 0.5, 2.4};
+    old.flux_lm = 2000.0;
+    j.luminaires.push_back(old);
+  });
   differs("patch size", [](JobConfig& j) { j.scene.max_patch_edge_m = 0.3; });
   differs("a goal's facing", [](JobConfig& j) { j.goals[0].facing = GoalFacing::up; });
   differs("an excluded surface", [](JobConfig& j) { j.exclude_surfaces.push_back("walls"); });
@@ -242,6 +249,44 @@ TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
     obj << "# a comment\n";
   }
   EXPECT_NE(lighting_model_key(job, test::model_spec(job)), key) << "the mesh file's bytes";
+}
+
+// Placed luminaires of real products (luminaires.products, shipped files): each one's
+// product (its type: distribution, shape, size), rotation, position and flux is in the
+// key, so changing any of them rebuilds the operator.
+TEST(ModelCache, APlacedLuminairesProductRotationPositionAndFluxChangeTheKey) {
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"mat", {1.3, 1.7}}, {"other", {3.0, 2.5}}}));
+  const std::string data = std::string(ILP_SOURCE_DIR) + "/data/photometry/";
+  const std::string luminaires = std::string(kLuminaires) +
+                                 "  products:\n"
+                                 "    - {name: iku, photometry: " + data + "erco_iku_downlight.ldt, dimming: [0.5, 1]}\n"
+                                 "    - {name: linear, photometry: " + data + "linear_led_2112lm.ldt}\n"
+                                 "  placed:\n"
+                                 "    - {name: P1, product: linear, position_m: [2, 2, 2.4], rotation_deg: 30}\n";
+  std::string yaml = room_job("0.5", luminaires, "  - surface: mat\n    average_lux: 200\n", kOptimizer);
+  // products replace the panel's flux_lm and efficacy_lm_per_w.
+  for (const char* key : {"  flux_lm: [10, 20000]\n", "  efficacy_lm_per_w: 100\n"}) yaml.erase(yaml.find(key), std::strlen(key));
+  const JobConfig job = load_job_config(dir.write("job.yaml", yaml));
+  ASSERT_EQ(job.luminaires.size(), 1u);
+  const std::string key = lighting_model_key(job, test::model_spec(job));
+  const ProductVariant iku = product_base(job.products[0]);
+  auto differs = [&](const char* what, auto change) {
+    JobConfig other = job;
+    change(other.luminaires[0]);
+    EXPECT_NE(lighting_model_key(other, test::model_spec(other)), key) << what;
+  };
+  differs("product", [&](LuminaireSetting& l) {
+    l.product = iku.product;
+    l.type = iku.type;
+  });
+  differs("rotation", [](LuminaireSetting& l) { l.rotation_deg = 90.0; });
+  differs("position", [](LuminaireSetting& l) { l.position_m.x() += 0.1; });
+  differs("flux", [](LuminaireSetting& l) { l.flux_lm *= 0.5; });
+  differs("the plain panel in its place", [](LuminaireSetting& l) { l.type = LuminaireType::square_lambertian(0.3); });
+  // The same placement read again from the file keeps the key.
+  const JobConfig again = load_job_config(job.path);
+  EXPECT_EQ(lighting_model_key(again, test::model_spec(again)), key);
 }
 
 TEST(ModelCache, MaterialFilesAreInTheKey) {
@@ -417,8 +462,8 @@ TEST(ModelCache, FormatAndKeyCoverEveryField) {
   EXPECT_EQ(sizeof(DirectLightOptions), 88u) << "DirectLightOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(SceneOptions), 32u) << "SceneOptions changed: is the new field in lighting_model_key?";
   EXPECT_EQ(sizeof(MeshReadOptions), 4u) << "MeshReadOptions changed: is the new field in lighting_model_key?";
-  EXPECT_EQ(sizeof(LuminaireSearch), 480u) << "LuminaireSearch changed: does the new field shape the candidates?";
-  EXPECT_EQ(sizeof(JobConfig), 1792u) << "JobConfig changed: does the new setting change the operator?";
+  EXPECT_EQ(sizeof(LuminaireSearch), 464u) << "LuminaireSearch changed: does the new field shape the candidates?";
+  EXPECT_EQ(sizeof(JobConfig), 1808u) << "JobConfig changed: does the new setting change the operator?";
 #else
   GTEST_SKIP() << "struct sizes are checked on x86-64 with libstdc++ only";
 #endif
