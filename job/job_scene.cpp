@@ -1,8 +1,21 @@
 #include "job/job_scene.h"
 
+#include <xxhash.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <map>
+#include <memory>
+#include <new>
 #include <sstream>
+#include <string_view>
+
+#include "core/base/key_hash.h"
 
 namespace ilp {
 namespace {
@@ -240,6 +253,133 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   out.log.push_back(os.str());
   if (mesh_out) *mesh_out = std::move(mesh);
   return out;
+}
+
+// ---- The scene's inputs in the operator cache's key.
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The words of an OBJ line up to a comment, as mesh_io.cpp splits them.
+std::vector<std::string> obj_words(std::string_view line) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  line = line.substr(0, line.find('#'));
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    if (j > i) out.emplace_back(line.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+struct HashStateDeleter {
+  void operator()(XXH3_state_t* s) const { XXH3_freeState(s); }
+};
+
+// "<32 hex digits of XXH3-128> <bytes>" of the file's bytes, or "missing" /
+// "unreadable". With `mtllibs`, also collects the names of the OBJ's mtllib
+// statements in file order.
+std::string file_digest(const fs::path& path, std::vector<std::string>* mtllibs) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "missing";
+  std::unique_ptr<XXH3_state_t, HashStateDeleter> state(XXH3_createState());
+  if (!state || XXH3_128bits_reset(state.get()) != XXH_OK) throw std::bad_alloc();
+  std::vector<char> buffer(1 << 16);
+  std::string pending;  // an OBJ line not yet ended
+  std::uint64_t bytes = 0;
+  auto scan = [&](std::string_view line) {
+    const std::vector<std::string> words = obj_words(line);
+    if (!words.empty() && words[0] == "mtllib") mtllibs->insert(mtllibs->end(), words.begin() + 1, words.end());
+  };
+  while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0) {
+    const auto n = static_cast<std::size_t>(in.gcount());
+    XXH3_128bits_update(state.get(), buffer.data(), n);
+    bytes += n;
+    if (mtllibs) {
+      pending.append(buffer.data(), n);
+      std::size_t start = 0, end;
+      while ((end = pending.find('\n', start)) != std::string::npos) {
+        scan(std::string_view(pending).substr(start, end - start));
+        start = end + 1;
+      }
+      pending.erase(0, start);
+    }
+  }
+  if (in.bad()) return "unreadable";
+  if (mtllibs && !pending.empty()) scan(pending);
+  XXH128_canonical_t digest;
+  XXH128_canonicalFromHash(&digest, XXH3_128bits_digest(state.get()));
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string out;
+  for (unsigned char b : digest.digest) {
+    out += kDigits[b >> 4];
+    out += kDigits[b & 15];
+  }
+  return out + " " + std::to_string(bytes);
+}
+
+}  // namespace
+
+static_assert(field_count<ReflectanceSetting>() == 3, "ReflectanceSetting changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const ReflectanceSetting& r) {
+  k.field("surface", r.surface).field("rgb", r.rgb);  // not loc
+}
+
+static_assert(field_count<FloorSetting>() == 6, "FloorSetting changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const FloorSetting& f) {
+  k.field("name", f.name).field("lo", f.lo).field("hi", f.hi).field("z_m", f.z_m).field("rgb", f.rgb);  // not loc
+}
+
+static_assert(field_count<EmitterSetting>() == 3, "EmitterSetting changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const EmitterSetting& e) {
+  k.field("surface", e.surface).field("exitance_lm_per_m2", e.exitance_lm_per_m2);  // not loc
+}
+
+static_assert(field_count<LuminaireSetting>() == 7, "LuminaireSetting changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const LuminaireSetting& l) {
+  // Not loc, nor the product's name: its type (distribution, opening) is what lights the scene.
+  k.field("name", l.name).field("position_m", l.position_m).field("flux_lm", l.flux_lm);
+  k.field("rotation_deg", l.rotation_deg).field("type", l.type);
+}
+
+// Each JobConfig field is a scene input below or named in the comment at the end.
+static_assert(field_count<JobConfig>() == 38,
+              "JobConfig changed: if load_job_scene reads the new field, hash it in hash_scene_inputs; "
+              "if the operator depends on it otherwise, it must reach it through plan_job's ModelSpec");
+void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
+  // The input files. The mesh's path does not matter, only its bytes and how it is
+  // read: the extension picks the reader, and PLY/OFF name their surface after the stem.
+  const fs::path mesh(job.mesh_path);
+  std::string ext = mesh.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  k.field("mesh_format", ext);
+  if (ext != ".obj") k.field("mesh_stem", mesh.stem().string());
+  std::vector<std::string> mtllibs;
+  k.field("mesh_bytes", file_digest(mesh, ext == ".obj" ? &mtllibs : nullptr));
+  k.field("mtllibs", mtllibs.size());
+  for (const std::string& name : mtllibs)
+    k.field("mtllib", name).field("mtllib_bytes", file_digest(mesh.parent_path() / name, nullptr));
+
+  k.field("mesh_read", job.mesh_read).field("scene", job.scene).field("surface_split", job.surface_split);
+  k.field("reflectance", job.reflectance);  // in file order: a later one wins
+  k.field("default_reflectance", job.default_reflectance);
+  k.field("emitting_surfaces", job.emitting_surfaces);
+  k.field("add_floors", job.add_floors);
+  k.field("exclude_surfaces", job.exclude_surfaces);
+  k.field("two_sided_surfaces", job.two_sided_surfaces).field("two_sided_all", job.two_sided_all);
+  k.field("luminaire_size_m", job.luminaire_size_m).field("luminaires", job.luminaires);
+  k.field("ignore_material_kd", job.ignore_material_kd);
+  // Not scene inputs: path, mesh_loc, max_patch_edge_loc, exclude_surface_locs,
+  // two_sided_locs, report_surfaces and report_surface_locs (checked, never change the
+  // scene), max_memory_bytes (lowers scene.max_patches, a limit that refuses a scene);
+  // form_factors, direct_light, sample, search, goals, grids (the operator's, through
+  // plan_job's ModelSpec); radiosity, method, maintenance_factor, maintenance_loc,
+  // constraints, objective, optimizer, verification, output, sweep (not the operator's).
 }
 
 }  // namespace ilp

@@ -12,6 +12,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 struct JobScene {
   Scene scene;
   std::vector<std::string> log;  // what was done to the input, for the run log
@@ -20,5 +22,24 @@ struct JobScene {
 // `mesh_out`, when given, receives the mesh the scene was made from (file units, after
 // surface splitting, exclusions and two-sided doubling), for `ilp inspect`.
 JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out = nullptr);
+
+// The operator cache's key (core/base/key_hash.h): everything load_job_scene's scene
+// depends on. The mesh file by its bytes (and, for OBJ, each mtllib's name and bytes;
+// a missing or unreadable file gives a marker, never an error), its format and, for
+// PLY/OFF, its stem (the surface's name), not its path; then mesh_read, scene,
+// surface_split, reflectance, default_reflectance, emitting_surfaces, add_floors,
+// exclude_surfaces, two_sided_surfaces, two_sided_all, luminaire_size_m, luminaires and
+// ignore_material_kd. Every other JobConfig field is either no scene input (the solver,
+// goals, grids and search reach the operator through plan_job's ModelSpec, hashed on
+// their own) or never changes the scene (file locations, checks, the memory budget).
+void hash_scene_inputs(KeyWriter& k, const JobConfig& job);
+
+// The schema's scene settings in the key: every field but loc. (Here rather than next
+// to their definitions in job/config.h; LuminaireSetting's keeps its fields in one place
+// for when placed luminaires carry a product.)
+void hash_fields(KeyWriter& k, const ReflectanceSetting& r);
+void hash_fields(KeyWriter& k, const FloorSetting& f);
+void hash_fields(KeyWriter& k, const EmitterSetting& e);
+void hash_fields(KeyWriter& k, const LuminaireSetting& l);
 
 }  // namespace ilp

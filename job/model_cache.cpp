@@ -18,22 +18,19 @@
 #include <array>
 #include <atomic>
 #include <bit>
-#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <limits>
 #include <memory>
-#include <set>
-#include <sstream>
 #include <stdexcept>
-#include <string_view>
 #include <vector>
 
 #include "core/base/error.h"
+#include "core/base/key_hash.h"
+#include "job/job_scene.h"
 
 namespace ilp {
 namespace {
@@ -71,213 +68,6 @@ std::string hex(const std::array<unsigned char, kChecksumBytes>& bytes) {
     out += kDigits[b & 15];
   }
   return out;
-}
-
-// ---- The key.
-
-// The words of an OBJ line up to a comment, as mesh_io.cpp splits them.
-std::vector<std::string> obj_words(std::string_view line) {
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-  line = line.substr(0, line.find('#'));
-  std::vector<std::string> out;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    std::size_t j = i;
-    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-    if (j > i) out.emplace_back(line.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
-
-// "<hex digest> <bytes>" of the file's bytes, or "missing" / "unreadable". With
-// `mtllibs`, also collects the names of the OBJ's mtllib statements in file order.
-std::string file_digest(const fs::path& path, std::vector<std::string>* mtllibs) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "missing";
-  HashState state = new_hash_state();
-  std::vector<char> buffer(1 << 16);
-  std::string pending;  // an OBJ line not yet ended
-  std::uint64_t bytes = 0;
-  auto scan = [&](std::string_view line) {
-    const std::vector<std::string> words = obj_words(line);
-    if (!words.empty() && words[0] == "mtllib") mtllibs->insert(mtllibs->end(), words.begin() + 1, words.end());
-  };
-  while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0) {
-    const auto n = static_cast<std::size_t>(in.gcount());
-    XXH3_128bits_update(state.get(), buffer.data(), n);
-    bytes += n;
-    if (mtllibs) {
-      pending.append(buffer.data(), n);
-      std::size_t start = 0, end;
-      while ((end = pending.find('\n', start)) != std::string::npos) {
-        scan(std::string_view(pending).substr(start, end - start));
-        start = end + 1;
-      }
-      pending.erase(0, start);
-    }
-  }
-  if (in.bad()) return "unreadable";
-  if (mtllibs && !pending.empty()) scan(pending);
-  return hex(canonical(XXH3_128bits_digest(state.get()))) + " " + std::to_string(bytes);
-}
-
-// Strings length-prefixed, so no name can imitate a separator.
-void put(std::ostream& t, const std::string& s) { t << s.size() << ':' << s; }
-void put(std::ostream& t, const Eigen::Vector3d& v) { t << v.x() << ' ' << v.y() << ' ' << v.z(); }
-
-// Everything the operator depends on, one item a line, doubles exact.
-std::string key_text(const JobConfig& job, const ModelSpec& model) {
-  std::ostringstream t;
-  t << std::setprecision(17);
-  t << "ilp lighting model cache, format " << kLightingModelCacheVersion << "\n";
-
-  // The input files. The mesh's path does not matter, only its bytes and how it is
-  // read: the extension picks the reader, and PLY/OFF name their surface after the stem.
-  const fs::path mesh(job.mesh_path);
-  std::string ext = mesh.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  t << "mesh format ";
-  put(t, ext);
-  t << "\n";
-  if (ext != ".obj") {
-    t << "mesh stem ";
-    put(t, mesh.stem().string());
-    t << "\n";
-  }
-  std::vector<std::string> mtllibs;
-  t << "mesh bytes " << file_digest(mesh, ext == ".obj" ? &mtllibs : nullptr) << "\n";
-  for (const std::string& name : mtllibs) {
-    t << "mtllib ";
-    put(t, name);
-    t << " bytes " << file_digest(mesh.parent_path() / name, nullptr) << "\n";
-  }
-
-  // The scene.
-  t << "surface naming " << static_cast<int>(job.mesh_read.surface_naming) << "\n";
-  if (job.surface_split.active()) {  // (absent otherwise, so older keys stay valid)
-    t << "split connected " << job.surface_split.connected << " weld " << job.surface_split.weld_tolerance_m << "\n";
-    for (const RegionRule& r : job.surface_split.regions) {
-      t << "region ";
-      put(t, r.name);
-      t << " facing " << (r.facing ? static_cast<int>(*r.facing) : -1);
-      if (r.height_m) t << " height " << r.height_m->first << ' ' << r.height_m->second;
-      t << " min area " << r.min_area_m2 << "\n";
-    }
-  }
-  t << "up axis " << static_cast<int>(job.scene.up_axis) << "\nscale_to_m " << job.scene.scale_to_m
-    << "\nmax_patch_edge_m " << job.scene.max_patch_edge_m << "\nmax_patches " << job.scene.max_patches << "\n";
-  for (const ReflectanceSetting& r : job.reflectance) {  // in file order: a later one wins
-    t << "reflectance ";
-    put(t, r.surface);
-    t << ' ';
-    put(t, r.rgb);
-    t << "\n";
-  }
-  t << "default reflectance ";
-  if (job.default_reflectance) put(t, *job.default_reflectance);
-  else t << "none";
-  t << "\n";
-  for (const EmitterSetting& e : job.emitting_surfaces) {
-    t << "emitting ";
-    put(t, e.surface);
-    t << ' ' << e.exitance_lm_per_m2 << "\n";
-  }
-  for (const std::string& name : job.exclude_surfaces) {
-    t << "excluded ";
-    put(t, name);
-    t << "\n";
-  }
-  for (const FloorSetting& f : job.add_floors) {  // scene.add_floor: geometry the mesh file lacks
-    t << "added floor ";
-    put(t, f.name);
-    t << ' ' << f.lo.x() << ' ' << f.lo.y() << ' ' << f.hi.x() << ' ' << f.hi.y() << ' ' << f.z_m << ' ';
-    put(t, f.rgb);
-    t << "\n";
-  }
-  t << "two-sided " << (job.two_sided_all ? "all" : "listed") << "\n";
-  for (const std::string& name : job.two_sided_surfaces) {
-    t << "two-sided ";
-    put(t, name);
-    t << "\n";
-  }
-
-  // Luminaires: the placed ones and the candidates' grid.
-  t << "luminaire size " << job.luminaire_size_m << "\n";
-  if (job.search)
-    t << model.candidates.type.key() << " rotation " << model.candidates.rotation_deg << " wall " << job.search->wall_distance_m
-      << " module " << job.search->ceiling_module_m << "\n";
-  // Each placed luminaire's type (its product's distribution, shape and size), turn,
-  // position and flux: the light it gives and the opening that shades.
-  for (const LuminaireSetting& l : job.luminaires) {
-    t << "placed ";
-    put(t, l.name);
-    t << ' ';
-    put(t, l.position_m);
-    t << ' ' << l.flux_lm << ' ' << l.type.key() << " rotation " << l.rotation_deg << "\n";
-  }
-  if (job.search) {
-    const LuminaireSearch& s = *job.search;
-    t << "search model ";
-    put(t, s.model);
-    t << " mounting ";
-    put(t, s.mounting_surface);
-    t << " offset " << model.candidates.mount_offset_m << " spacing " << s.candidate_spacing_m << "\n";
-    // A sample size chosen for a target error is judged with every candidate at the
-    // top of the flux range (compute_lighting_operator): only then does it matter.
-    if (job.sample.target_error) t << "probe flux " << model.probe_flux_lm << "\n";
-  } else {
-    t << "no search\n";
-  }
-
-  // The goal patches: each goal name's surfaces (the first entry of a name counts, as
-  // in lighting_model_geometry), not its targets or metrics.
-  std::set<std::string> seen;
-  for (const GoalSetting& g : job.goals) {
-    if (!seen.insert(g.name).second) continue;
-    t << "goal ";
-    put(t, g.name);
-    for (const std::string& s : g.surfaces) {
-      t << ' ';
-      put(t, s);
-    }
-    t << " facing " << static_cast<int>(g.facing) << "\n";
-    if (!g.grid.empty()) {
-      t << "on grid ";
-      put(t, g.grid);
-      t << "\n";
-    }
-  }
-  // Every grid of the job (lighting_model_geometry lays them all): each value that places its points.
-  for (const CalcGridSetting& c : job.grids) {
-    t << "grid ";
-    put(t, c.name);
-    t << " kind " << static_cast<int>(c.kind) << " over ";
-    put(t, c.over_surface);
-    t << " polygon";
-    for (const Eigen::Vector2d& p : c.polygon_m) t << ' ' << p.x() << ' ' << p.y();
-    t << " height " << c.height_m << " vertical " << c.from_m.x() << ' ' << c.from_m.y() << ' ' << c.to_m.x() << ' '
-      << c.to_m.y() << ' ' << c.bottom_m << ' ' << c.top_m << ' ' << c.facing_left << " border " << c.border_m
-      << " spacing " << (c.spacing_m ? *c.spacing_m : -1.0) << " max " << c.max_points << "\n";
-  }
-
-  // The solver (threads left out: the operator is the same for any thread count).
-  t << "form factors rays " << job.form_factors.rays_per_patch << " seed " << job.form_factors.seed << "\n";
-  t << "direct light points " << job.direct_light.receiver_points << " rays " << job.direct_light.shadow_rays
-    << " seed " << job.direct_light.seed << "\n";
-  const SampleSettings& s = job.sample;
-  t << "sample size ";
-  if (s.size) t << *s.size;
-  else t << "none";
-  t << " fraction " << s.fraction << " strategy " << static_cast<int>(s.strategy) << " seed " << s.seed
-    << " indirect " << static_cast<int>(s.indirect) << " target error ";
-  if (s.target_error) t << *s.target_error;
-  else t << "none";
-  t << " error samples " << s.error_samples << " pilot fraction " << s.pilot_fraction << "\n";
-  t << "max sample size " << s.max_size_for_target << "\n";  // caps the k sample_fraction or target_error gives
-  if (job.ignore_material_kd) t << "material Kd ignored\n";
-  return t.str();
 }
 
 // ---- Writing.
@@ -335,6 +125,9 @@ class Writer {
   std::uint64_t bytes_ = 0;
 };
 
+static_assert(field_count<SampleOperatorStats>() == 23,
+              "SampleOperatorStats changed: write and read the new field (write_stats, read_stats, the test's "
+              "expect_same_operator) and bump kLightingModelCacheVersion");
 void write_stats(Writer& w, const SampleOperatorStats& s) {
   w.u64(s.patches);
   w.u64(s.population);
@@ -496,8 +289,16 @@ const std::string kSizesDiffer = "sizes do not match the scene's goal patches/ca
 
 }  // namespace
 
+std::string lighting_model_key_text(const JobConfig& job, const ModelSpec& model) {
+  KeyWriter k;
+  k.field("ilp_lighting_model_cache_format", kLightingModelCacheVersion);
+  hash_scene_inputs(k, job);
+  k.field("model", model);
+  return k.text();
+}
+
 std::string lighting_model_key(const JobConfig& job, const ModelSpec& model) {
-  const std::string text = key_text(job, model);
+  const std::string text = lighting_model_key_text(job, model);
   return hex(canonical(XXH3_128bits(text.data(), text.size())));
 }
 

@@ -3,10 +3,14 @@
 // operator's log lines), so that a second run of a job, or a sweep, skips the build.
 //
 // A cache file is found by its key, a digest of everything the operator depends
-// on: the bytes of the input files and every parameter that changes the operator
-// (not goal targets, the flux range, the optimizer, verification, output, sweep or
-// thread count). The file carries the key again and a checksum; a file that is
-// missing, stale, corrupt or from another format version is reported and not used.
+// on, computed from the stage inputs themselves: the scene's (hash_scene_inputs in
+// job/job_scene.h: the bytes of the input files and the scene settings) and the
+// lighting model's spec (hash_fields(ModelSpec), each options struct hashing its own
+// fields next to its definition, core/base/key_hash.h). Not in it: goal targets and
+// metrics, the flux range (but for the probe flux under a target error), the
+// optimizer, verification, output, sweep or thread count. The file carries the key
+// again and a checksum; a file that is missing, stale, corrupt or from another format
+// version is reported and not used.
 #pragma once
 
 #include <cstdint>
@@ -20,13 +24,15 @@ namespace ilp {
 
 // Bump whenever the file layout, the key's canonical text or the way the operator
 // is computed changes: files of another version are not used (and the key differs).
-inline constexpr std::uint32_t kLightingModelCacheVersion = 5;  // 2: duplicate triangles dropped in meshing; 3: luminaire direct light by type; 4: grid points as goal rows; 5: interreflection solved by iteration
+inline constexpr std::uint32_t kLightingModelCacheVersion = 6;  // 2: duplicate triangles dropped in meshing; 3: luminaire direct light by type; 4: grid points as goal rows; 5: interreflection solved by iteration; 6: the key from the stage inputs (KeyWriter)
 
-// 32 lowercase hex digits: XXH3-128 over the format version, the bytes of the mesh
-// file (and, for OBJ, of each mtllib file it names) and a canonical text of the
-// parameters that change the operator. Never throws for a missing or unreadable
-// file (it contributes a marker instead).
+// 32 lowercase hex digits: XXH3-128 of lighting_model_key_text. Never throws for a
+// missing or unreadable file (it contributes a marker instead).
 std::string lighting_model_key(const JobConfig& job, const ModelSpec& model);
+
+// The canonical text the key digests: the format version, hash_scene_inputs(job) and
+// hash_fields(model), one field a line (to see which field two keys differ in).
+std::string lighting_model_key_text(const JobConfig& job, const ModelSpec& model);
 
 // Writes the operator part of `model` to `path`, atomically: to a temporary file
 // next to it that is renamed over `path` once complete (a previous file stays as it

@@ -25,6 +25,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 // Where the candidates go: one luminaire type at one rotation on a mounting surface.
 // The locations point a refusal (a surface that holds no luminaire) at the job's key.
 struct CandidateSpec {
@@ -38,6 +40,10 @@ struct CandidateSpec {
   FileLoc mounting_loc, spacing_loc, offset_loc;
 };
 
+// The operator cache's key (core/base/key_hash.h; defined in model_spec_hash.cpp):
+// every field but the FileLocs.
+void hash_fields(KeyWriter& k, const CandidateSpec& c);
+
 // One named goal area to lay: the patches of some surfaces (those facing as asked), or
 // the points of one calculation grid.
 struct GoalAreaSpec {
@@ -46,6 +52,9 @@ struct GoalAreaSpec {
   GoalFacing facing = GoalFacing::any;
   int grid = -1;  // into ModelSpec::grids, or -1 for surfaces
 };
+
+// The operator cache's key: every field.
+void hash_fields(KeyWriter& k, const GoalAreaSpec& a);
 
 // Everything the lighting model is built from, besides the job's scene.
 struct ModelSpec {
@@ -57,6 +66,12 @@ struct ModelSpec {
   double probe_flux_lm = 0.0;           // each candidate's flux when a target error chooses k (the range's top)
   int threads = 0;                      // for the grids' inside-solid test; 0: every core
 };
+
+// The operator cache's key: every field but threads (the same model for any thread
+// count), probe_flux_lm only when sample_size.target_error is set (only then does the
+// probe choose k). With the job's scene inputs (hash_scene_inputs, job/job_scene.h),
+// what lighting_model_key digests.
+void hash_fields(KeyWriter& k, const ModelSpec& m);
 
 // The rows one named goal is measured over: the patches of its surfaces (weighted by
 // area), or the points of its calculation grid (equal weights: each stands for one cell).

@@ -6,6 +6,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "core/base/key_hash.h"
+
 namespace ilp {
 namespace {
 
@@ -248,6 +250,16 @@ CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcG
   grid.outline_polygon_m = std::move(outline.polygon);
   grid.outline_triangles_m = std::move(outline.triangles);
   return grid;
+}
+
+static_assert(field_count<CalcGridSetting>() == 19, "CalcGridSetting changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const CalcGridSetting& s) {
+  k.field("name", s.name).field("kind", s.kind).field("over_surface", s.over_surface).field("polygon_m", s.polygon_m);
+  k.field("height_m", s.height_m).field("from_m", s.from_m).field("to_m", s.to_m).field("bottom_m", s.bottom_m);
+  k.field("top_m", s.top_m).field("facing_left", s.facing_left).field("border_m", s.border_m);
+  k.field("spacing_m", s.spacing_m);
+  // Not max_points (it refuses a grid, never changes one), nor loc, shape_loc,
+  // height_loc, border_loc, spacing_loc, max_points_loc (where the values were written).
 }
 
 }  // namespace ilp

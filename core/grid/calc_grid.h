@@ -21,6 +21,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 enum class GridKind { horizontal, vertical };
 
 // grids: one entry of the job file (docs/config.md), every value with its location.
@@ -46,6 +48,11 @@ struct CalcGridSetting {
   int max_points = 20000;
   FileLoc max_points_loc;
 };
+
+// The operator cache's key (core/base/key_hash.h): every value that places the points
+// and the name (the model's log names the grid). Left out: the FileLocs, and
+// max_points, a limit that refuses a grid and never changes one.
+void hash_fields(KeyWriter& k, const CalcGridSetting& s);
 
 // EN 12464-1: p = 0.2 x 5^log10(d) m for the longer side d (m), at most 10 m.
 double en12464_grid_spacing_m(double longer_side_m);

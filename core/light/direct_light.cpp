@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/rays/sampling.h"
+#include "core/base/key_hash.h"
 
 namespace ilp {
 namespace {
@@ -383,6 +384,12 @@ void replace_emitter_columns(const Scene& scene, const RayCaster& caster, const 
       if (emitter_slot[it.col()] < 0) it.valueRef() *= scale;
   }
   rows.F = std::move(F);
+}
+
+static_assert(field_count<DirectLightOptions>() == 6, "DirectLightOptions changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const DirectLightOptions& o) {
+  k.field("receiver_points", o.receiver_points).field("shadow_rays", o.shadow_rays).field("seed", o.seed);
+  // Not threads, progress or progress_label: the same light for any of them.
 }
 
 }  // namespace ilp

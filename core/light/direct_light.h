@@ -18,6 +18,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 struct DirectLightOptions {
   int receiver_points = 8;  // points on each receiver patch (low-discrepancy)
   int shadow_rays = 8;      // at most, from each point to a luminaire it sees partly (4 first)
@@ -28,6 +30,10 @@ struct DirectLightOptions {
   ProgressCallback progress;
   std::string progress_label = "direct light";
 };
+
+// The operator cache's key (core/base/key_hash.h): every field but threads, progress
+// and progress_label, which never change the light.
+void hash_fields(KeyWriter& k, const DirectLightOptions& o);
 
 // The cheap estimate where direct light matters little: 1 point, 2 shadow rays.
 inline DirectLightOptions cheap_direct_light_options() {

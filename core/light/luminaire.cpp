@@ -8,6 +8,8 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/base/key_hash.h"
+
 namespace ilp {
 namespace {
 
@@ -75,6 +77,12 @@ std::vector<Eigen::Vector3d> luminaire_outline_m(const LuminaireType& type, cons
   std::vector<Eigen::Vector3d> out = type.outline_local();
   for (Eigen::Vector3d& v : out) v = at.position_m + r * v;
   return out;
+}
+
+static_assert(field_count<LuminaireType>() == 5, "LuminaireType changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const LuminaireType& t) {
+  k.field("name", t.name).field("shape", t.shape).field("length_m", t.length_m).field("width_m", t.width_m);
+  k.field("distribution", t.distribution ? t.distribution->key() : std::string("none"));
 }
 
 }  // namespace ilp

@@ -18,6 +18,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 // How the light leaves the opening, per lumen of the luminaire's output.
 class IntensityDistribution {
  public:
@@ -59,6 +61,10 @@ struct LuminaireType {
   // The shipped test model: a square Lambertian panel of side size_m.
   static LuminaireType square_lambertian(double size_m);
 };
+
+// The operator cache's key (core/base/key_hash.h): every field, the distribution by
+// its key().
+void hash_fields(KeyWriter& k, const LuminaireType& t);
 
 struct LuminairePlacement {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // centre of the opening, scene frame

@@ -18,6 +18,7 @@
 #include "core/base/error.h"
 #include "core/rays/point_gather.h"
 #include "core/exact/radiosity.h"
+#include "core/base/key_hash.h"
 
 namespace ilp {
 namespace {
@@ -813,5 +814,13 @@ SampleOperator build_in_arena(const Scene& scene, const RayCaster& caster, const
 }
 
 }  // namespace
+
+static_assert(field_count<SampleOperatorOptions>() == 7,
+              "SampleOperatorOptions changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const SampleOperatorOptions& o) {
+  k.field("sample_size", o.sample_size).field("strategy", o.strategy).field("sample_seed", o.sample_seed);
+  k.field("indirect", o.indirect).field("form_factors", o.form_factors).field("direct_light", o.direct_light);
+  k.field("hit_direct_light", o.hit_direct_light);
+}
 
 }  // namespace ilp

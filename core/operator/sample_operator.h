@@ -44,6 +44,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 // A column of T: a luminaire surface (direct light in closed form with shadow rays)
 // or a surface given an exitance (direct light gathered by the rows' rays).
 struct LightSource {
@@ -76,6 +78,10 @@ struct SampleOperatorOptions {
   // neither goal nor sample patches, seen only through a row's average over its hits.
   DirectLightOptions hit_direct_light = cheap_direct_light_options();
 };
+
+// The operator cache's key (core/base/key_hash.h): every field (the nested options
+// leave out their threads and progress).
+void hash_fields(KeyWriter& k, const SampleOperatorOptions& o);
 
 // Goal points' gather rows cast this many times form_factors.rays_per_patch rays.
 inline constexpr int kPointRayFactor = 4;

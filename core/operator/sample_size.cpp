@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/operator/sample_error.h"
+#include "core/base/key_hash.h"
 
 namespace ilp {
 
@@ -41,6 +42,13 @@ SampleSizeChoice choose_sample_size(const SampleSizeRule& rule, const Scene& sce
     log << std::setprecision(2) << "; capped from " << wanted << " by solver.max_sample_size (predicted error "
         << 100.0 * prediction.predicted_rms_error(k) << " %)";
   return {k, log.str()};
+}
+
+static_assert(field_count<SampleSizeRule>() == 6, "SampleSizeRule changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const SampleSizeRule& r) {
+  k.field("size", r.size).field("fraction", r.fraction).field("max_size", r.max_size);
+  k.field("target_error", r.target_error).field("error_samples", r.error_samples);
+  k.field("pilot_fraction", r.pilot_fraction);
 }
 
 }  // namespace ilp

@@ -15,6 +15,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 struct SampleSizeRule {
   std::optional<int> size;             // k as given; else fraction x population
   double fraction = 0.05;
@@ -27,6 +29,9 @@ struct SampleSizeRule {
   // population capped at max_size.
   int size_for(std::size_t population) const;
 };
+
+// The operator cache's key (core/base/key_hash.h): every field.
+void hash_fields(KeyWriter& k, const SampleSizeRule& r);
 
 struct SampleSizeChoice {
   int sample_size = 1;

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "core/rays/sampling.h"
+#include "core/base/key_hash.h"
 
 namespace ilp {
 namespace {
@@ -176,6 +177,12 @@ Eigen::MatrixXd compute_row_bin_fractions(const Scene& scene, const RayCaster& c
     });
   });
   return fractions;
+}
+
+static_assert(field_count<FormFactorOptions>() == 3, "FormFactorOptions changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const FormFactorOptions& o) {
+  k.field("rays_per_patch", o.rays_per_patch).field("seed", o.seed);
+  // Not threads: the same rows for any thread count.
 }
 
 }  // namespace ilp

@@ -19,6 +19,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 struct FormFactorOptions {
@@ -28,6 +30,10 @@ struct FormFactorOptions {
 
   bool is_valid(std::string* error) const;
 };
+
+// The operator cache's key (core/base/key_hash.h): every field but threads (the rows
+// are the same for any thread count).
+void hash_fields(KeyWriter& k, const FormFactorOptions& o);
 
 struct FormFactorRows {
   std::vector<int> row_patches;        // row r of F is patch row_patches[r]

@@ -12,6 +12,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 // Which OBJ tag names a face's surface. A face lacking the chosen tag falls back
 // to the next one in the order group -> object -> material -> "default".
 enum class SurfaceNaming { group, object, material };
@@ -37,6 +39,9 @@ struct TriangleMesh {
 struct MeshReadOptions {
   SurfaceNaming surface_naming = SurfaceNaming::group;
 };
+
+// The operator cache's key (core/base/key_hash.h): every field.
+void hash_fields(KeyWriter& k, const MeshReadOptions& o);
 
 // Reads .obj (with its mtllib), or .ply / .off through OpenMesh (one surface named
 // after the file stem). Throws SceneError naming the file and line of any defect

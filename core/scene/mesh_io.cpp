@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/scene/mesh.h"
+#include "core/base/key_hash.h"
 
 namespace ilp {
 namespace {
@@ -596,5 +597,8 @@ TriangleMesh load_mesh(const std::string& path_string, const MeshReadOptions& op
   if (mesh.triangles.empty()) throw SceneError(path_string + ": the mesh has no faces");
   return mesh;
 }
+
+static_assert(field_count<MeshReadOptions>() == 1, "MeshReadOptions changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const MeshReadOptions& o) { k.field("surface_naming", o.surface_naming); }
 
 }  // namespace ilp

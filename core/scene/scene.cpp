@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include "core/base/key_hash.h"
+
 namespace ilp {
 namespace {
 
@@ -211,6 +213,12 @@ void set_surface_exitance(Scene& scene, int surface, double exitance_lm_per_m2) 
 std::ostream& operator<<(std::ostream& os, const SceneStats& s) {
   return os << s.faces_read << " faces read, " << s.triangles_read << " triangles, " << s.degenerate_dropped
             << " degenerate dropped, " << s.duplicate_dropped << " duplicates dropped, " << s.mesh_patches << " patches";
+}
+
+static_assert(field_count<SceneOptions>() == 4, "SceneOptions changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const SceneOptions& o) {
+  k.field("up_axis", o.up_axis).field("scale_to_m", o.scale_to_m).field("max_patch_edge_m", o.max_patch_edge_m);
+  // Not max_patches: it refuses a scene, never changes one.
 }
 
 }  // namespace ilp

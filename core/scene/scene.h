@@ -17,6 +17,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 enum class UpAxis { y, z };
 
 // Linear-sRGB luminance weights: the photometric (lux) value of an RGB quantity
@@ -87,6 +89,11 @@ struct SceneOptions {
   double max_patch_edge_m = 0.0;  // 0: no subdivision
   std::size_t max_patches = 5'000'000;  // refuse meshing that would exceed this
 };
+
+// The operator cache's key (core/base/key_hash.h): every field but max_patches, a
+// limit that refuses a scene and never changes one (prepare_job also lowers it to the
+// memory budget).
+void hash_fields(KeyWriter& k, const SceneOptions& o);
 
 // A file position in metres, z up (scale_to_m, then up_axis), as make_scene places it.
 Eigen::Vector3d to_scene_frame(const Eigen::Vector3d& file_position, const SceneOptions& options);

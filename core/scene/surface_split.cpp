@@ -9,6 +9,8 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "core/base/key_hash.h"
+
 namespace ilp {
 namespace {
 
@@ -273,6 +275,18 @@ SurfaceSplitReport split_surfaces(TriangleMesh& mesh, const SceneOptions& frame,
     report.log.push_back(line.str());
   }
   return report;
+}
+
+static_assert(field_count<RegionRule>() == 5, "RegionRule changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const RegionRule& r) {
+  k.field("name", r.name).field("facing", r.facing).field("height_m", r.height_m).field("min_area_m2", r.min_area_m2);
+  // Not loc: where the rule was written.
+}
+
+static_assert(field_count<SurfaceSplitOptions>() == 3,
+              "SurfaceSplitOptions changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const SurfaceSplitOptions& o) {
+  k.field("connected", o.connected).field("weld_tolerance_m", o.weld_tolerance_m).field("regions", o.regions);
 }
 
 }  // namespace ilp

@@ -18,6 +18,8 @@
 
 namespace ilp {
 
+class KeyWriter;  // core/base/key_hash.h
+
 // How a triangle faces, in the scene frame (z up): within about 25 degrees of up or
 // down (|n_z| >= 0.9, as goals' `facing`), else vertical (walls, and every slope).
 enum class Facing { up, down, vertical };
@@ -34,12 +36,18 @@ struct RegionRule {
   FileLoc loc;
 };
 
+// The operator cache's key (core/base/key_hash.h): every field but loc.
+void hash_fields(KeyWriter& k, const RegionRule& r);
+
 struct SurfaceSplitOptions {
   bool connected = false;          // number the pieces no rule takes GROUP.1, GROUP.2, ... (by area)
   double weld_tolerance_m = 1e-3;  // vertices closer than this are one vertex
   std::vector<RegionRule> regions;
   bool active() const { return connected || !regions.empty(); }
 };
+
+// The operator cache's key: every field.
+void hash_fields(KeyWriter& k, const SurfaceSplitOptions& o);
 
 struct SurfaceSplitReport {
   std::size_t pieces = 0;          // connected pieces of one facing found

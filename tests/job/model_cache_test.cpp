@@ -12,17 +12,22 @@
 #include <fstream>
 #include <functional>
 
+#include "core/base/key_hash.h"
 #include "job/config.h"
 #include "job/job_runner.h"
-#include "optimizer/layout_search.h"
 #include "job/model_cache.h"
 #include "job/products.h"
+#include "job/plan.h"
+#include "optimizer/layout_search.h"
+#include "tests/key_coverage.h"
 #include "tests/optimizer/optimizer_test_scenes.h"
 
 namespace ilp {
 namespace {
 
 using test::Contains;
+using test::expect_key_covers_fields;
+using test::left_out;
 using test::room_job;
 using test::room_obj;
 using test::StartsWith;
@@ -88,25 +93,36 @@ void expect_same_operator(const LightingModel& a, const LightingModel& b, bool t
   }
 }
 
+// The job's one variant (the plain panel): its stages' inputs.
+VariantPlan plan_of(const JobConfig& job, const RunOptions& run = {}) { return plan_job(job, run).front(); }
+
+std::string key_of(const JobConfig& job, const RunOptions& run = {}) {
+  return lighting_model_key(job, plan_of(job, run).model);
+}
+
+PreparedJob prepare(const JobConfig& job, const std::string& cache_dir = "") {
+  return prepare_job(job, plan_of(job), {}, {}, cache_dir);
+}
+
 // A model with only the geometry part, as prepare_job has it before the cache.
 LightingModel geometry_of(const PreparedJob& prepared) {
-  return lighting_model_geometry(prepared.loaded.scene, test::model_spec(prepared.job));
+  return lighting_model_geometry(prepared.loaded.scene, prepared.plan.model, prepared.caster.get());
 }
 
 std::string cache_file(const std::string& cache_dir, const JobConfig& job) {
-  return (std::filesystem::path(cache_dir) / (lighting_model_key(job, test::model_spec(job)) + ".ilpmodel")).string();
+  return (std::filesystem::path(cache_dir) / (key_of(job) + ".ilpmodel")).string();
 }
 
 TEST(ModelCache, SavedAndLoadedModelIsTheBuiltOneBitForBit) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
-  const PreparedJob built = test::prepare(job);
+  const PreparedJob built = prepare(job);
   ASSERT_GT(built.model.sample_size, 0) << "reflectance 0.5: the operator has a sample";
   ASSERT_GT(built.model.candidate_lux_per_lm.size(), 0);
   EXPECT_FALSE(built.loaded_from_cache);
   EXPECT_EQ(built.cache_status, "") << "no cache folder, no cache";
 
-  const std::string key = lighting_model_key(job, test::model_spec(job));
+  const std::string key = key_of(job);
   EXPECT_EQ(key.size(), 32u);
   save_lighting_model(dir.file("model.ilpmodel"), built.model, key);
   LightingModel loaded = geometry_of(built);
@@ -116,7 +132,7 @@ TEST(ModelCache, SavedAndLoadedModelIsTheBuiltOneBitForBit) {
   expect_same_operator(built.model, loaded, true);
 
   // The search on it finds the same layout along the same path.
-  const SearchResult a = search_layout(built.model, test::spec(job)), b = search_layout(loaded, test::spec(job));
+  const SearchResult a = search_layout(built.model, built.plan.search), b = search_layout(loaded, built.plan.search);
   EXPECT_EQ(a.evaluations, b.evaluations);
   ASSERT_EQ(a.best.luminaires.size(), b.best.luminaires.size());
   ASSERT_EQ(a.best.luminaires.size(), 1u);
@@ -131,7 +147,7 @@ TEST(ModelCache, SecondPrepareLoadsTheOperator) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
   const std::string cache = dir.file("cache");  // created by prepare_job
-  const PreparedJob first = test::prepare(job, cache);
+  const PreparedJob first = prepare(job, cache);
   EXPECT_FALSE(first.loaded_from_cache);
   EXPECT_EQ(first.cache_status, "operator built and cached in " + cache_file(cache, job));
   ASSERT_TRUE(std::filesystem::is_regular_file(cache_file(cache, job)));
@@ -139,12 +155,12 @@ TEST(ModelCache, SecondPrepareLoadsTheOperator) {
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(cache)) ++files;
   EXPECT_EQ(files, 1) << "the cache file alone: no temporary left behind";
 
-  const PreparedJob second = test::prepare(job, cache);
+  const PreparedJob second = prepare(job, cache);
   EXPECT_TRUE(second.loaded_from_cache);
   EXPECT_TRUE(StartsWith(second.cache_status, "operator loaded from cache " + cache_file(cache, job) + " (built in "));
   expect_same_operator(first.model, second.model, true);
   // And both are what a build without a cache gives.
-  expect_same_operator(test::prepare(job).model, second.model, false);
+  expect_same_operator(prepare(job).model, second.model, false);
   // The geometry part is the job's own, untouched by the cache.
   EXPECT_EQ(second.model.goal_patches, first.model.goal_patches);
   EXPECT_EQ(second.model.grid.size(), first.model.grid.size());
@@ -153,12 +169,12 @@ TEST(ModelCache, SecondPrepareLoadsTheOperator) {
 TEST(ModelCache, TargetsAndSearchSettingsKeepTheKey) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
-  const std::string key = lighting_model_key(job, test::model_spec(job));
-  EXPECT_EQ(lighting_model_key(job, test::model_spec(job)), key) << "the key is a function of the job";
+  const std::string key = key_of(job);
+  EXPECT_EQ(key_of(job), key) << "the key is a function of the job";
   auto same = [&](const char* what, auto change) {
     JobConfig other = job;
     change(other);
-    EXPECT_EQ(lighting_model_key(other, test::model_spec(other)), key) << what;
+    EXPECT_EQ(key_of(other), key) << what;
   };
   same("goal target", [](JobConfig& j) { set_goal_parameter(j, "goals.mat.average_lux", 400.0); });
   same("another metric on the same goal", [](JobConfig& j) {
@@ -186,11 +202,11 @@ TEST(ModelCache, TargetsAndSearchSettingsKeepTheKey) {
 TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
-  const std::string key = lighting_model_key(job, test::model_spec(job));
+  const std::string key = key_of(job);
   auto differs = [&](const char* what, auto change) {
     JobConfig other = job;
     change(other);
-    EXPECT_NE(lighting_model_key(other, test::model_spec(other)), key) << what;
+    EXPECT_NE(key_of(other), key) << what;
   };
   differs("default reflectance", [](JobConfig& j) { j.default_reflectance = Eigen::Vector3d::Constant(0.6); });
   differs("a surface's reflectance", [](JobConfig& j) {
@@ -212,12 +228,12 @@ TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
   on_grid.grids.push_back(plane);
   on_grid.goals[0].grid = "plane";
   on_grid.goals[0].surfaces.clear();
-  EXPECT_NE(lighting_model_key(on_grid, test::model_spec(on_grid)), key) << "a goal on a grid";
-  const std::string grid_key = lighting_model_key(on_grid, test::model_spec(on_grid));
+  EXPECT_NE(key_of(on_grid), key) << "a goal on a grid";
+  const std::string grid_key = key_of(on_grid);
   auto grid_differs = [&](const char* what, auto change) {
     JobConfig other = on_grid;
     change(other.grids[0]);
-    EXPECT_NE(lighting_model_key(other, test::model_spec(other)), grid_key) << what;
+    EXPECT_NE(key_of(other), grid_key) << what;
   };
   grid_differs("grid height", [](CalcGridSetting& g) { g.height_m = 0.75; });
   grid_differs("grid band", [](CalcGridSetting& g) { g.border_m = 0.3; });
@@ -248,45 +264,7 @@ TEST(ModelCache, WhatTheOperatorDependsOnChangesTheKey) {
     std::ofstream obj(job.mesh_path, std::ios::app | std::ios::binary);
     obj << "# a comment\n";
   }
-  EXPECT_NE(lighting_model_key(job, test::model_spec(job)), key) << "the mesh file's bytes";
-}
-
-// Placed luminaires of real products (luminaires.products, shipped files): each one's
-// product (its type: distribution, shape, size), rotation, position and flux is in the
-// key, so changing any of them rebuilds the operator.
-TEST(ModelCache, APlacedLuminairesProductRotationPositionAndFluxChangeTheKey) {
-  TempDir dir;
-  dir.write("room.obj", room_obj({{"mat", {1.3, 1.7}}, {"other", {3.0, 2.5}}}));
-  const std::string data = std::string(ILP_SOURCE_DIR) + "/data/photometry/";
-  const std::string luminaires = std::string(kLuminaires) +
-                                 "  products:\n"
-                                 "    - {name: iku, photometry: " + data + "erco_iku_downlight.ldt, dimming: [0.5, 1]}\n"
-                                 "    - {name: linear, photometry: " + data + "linear_led_2112lm.ldt}\n"
-                                 "  placed:\n"
-                                 "    - {name: P1, product: linear, position_m: [2, 2, 2.4], rotation_deg: 30}\n";
-  std::string yaml = room_job("0.5", luminaires, "  - surface: mat\n    average_lux: 200\n", kOptimizer);
-  // products replace the panel's flux_lm and efficacy_lm_per_w.
-  for (const char* key : {"  flux_lm: [10, 20000]\n", "  efficacy_lm_per_w: 100\n"}) yaml.erase(yaml.find(key), std::strlen(key));
-  const JobConfig job = load_job_config(dir.write("job.yaml", yaml));
-  ASSERT_EQ(job.luminaires.size(), 1u);
-  const std::string key = lighting_model_key(job, test::model_spec(job));
-  const ProductVariant iku = product_base(job.products[0]);
-  auto differs = [&](const char* what, auto change) {
-    JobConfig other = job;
-    change(other.luminaires[0]);
-    EXPECT_NE(lighting_model_key(other, test::model_spec(other)), key) << what;
-  };
-  differs("product", [&](LuminaireSetting& l) {
-    l.product = iku.product;
-    l.type = iku.type;
-  });
-  differs("rotation", [](LuminaireSetting& l) { l.rotation_deg = 90.0; });
-  differs("position", [](LuminaireSetting& l) { l.position_m.x() += 0.1; });
-  differs("flux", [](LuminaireSetting& l) { l.flux_lm *= 0.5; });
-  differs("the plain panel in its place", [](LuminaireSetting& l) { l.type = LuminaireType::square_lambertian(0.3); });
-  // The same placement read again from the file keeps the key.
-  const JobConfig again = load_job_config(job.path);
-  EXPECT_EQ(lighting_model_key(again, test::model_spec(again)), key);
+  EXPECT_NE(key_of(job), key) << "the mesh file's bytes";
 }
 
 TEST(ModelCache, MaterialFilesAreInTheKey) {
@@ -294,29 +272,29 @@ TEST(ModelCache, MaterialFilesAreInTheKey) {
   JobConfig job = cache_job(dir);
   dir.write("room.obj", "mtllib room.mtl\n" + room_obj({{"mat", {1.3, 1.7}}, {"other", {3.0, 2.5}}}));
   dir.write("room.mtl", "newmtl white\nKd 0.5 0.5 0.5\n");
-  const std::string with_mtl = lighting_model_key(job, test::model_spec(job));
+  const std::string with_mtl = key_of(job);
   dir.write("room.mtl", "newmtl white\nKd 0.6 0.6 0.6\n");
-  const std::string changed = lighting_model_key(job, test::model_spec(job));
+  const std::string changed = key_of(job);
   EXPECT_NE(changed, with_mtl) << "the MTL's bytes";
   std::filesystem::remove(dir.file("room.mtl"));
-  const std::string missing = lighting_model_key(job, test::model_spec(job));  // no throw: a missing MTL contributes a marker
+  const std::string missing = key_of(job);  // no throw: a missing MTL contributes a marker
   EXPECT_NE(missing, with_mtl);
   EXPECT_NE(missing, changed);
   dir.write("room.mtl", "newmtl white\nKd 0.5 0.5 0.5\n");
-  EXPECT_EQ(lighting_model_key(job, test::model_spec(job)), with_mtl) << "the same bytes, the same key";
+  EXPECT_EQ(key_of(job), with_mtl) << "the same bytes, the same key";
 }
 
 TEST(ModelCache, TheFluxRangeCountsOnlyWithATargetError) {
   TempDir dir;
   JobConfig job = cache_job(dir);
   job.sample.target_error = 0.05;  // k is then chosen with every candidate at the top of the flux range
-  const std::string key = lighting_model_key(job, test::model_spec(job));
+  const std::string key = key_of(job);
   JobConfig other = job;
   other.search->flux_max_lm = 5000.0;
-  EXPECT_NE(lighting_model_key(other, test::model_spec(other)), key);
+  EXPECT_NE(key_of(other), key);
   other = job;
   other.search->flux_min_lm = 100.0;
-  EXPECT_EQ(lighting_model_key(other, test::model_spec(other)), key);
+  EXPECT_EQ(key_of(other), key);
 }
 
 // A damaged or foreign cache file: load_lighting_model says why and leaves the model
@@ -325,15 +303,15 @@ TEST(ModelCache, TheFluxRangeCountsOnlyWithATargetError) {
 void expect_rebuilt(const TempDir& dir, const JobConfig& job, const std::string& reason_start,
                     const std::function<void(const std::string& file, const LightingModel& model)>& damage) {
   const std::string cache = dir.file("cache");
-  const PreparedJob fresh = test::prepare(job);
-  const PreparedJob first = test::prepare(job, cache);
+  const PreparedJob fresh = prepare(job);
+  const PreparedJob first = prepare(job, cache);
   ASSERT_FALSE(first.loaded_from_cache);
   const std::string file = cache_file(cache, job);
   damage(file, first.model);
 
   LightingModel model = geometry_of(first);
   const std::size_t log_lines = model.log.size();
-  const std::optional<std::string> not_used = load_lighting_model(file, lighting_model_key(job, test::model_spec(job)), model);
+  const std::optional<std::string> not_used = load_lighting_model(file, key_of(job), model);
   ASSERT_TRUE(not_used) << "the damaged file was used";
   EXPECT_TRUE(StartsWith(*not_used, reason_start));
   EXPECT_EQ(model.fixed_lux.size(), 0) << "the model was touched";
@@ -341,13 +319,13 @@ void expect_rebuilt(const TempDir& dir, const JobConfig& job, const std::string&
   EXPECT_EQ(model.sample_size, 0);
   EXPECT_EQ(model.log.size(), log_lines);
 
-  const PreparedJob second = test::prepare(job, cache);
+  const PreparedJob second = prepare(job, cache);
   EXPECT_FALSE(second.loaded_from_cache);
   EXPECT_TRUE(Contains(second.cache_status, "operator built and cached in " + file));
   EXPECT_TRUE(Contains(second.cache_status, "the cached file was not used: " + reason_start));
   expect_same_operator(fresh.model, second.model, false);
 
-  const PreparedJob third = test::prepare(job, cache);
+  const PreparedJob third = prepare(job, cache);
   EXPECT_TRUE(third.loaded_from_cache) << third.cache_status;
   expect_same_operator(second.model, third.model, true);
 }
@@ -413,9 +391,9 @@ TEST(ModelCache, AnotherFormatVersionIsNotUsed) {
 TEST(ModelCache, MissingOrForeignFilesAreReported) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
-  const PreparedJob built = test::prepare(job);
+  const PreparedJob built = prepare(job);
   LightingModel model = geometry_of(built);
-  const std::string key = lighting_model_key(job, test::model_spec(job));
+  const std::string key = key_of(job);
   EXPECT_EQ(load_lighting_model(dir.file("none.ilpmodel"), key, model), "no cache file");
   EXPECT_TRUE(StartsWith(load_lighting_model(dir.write("foreign.ilpmodel", "hello, world\n"), key, model).value(),
                          "corrupt: not an ilp model cache file"));
@@ -423,7 +401,7 @@ TEST(ModelCache, MissingOrForeignFilesAreReported) {
   // A model of other sizes under the right key: the sizes are checked against the scene.
   JobConfig coarse = job;
   coarse.search->candidate_spacing_m = 1.0;
-  const PreparedJob other = test::prepare(coarse);
+  const PreparedJob other = prepare(coarse);
   ASSERT_NE(other.model.grid.size(), built.model.grid.size());
   save_lighting_model(dir.file("other.ilpmodel"), other.model, key);
   EXPECT_TRUE(StartsWith(load_lighting_model(dir.file("other.ilpmodel"), key, model).value(),
@@ -439,34 +417,114 @@ TEST(ModelCache, UnwritableCacheFolderStillCompletesTheJob) {
   job.verification.method = VerificationMethod::none;
   // A folder inside a regular file can be neither created nor written (even as root).
   const std::string cache = dir.write("not_a_folder", "") + "/cache";
-  const PreparedJob prepared = test::prepare(job, cache);
+  const PreparedJob prepared = prepare(job, cache);
   EXPECT_FALSE(prepared.loaded_from_cache);
   EXPECT_TRUE(StartsWith(prepared.cache_status, "operator built; cache not used: ")) << prepared.cache_status;
   EXPECT_TRUE(Contains(prepared.cache_status, cache));
-  expect_same_operator(test::prepare(job).model, prepared.model, false);
+  expect_same_operator(prepare(job).model, prepared.model, false);
   const JobOutcome outcome = solve_prepared(prepared, job);
   EXPECT_EQ(outcome.luminaires.size(), 1u);
   EXPECT_TRUE(outcome.feasible);
 }
 
-// A reminder that runs where the sizes are known (x86-64, libstdc++): a field added to
-// one of these structs must be written by save_lighting_model (the stats) or put in
-// lighting_model_key's text (the settings), and kLightingModelCacheVersion bumped;
-// then update the size here.
-TEST(ModelCache, FormatAndKeyCoverEveryField) {
-#if defined(__x86_64__) && defined(__GLIBCXX__)
-  EXPECT_EQ(sizeof(SampleOperatorStats), 168u) << "SampleOperatorStats changed: save and load the new field";
-  EXPECT_EQ(sizeof(SampleSettings), 200u) << "SampleSettings changed: is the new field in lighting_model_key?";
-  EXPECT_EQ(sizeof(FormFactorOptions), 24u) << "FormFactorOptions changed: is the new field in lighting_model_key?";
-  // 88: the progress callback and its label, which do not change the operator.
-  EXPECT_EQ(sizeof(DirectLightOptions), 88u) << "DirectLightOptions changed: is the new field in lighting_model_key?";
-  EXPECT_EQ(sizeof(SceneOptions), 32u) << "SceneOptions changed: is the new field in lighting_model_key?";
-  EXPECT_EQ(sizeof(MeshReadOptions), 4u) << "MeshReadOptions changed: is the new field in lighting_model_key?";
-  EXPECT_EQ(sizeof(LuminaireSearch), 464u) << "LuminaireSearch changed: does the new field shape the candidates?";
-  EXPECT_EQ(sizeof(JobConfig), 1808u) << "JobConfig changed: does the new setting change the operator?";
-#else
-  GTEST_SKIP() << "struct sizes are checked on x86-64 with libstdc++ only";
-#endif
+// From the job file to the key: every field of the sections plan_job translates into
+// the lighting model's spec reaches the key when it changes the operator (each stage
+// struct's own fields are checked in tests/core/key_hash_test.cpp and cache_key_test.cpp;
+// this checks the translation drops none).
+TEST(ModelCache, EverySolverSettingThatChangesTheOperatorReachesTheKey) {
+  TempDir dir;
+  const JobConfig job = cache_job(dir);
+  const FileLoc at{"job.yaml", 9, 3};
+  expect_key_covers_fields<SampleSettings>("SampleSettings", job.sample, {
+      {"size", [](SampleSettings& s) { s.size = 50; }},
+      {"fraction", [](SampleSettings& s) { s.fraction = 0.3; }},
+      left_out<SampleSettings>("size_loc", [&](SampleSettings& s) { s.size_loc = at; }),
+      {"strategy", [](SampleSettings& s) { s.strategy = SampleStrategy::uniform; }},
+      {"seed", [](SampleSettings& s) { s.seed = 5; }},
+      {"indirect", [](SampleSettings& s) { s.indirect = IndirectMethod::sample_gather; }},
+      {"target_error", [](SampleSettings& s) { s.target_error = 0.05; }},
+      left_out<SampleSettings>("target_error_loc", [&](SampleSettings& s) { s.target_error_loc = at; }),
+      {"error_samples", [](SampleSettings& s) { s.error_samples = 8; }},
+      {"pilot_fraction", [](SampleSettings& s) { s.pilot_fraction = 0.04; }},
+      {"max_size_for_target", [](SampleSettings& s) { s.max_size_for_target = 100; }},
+      left_out<SampleSettings>("max_size_loc", [&](SampleSettings& s) { s.max_size_loc = at; }),
+  }, [&](const SampleSettings& sample) {
+    JobConfig j = job;
+    j.sample = sample;
+    return key_of(j);
+  });
+}
+
+TEST(ModelCache, EveryLuminaireSettingThatChangesTheCandidatesReachesTheKey) {
+  TempDir dir;
+  const JobConfig job = cache_job(dir);
+  const FileLoc at{"job.yaml", 9, 3};
+  expect_key_covers_fields<LuminaireSearch>("LuminaireSearch", *job.search, {
+      left_out<LuminaireSearch>("model", [](LuminaireSearch& s) { s.model = "another"; }),  // the only model: not read
+      left_out<LuminaireSearch>("flux_min_lm", [](LuminaireSearch& s) { s.flux_min_lm = 100.0; }),
+      // (the top of the range counts only with a target error: TheFluxRangeCountsOnlyWithATargetError)
+      left_out<LuminaireSearch>("flux_max_lm", [](LuminaireSearch& s) { s.flux_max_lm = 5000.0; }),
+      left_out<LuminaireSearch>("flux_loc", [&](LuminaireSearch& s) { s.flux_loc = at; }),
+      left_out<LuminaireSearch>("efficacy_lm_per_w", [](LuminaireSearch& s) { s.efficacy_lm_per_w = 150.0; }),
+      {"mounting_surface", [](LuminaireSearch& s) { s.mounting_surface = "floor"; }},
+      left_out<LuminaireSearch>("mounting_loc", [&](LuminaireSearch& s) { s.mounting_loc = at; }),
+      {"mount_offset_m", [](LuminaireSearch& s) { s.mount_offset_m = 0.05; }},
+      left_out<LuminaireSearch>("offset_loc", [&](LuminaireSearch& s) { s.offset_loc = at; }),
+      {"candidate_spacing_m", [](LuminaireSearch& s) { s.candidate_spacing_m = 0.4; }},
+      left_out<LuminaireSearch>("spacing_loc", [&](LuminaireSearch& s) { s.spacing_loc = at; }),
+      left_out<LuminaireSearch>("count_min", [](LuminaireSearch& s) { s.count_min = 2; }),
+      left_out<LuminaireSearch>("count_max", [](LuminaireSearch& s) { s.count_max = 3; }),
+      left_out<LuminaireSearch>("count_loc", [&](LuminaireSearch& s) { s.count_loc = at; }),
+      {"wall_distance_m", [](LuminaireSearch& s) { s.wall_distance_m = 0.3; }},
+      {"ceiling_module_m", [](LuminaireSearch& s) { s.ceiling_module_m = 0.6; }},
+      left_out<LuminaireSearch>("layout", [](LuminaireSearch& s) { s.layout = LayoutFamily::array; }),
+      left_out<LuminaireSearch>("array_rows", [](LuminaireSearch& s) { s.array_rows = 2; }),
+      left_out<LuminaireSearch>("array_columns", [](LuminaireSearch& s) { s.array_columns = 2; }),
+      left_out<LuminaireSearch>("array_spacing_m", [](LuminaireSearch& s) { s.array_spacing_m = Eigen::Vector2d(1, 1); }),
+      left_out<LuminaireSearch>("array_offset_m", [](LuminaireSearch& s) { s.array_offset_m = Eigen::Vector2d(0.5, 0.5); }),
+      left_out<LuminaireSearch>("layout_loc", [&](LuminaireSearch& s) { s.layout_loc = at; }),
+  }, [&](const LuminaireSearch& search) {
+    JobConfig j = job;
+    j.search = search;
+    return key_of(j);
+  });
+}
+
+// luminaires.products (a JobConfig field since placed luminaires name products too)
+// reach the key through the candidates' type.
+TEST(ModelCache, AProductInPlaceOfThePanelChangesTheKey) {
+  TempDir dir;
+  const JobConfig job = cache_job(dir);
+  ProductSetting panel;
+  panel.name = "small panel";
+  panel.size_m = 0.3;
+  panel.flux_lm = 3000.0;
+  panel.power_w = 25.0;
+  JobConfig with = job;
+  with.products = {panel};
+  EXPECT_NE(key_of(with), key_of(job));
+}
+
+TEST(ModelCache, TheThreadCountOfTheRunKeepsTheKey) {
+  TempDir dir;
+  const JobConfig job = cache_job(dir);
+  RunOptions run;
+  run.threads = 1;
+  EXPECT_EQ(key_of(job, run), key_of(job));
+}
+
+// The key's text is the format version, the scene's inputs and the model's spec, one
+// named field a line: two keys' texts show the field they differ in.
+TEST(ModelCache, TheKeyTextNamesTheFields) {
+  TempDir dir;
+  const JobConfig job = cache_job(dir);
+  const VariantPlan plan = plan_of(job);
+  const std::string text = lighting_model_key_text(job, plan.model);
+  EXPECT_TRUE(StartsWith(text, "ilp_lighting_model_cache_format=u" + std::to_string(kLightingModelCacheVersion) + "\n"));
+  EXPECT_TRUE(Contains(text, "\nmesh_bytes=s"));
+  EXPECT_TRUE(Contains(text, "\nmodel={\ncandidates={\nmounting_surface=s7:ceiling\n"));
+  EXPECT_TRUE(Contains(text, "\nrays_per_patch=i64\n"));
+  EXPECT_EQ(lighting_model_key(job, plan.model).size(), 32u);
 }
 
 }  // namespace
