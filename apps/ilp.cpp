@@ -8,6 +8,153 @@
 
 namespace {
 constexpr int kMaxThreads = 1024;  // as solver.threads of a job
+constexpr const char* kMaxMemoryHelp =
+    "memory budget, e.g. 4G or 512M (default: the machine's available memory); a job whose estimate exceeds it is "
+    "refused before any work";
+
+// The job's luminaires as placed: `ilp solve`.
+CLI::App* add_solve_command(CLI::App& app, ilp::cli::SolveArgs& args) {
+  CLI::App* command = app.add_subcommand("solve", "Illuminance per surface in lux for the job's luminaires as placed: "
+                                                  "through the sample-based operator, or exactly (full form factors, "
+                                                  "Gauss-Seidel)");
+  command->add_option("config", args.config, "job file (YAML)")->required();
+  command->add_option("--csv", args.csv,
+                      "also write per-patch results (centroid, area, direct and total lux) for every patch to this CSV");
+  command->add_option("--out", args.out_dir,
+                      "folder for the calculation grids' files: grid.csv, isolux_<grid>.svg and .png (default: the job's "
+                      "output folder + /solve)");
+  command->add_option("--method", args.method, "sample or exact (default: solver.method of the job, else sample)")
+      ->check(CLI::IsMember({"sample", "exact"}));
+  command->add_option("--threads", args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
+      ->check(CLI::Range(0, kMaxThreads));
+  command->add_option("--max-memory", args.max_memory, kMaxMemoryHelp);
+  command->add_flag("-q,--quiet", args.quiet, "no progress lines");
+  return command;
+}
+
+// What accuracy costs: `ilp accuracy`.
+CLI::App* add_accuracy_command(CLI::App& app, ilp::cli::AccuracyArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "accuracy", "What accuracy costs in time: build the sample-based operator for a range of sample sizes and rays "
+                  "per row, measure its error against the exact reference, predict it from pilot samples; writes "
+                  "accuracy.csv and accuracy.svg");
+  command->add_option("config", args.config, "job file (YAML)")->required();
+  command->add_option("--out", args.out_dir, "output folder")->capture_default_str();
+  command->add_option("--fractions", args.fractions, "sample sizes as fractions of the reflecting patches")
+      ->delimiter(',')->check(CLI::Range(1e-9, 1.0))->capture_default_str();
+  command->add_option("--seeds", args.seeds, "samples drawn per size")->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  command->add_option("--rays", args.rays, "rays per form-factor row")->delimiter(',')->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  command->add_option("--strategies", args.strategies, "sampling: uniform, area, stratified")->delimiter(',')
+      ->check(CLI::IsMember({"uniform", "area", "stratified"}))->capture_default_str();
+  command->add_option("--methods", args.methods, "indirect light: sample_gather, exact_second_bounce")->delimiter(',')
+      ->check(CLI::IsMember({"sample_gather", "exact_second_bounce"}))->capture_default_str();
+  command->add_option("--goals", args.goals, "goal surfaces (default: the job's report.surfaces)")->delimiter(',');
+  command->add_option("--reference-rays", args.reference_rays, "rays per patch of the exact reference")
+      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  command->add_option("--eta", args.error_samples, "pilot samples behind the predicted error")
+      ->check(CLI::Range(2, 64))->capture_default_str();
+  command->add_option("--pilot-fraction", args.pilot_fraction, "pilot sample size, of the reflecting patches")
+      ->check(CLI::Range(1e-9, 1.0))->capture_default_str();
+  command->add_option("--threads", args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
+      ->check(CLI::Range(0, kMaxThreads));
+  command->add_flag("-q,--quiet", args.quiet, "no progress lines");
+  return command;
+}
+
+// The inverse job: `ilp run`.
+CLI::App* add_run_command(CLI::App& app, ilp::cli::RunArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "run", "Solve an inverse-lighting job: place luminaires on the mounting surface so the goal surfaces get what "
+             "the job asks, verify the layout with an exact solve, print the layout and write result.json, "
+             "illuminance.csv, plan.svg and scene.ply. Exit code 2 when a goal is missed");
+  command->add_option("config", args.config, "job file (YAML)")->required();
+  command->add_option("--out", args.out_dir, "output folder (default: output.directory of the job, else results/<job>)");
+  command->add_option("--cache", args.cache_dir,
+                      "operator cache folder (default: $XDG_CACHE_HOME/ilp or ~/.cache/ilp): a second run of the same "
+                      "scene and solver settings skips the build");
+  command->add_flag("--no-cache", args.no_cache, "build the operator without reading or writing the cache");
+  command->add_option("--threads", args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
+      ->check(CLI::Range(0, kMaxThreads));
+  command->add_option("--max-memory", args.max_memory, kMaxMemoryHelp);
+  command->add_flag("-q,--quiet", args.quiet, "no progress lines");
+  return command;
+}
+
+// One goal parameter over values: `ilp sweep`.
+CLI::App* add_sweep_command(CLI::App& app, ilp::cli::SweepArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "sweep", "Run a job once per value of one goal parameter, building the operator once; writes sweep.csv (one row "
+               "per value) and sweep.svg (power against the parameter)");
+  command->add_option("config", args.config, "job file (YAML)")->required();
+  command->add_option("--set", args.set,
+                      "KEY=V1,V2,...: the parameter and its values, e.g. goals.desks.average_lux=300,500,750 (default: "
+                      "the job's sweep block)");
+  command->add_option("--out", args.out_dir, "output folder (default: output.directory of the job, else results/<job>)");
+  command->add_option("--cache", args.cache_dir, "operator cache folder (default: $XDG_CACHE_HOME/ilp or ~/.cache/ilp)");
+  command->add_flag("--no-cache", args.no_cache, "build the operator without reading or writing the cache");
+  command->add_option("--threads", args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
+      ->check(CLI::Range(0, kMaxThreads));
+  command->add_option("--max-memory", args.max_memory, kMaxMemoryHelp);
+  command->add_flag("-q,--quiet", args.quiet, "no progress lines");
+  return command;
+}
+
+// A saved layout again: `ilp print`.
+CLI::App* add_print_command(CLI::App& app, ilp::cli::PrintArgs& args) {
+  CLI::App* command = app.add_subcommand("print", "Print a saved layout (result.json of `ilp run`) again");
+  command->add_option("result", args.result, "result.json")->required();
+  return command;
+}
+
+// A job measured on this machine: `ilp bench`.
+CLI::App* add_bench_command(CLI::App& app, ilp::cli::BenchArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "bench", "Measure a job on this machine: operator build by phase, peak memory, objective evaluations per "
+               "second, the search, and one full radiosity solve per configuration for comparison (not a test)");
+  command->add_option("config", args.config, "job file (YAML) of an inverse job")->required();
+  command->add_option("--luminaires", args.luminaires, "luminaires per evaluated layout")
+      ->check(CLI::Range(1, 64))->capture_default_str();
+  command->add_option("--patch-edge", args.patch_edge_m, "override scene.max_patch_edge_m (m)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--sample-fraction", args.sample_fraction, "override the sample size, of the reflecting patches")
+      ->check(CLI::Range(1e-9, 1.0));
+  command->add_flag("--skip-full-solve", args.skip_full_solve, "do not run the full radiosity solve");
+  command->add_option("--csv", args.csv, "append one row of figures to this CSV");
+  command->add_option("--threads", args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
+      ->check(CLI::Range(0, kMaxThreads));
+  command->add_option("--max-memory", args.max_memory, kMaxMemoryHelp);
+  command->add_flag("-q,--quiet", args.quiet, "no progress lines");
+  return command;
+}
+
+// The scene as ilp sees it: `ilp inspect`.
+CLI::App* add_inspect_command(CLI::App& app, ilp::cli::InspectArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "inspect", "Show the scene as ilp sees it (metres, z up, after exclusions and surface splitting): each surface "
+                 "with triangles, patches, area, facing, heights and bounds; a suggested mounting surface and floor; "
+                 "warnings (one surface for everything, wrong winding, openings, degenerate triangles); and for an "
+                 "inverse job the cost estimate of running it");
+  command->add_option("target", args.target, "job file (YAML) or mesh (.obj, .ply, .off)")->required();
+  command->add_option("--scale", args.scale, "metres per file unit (overrides scene.scale_to_m)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--up", args.up, "the file's up axis (overrides scene.up_axis)")
+      ->check(CLI::IsMember({"y", "z"}));
+  command->add_option("--patch-edge", args.patch_edge_m, "override scene.max_patch_edge_m (m)")
+      ->check(CLI::PositiveNumber);
+  command->add_flag("--connected", args.connected,
+                    "split surfaces into connected pieces by facing (scene.surfaces_from: connected)");
+  command->add_option("--weld", args.weld_m, "weld tolerance for connectivity and edges (m)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--max-memory", args.max_memory,
+                      "memory budget for the cost estimate, e.g. 4G (default: the machine's available memory)");
+  command->add_flag("--all", args.all, "list every surface (default: the 40 largest)");
+  command->add_option("--threads", args.threads, "worker threads (default: solver.threads, 0 = all cores)")
+      ->check(CLI::Range(0, kMaxThreads));
+  return command;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -16,134 +163,19 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "ilp 0.1.0");
 
   ilp::cli::SolveArgs solve_args;
-  CLI::App* solve = app.add_subcommand("solve", "Illuminance per surface in lux for the job's luminaires as placed: "
-                                                "through the sample-based operator, or exactly (full form factors, "
-                                                "Gauss-Seidel)");
-  solve->add_option("config", solve_args.config, "job file (YAML)")->required();
-  solve->add_option("--csv", solve_args.csv,
-                    "also write per-patch results (centroid, area, direct and total lux) for every patch to this CSV");
-  solve->add_option("--out", solve_args.out_dir,
-                    "folder for the calculation grids' files: grid.csv, isolux_<grid>.svg and .png (default: the job's "
-                    "output folder + /solve)");
-  solve->add_option("--method", solve_args.method, "sample or exact (default: solver.method of the job, else sample)")
-      ->check(CLI::IsMember({"sample", "exact"}));
-  solve->add_option("--threads", solve_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
-      ->check(CLI::Range(0, kMaxThreads));
-  solve->add_option("--max-memory", solve_args.max_memory,
-                  "memory budget, e.g. 4G or 512M (default: the machine's available memory); a job whose "
-                  "estimate exceeds it is refused before any work");
-  solve->add_flag("-q,--quiet", solve_args.quiet, "no progress lines");
-
+  CLI::App* solve = add_solve_command(app, solve_args);
   ilp::cli::AccuracyArgs acc;
-  CLI::App* accuracy = app.add_subcommand(
-      "accuracy", "What accuracy costs in time: build the sample-based operator for a range of sample sizes and rays "
-                  "per row, measure its error against the exact reference, predict it from pilot samples; writes "
-                  "accuracy.csv and accuracy.svg");
-  accuracy->add_option("config", acc.config, "job file (YAML)")->required();
-  accuracy->add_option("--out", acc.out_dir, "output folder")->capture_default_str();
-  accuracy->add_option("--fractions", acc.fractions, "sample sizes as fractions of the reflecting patches")
-      ->delimiter(',')->check(CLI::Range(1e-9, 1.0))->capture_default_str();
-  accuracy->add_option("--seeds", acc.seeds, "samples drawn per size")->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  accuracy->add_option("--rays", acc.rays, "rays per form-factor row")->delimiter(',')->check(CLI::Range(1, 1 << 20))
-      ->capture_default_str();
-  accuracy->add_option("--strategies", acc.strategies, "sampling: uniform, area, stratified")->delimiter(',')
-      ->check(CLI::IsMember({"uniform", "area", "stratified"}))->capture_default_str();
-  accuracy->add_option("--methods", acc.methods, "indirect light: sample_gather, exact_second_bounce")->delimiter(',')
-      ->check(CLI::IsMember({"sample_gather", "exact_second_bounce"}))->capture_default_str();
-  accuracy->add_option("--goals", acc.goals, "goal surfaces (default: the job's report.surfaces)")->delimiter(',');
-  accuracy->add_option("--reference-rays", acc.reference_rays, "rays per patch of the exact reference")
-      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
-  accuracy->add_option("--eta", acc.error_samples, "pilot samples behind the predicted error")
-      ->check(CLI::Range(2, 64))->capture_default_str();
-  accuracy->add_option("--pilot-fraction", acc.pilot_fraction, "pilot sample size, of the reflecting patches")
-      ->check(CLI::Range(1e-9, 1.0))->capture_default_str();
-  accuracy->add_option("--threads", acc.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
-      ->check(CLI::Range(0, kMaxThreads));
-  accuracy->add_flag("-q,--quiet", acc.quiet, "no progress lines");
-
+  CLI::App* accuracy = add_accuracy_command(app, acc);
   ilp::cli::RunArgs run_args;
-  CLI::App* run = app.add_subcommand(
-      "run", "Solve an inverse-lighting job: place luminaires on the mounting surface so the goal surfaces get what "
-             "the job asks, verify the layout with an exact solve, print the layout and write result.json, "
-             "illuminance.csv, plan.svg and scene.ply. Exit code 2 when a goal is missed");
-  run->add_option("config", run_args.config, "job file (YAML)")->required();
-  run->add_option("--out", run_args.out_dir, "output folder (default: output.directory of the job, else results/<job>)");
-  run->add_option("--cache", run_args.cache_dir,
-                  "operator cache folder (default: $XDG_CACHE_HOME/ilp or ~/.cache/ilp): a second run of the same "
-                  "scene and solver settings skips the build");
-  run->add_flag("--no-cache", run_args.no_cache, "build the operator without reading or writing the cache");
-  run->add_option("--threads", run_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
-      ->check(CLI::Range(0, kMaxThreads));
-  run->add_option("--max-memory", run_args.max_memory,
-                  "memory budget, e.g. 4G or 512M (default: the machine's available memory); a job whose "
-                  "estimate exceeds it is refused before any work");
-  run->add_flag("-q,--quiet", run_args.quiet, "no progress lines");
-
+  CLI::App* run = add_run_command(app, run_args);
   ilp::cli::SweepArgs sweep_args;
-  CLI::App* sweep = app.add_subcommand(
-      "sweep", "Run a job once per value of one goal parameter, building the operator once; writes sweep.csv (one row "
-               "per value) and sweep.svg (power against the parameter)");
-  sweep->add_option("config", sweep_args.config, "job file (YAML)")->required();
-  sweep->add_option("--set", sweep_args.set,
-                    "KEY=V1,V2,...: the parameter and its values, e.g. goals.desks.average_lux=300,500,750 (default: "
-                    "the job's sweep block)");
-  sweep->add_option("--out", sweep_args.out_dir, "output folder (default: output.directory of the job, else results/<job>)");
-  sweep->add_option("--cache", sweep_args.cache_dir, "operator cache folder (default: $XDG_CACHE_HOME/ilp or ~/.cache/ilp)");
-  sweep->add_flag("--no-cache", sweep_args.no_cache, "build the operator without reading or writing the cache");
-  sweep->add_option("--threads", sweep_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
-      ->check(CLI::Range(0, kMaxThreads));
-  sweep->add_option("--max-memory", sweep_args.max_memory,
-                  "memory budget, e.g. 4G or 512M (default: the machine's available memory); a job whose "
-                  "estimate exceeds it is refused before any work");
-  sweep->add_flag("-q,--quiet", sweep_args.quiet, "no progress lines");
-
+  CLI::App* sweep = add_sweep_command(app, sweep_args);
   ilp::cli::PrintArgs print_args;
-  CLI::App* print = app.add_subcommand("print", "Print a saved layout (result.json of `ilp run`) again");
-  print->add_option("result", print_args.result, "result.json")->required();
-
+  CLI::App* print = add_print_command(app, print_args);
   ilp::cli::BenchArgs bench_args;
-  CLI::App* bench = app.add_subcommand(
-      "bench", "Measure a job on this machine: operator build by phase, peak memory, objective evaluations per "
-               "second, the search, and one full radiosity solve per configuration for comparison (not a test)");
-  bench->add_option("config", bench_args.config, "job file (YAML) of an inverse job")->required();
-  bench->add_option("--luminaires", bench_args.luminaires, "luminaires per evaluated layout")
-      ->check(CLI::Range(1, 64))->capture_default_str();
-  bench->add_option("--patch-edge", bench_args.patch_edge_m, "override scene.max_patch_edge_m (m)")
-      ->check(CLI::PositiveNumber);
-  bench->add_option("--sample-fraction", bench_args.sample_fraction, "override the sample size, of the reflecting patches")
-      ->check(CLI::Range(1e-9, 1.0));
-  bench->add_flag("--skip-full-solve", bench_args.skip_full_solve, "do not run the full radiosity solve");
-  bench->add_option("--csv", bench_args.csv, "append one row of figures to this CSV");
-  bench->add_option("--threads", bench_args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
-      ->check(CLI::Range(0, kMaxThreads));
-  bench->add_option("--max-memory", bench_args.max_memory,
-                  "memory budget, e.g. 4G or 512M (default: the machine's available memory); a job whose "
-                  "estimate exceeds it is refused before any work");
-  bench->add_flag("-q,--quiet", bench_args.quiet, "no progress lines");
-
+  CLI::App* bench = add_bench_command(app, bench_args);
   ilp::cli::InspectArgs inspect_args;
-  CLI::App* inspect = app.add_subcommand(
-      "inspect", "Show the scene as ilp sees it (metres, z up, after exclusions and surface splitting): each surface "
-                 "with triangles, patches, area, facing, heights and bounds; a suggested mounting surface and floor; "
-                 "warnings (one surface for everything, wrong winding, openings, degenerate triangles); and for an "
-                 "inverse job the cost estimate of running it");
-  inspect->add_option("target", inspect_args.target, "job file (YAML) or mesh (.obj, .ply, .off)")->required();
-  inspect->add_option("--scale", inspect_args.scale, "metres per file unit (overrides scene.scale_to_m)")
-      ->check(CLI::PositiveNumber);
-  inspect->add_option("--up", inspect_args.up, "the file's up axis (overrides scene.up_axis)")
-      ->check(CLI::IsMember({"y", "z"}));
-  inspect->add_option("--patch-edge", inspect_args.patch_edge_m, "override scene.max_patch_edge_m (m)")
-      ->check(CLI::PositiveNumber);
-  inspect->add_flag("--connected", inspect_args.connected,
-                    "split surfaces into connected pieces by facing (scene.surfaces_from: connected)");
-  inspect->add_option("--weld", inspect_args.weld_m, "weld tolerance for connectivity and edges (m)")
-      ->check(CLI::PositiveNumber);
-  inspect->add_option("--max-memory", inspect_args.max_memory,
-                      "memory budget for the cost estimate, e.g. 4G (default: the machine's available memory)");
-  inspect->add_flag("--all", inspect_args.all, "list every surface (default: the 40 largest)");
-  inspect->add_option("--threads", inspect_args.threads, "worker threads (default: solver.threads, 0 = all cores)")
-      ->check(CLI::Range(0, kMaxThreads));
+  CLI::App* inspect = add_inspect_command(app, inspect_args);
 
   try {
     app.parse(argc, argv);

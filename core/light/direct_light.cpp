@@ -374,7 +374,7 @@ void replace_emitter_columns(const Scene& scene, const RayCaster& caster, const 
   // The rays that struck a luminaire only sampled its solid angle, which the closed
   // form knows: scale the row's other entries so that it loses exactly the
   // closed-form share and keeps its escaped and back-hit shares (see
-  // apply_closed_form_loss in sample_operator.cpp, which does the same).
+  // apply_closed_form_loss in core/operator/sample_rows.cpp, which does the same).
   for (Eigen::Index r = 0; r < F.rows(); ++r) {
     double kept = 0.0, struck = 0.0;
     for (SparseRows::InnerIterator it(rows.F, r); it; ++it) (emitter_slot[it.col()] >= 0 ? struck : kept) += it.value();

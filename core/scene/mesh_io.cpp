@@ -238,34 +238,43 @@ bool ply_signed_type(std::string_view type) {
 // them (a face's vertex_indices first, then texcoord), one vertex and one face element.
 // Then the body: ASCII, one line per element with the values its properties call for;
 // binary, walked the way OpenMesh walks it, each list count within the bytes that follow.
-DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
-  struct Property {
-    bool list = false;
-    std::string type, count_type;  // count_type: lists only
-  };
-  struct Element {
-    std::string name;
-    long long count = 0;
-    int line = 0;
-    std::vector<Property> properties;
-  };
-  DeclaredCounts out;
-  std::ifstream in(path, std::ios::binary);
-  std::string line, format;
-  std::vector<Element> elements;
-  int line_no = 0, first_face = -1;
-  bool ended = false;
-  std::uintmax_t offset = 0;         // where the next line starts
+struct PlyProperty {
+  bool list = false;
+  std::string type, count_type;  // count_type: lists only
+};
+
+struct PlyElement {
+  std::string name;
+  long long count = 0;
+  int line = 0;
+  std::vector<PlyProperty> properties;
+};
+
+// What the PLY header declares and where OpenMesh and this check stand after it.
+struct PlyHeader {
+  DeclaredCounts counts;
+  std::string format;
+  std::vector<PlyElement> elements;
+  int first_face = -1;               // index of the face element, -1 if none
+  int line_no = 0;                   // the end_header line
   std::uintmax_t openmesh_pos = 0;   // where OpenMesh's header parser stands before it reads end_header
   std::uintmax_t header_end = 0;     // the byte after the end_header line
+};
+
+// Reads the header up to end_header, held to the layout described above check_ply.
+PlyHeader read_ply_header(std::ifstream& in, const fs::path& path, std::uintmax_t file_bytes) {
+  PlyHeader h;
+  std::string line;
+  bool ended = false;
+  std::uintmax_t offset = 0;  // where the next line starts
   while (std::getline(in, line)) {
     const std::uintmax_t line_start = offset;
     offset += line.size() + (in.eof() ? 0 : 1);
-    ++line_no;
+    ++h.line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const auto tokens = split_words(line);
-    const FileLoc loc{path.string(), line_no};
-    if (line_no == 1) {
+    const FileLoc loc{path.string(), h.line_no};
+    if (h.line_no == 1) {
       if (tokens.size() != 1 || tokens[0] != "ply")
         throw SceneError(path.string() + ": could not read the mesh: not a PLY file (no 'ply' on the first line)");
       continue;
@@ -273,43 +282,43 @@ DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
     if (tokens.empty()) continue;
     const std::string_view key = tokens[0];
     if (key == "comment") {  // OpenMesh reads the rest of the line
-      openmesh_pos = offset;
+      h.openmesh_pos = offset;
       continue;
     }
     if (key == "end_header") {
       if (tokens.size() != 1) throw SceneError(located(loc, "end_header must stand alone on its line"));
       ended = true;
-      header_end = offset;
+      h.header_end = offset;
       break;
     }
     if (key == "format") {
-      if (!format.empty() || tokens.size() != 3 || tokens[2] != "1.0" ||
+      if (!h.format.empty() || tokens.size() != 3 || tokens[2] != "1.0" ||
           (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" && tokens[1] != "binary_big_endian"))
         throw SceneError(located(loc, "format must be ascii, binary_little_endian or binary_big_endian, then a version"));
-      format = std::string(tokens[1]);
-    } else if (format.empty()) {
+      h.format = std::string(tokens[1]);
+    } else if (h.format.empty()) {
       throw SceneError(located(loc, "the format line must follow the 'ply' line"));
     } else if (key == "element") {
       if (tokens.size() != 3) throw SceneError(located(loc, "element needs a name and a count"));
-      Element e{std::string(tokens[1]), header_count(tokens[2], std::string(tokens[1]), path, line_no, file_bytes),
-                line_no, {}};
-      if ((e.name == "vertex" && out.vertices >= 0) || (e.name == "face" && out.faces >= 0))
+      PlyElement e{std::string(tokens[1]), header_count(tokens[2], std::string(tokens[1]), path, h.line_no, file_bytes),
+                   h.line_no, {}};
+      if ((e.name == "vertex" && h.counts.vertices >= 0) || (e.name == "face" && h.counts.faces >= 0))
         throw SceneError(located(loc, "a second '" + e.name + "' element (OpenMesh would read the first with the count of the second)"));
-      if (e.name == "vertex") out.vertices = e.count;
+      if (e.name == "vertex") h.counts.vertices = e.count;
       if (e.name == "face") {
-        out.faces = e.count;
-        first_face = static_cast<int>(elements.size());
+        h.counts.faces = e.count;
+        h.first_face = static_cast<int>(h.elements.size());
       }
-      elements.push_back(std::move(e));
+      h.elements.push_back(std::move(e));
     } else if (key == "property") {
       const bool list = tokens.size() >= 2 && tokens[1] == "list";
-      if (elements.empty() || tokens.size() != (list ? 5u : 3u) || ply_type_bytes(tokens[list ? 2 : 1]) == 0 ||
+      if (h.elements.empty() || tokens.size() != (list ? 5u : 3u) || ply_type_bytes(tokens[list ? 2 : 1]) == 0 ||
           (list && ply_type_bytes(tokens[3]) == 0))
         throw SceneError(located(loc, "property must follow an element and be 'property TYPE NAME' or 'property list "
                                       "COUNT_TYPE TYPE NAME' with PLY types (char, uchar, short, ..., float, double)"));
-      Element& e = elements.back();
+      PlyElement& e = h.elements.back();
       // Elements after the first face element are not read by OpenMesh: any list will do there.
-      const bool read_by_openmesh = first_face < 0 || static_cast<int>(elements.size()) - 1 <= first_face;
+      const bool read_by_openmesh = h.first_face < 0 || static_cast<int>(h.elements.size()) - 1 <= h.first_face;
       if (list && read_by_openmesh) {
         const std::string_view name = tokens[4];
         const bool indices = name == "vertex_indices" || name == "vertex_index";
@@ -333,83 +342,91 @@ DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
     } else {
       throw SceneError(located(loc, "unknown PLY header keyword '" + std::string(key) + "'"));
     }
-    openmesh_pos = line_start + static_cast<std::uintmax_t>(tokens.back().data() + tokens.back().size() - line.data());
+    h.openmesh_pos = line_start + static_cast<std::uintmax_t>(tokens.back().data() + tokens.back().size() - line.data());
   }
   if (!ended) throw SceneError(path.string() + ": the PLY header has no end_header (a truncated or damaged file)");
-  if (format.empty()) throw SceneError(path.string() + ": the PLY header has no format line");
+  if (h.format.empty()) throw SceneError(path.string() + ": the PLY header has no format line");
+  return h;
+}
+
+// A binary body, walked the way OpenMesh walks it, each list count within the bytes that follow.
+void check_ply_binary_body(std::ifstream& in, const fs::path& path, std::uintmax_t file_bytes, const PlyHeader& h) {
   long double need = 0;
-  for (const Element& e : elements) {
+  for (const PlyElement& e : h.elements) {
     std::size_t bytes = 0;
-    for (const Property& p : e.properties) bytes += ply_type_bytes(p.list ? p.count_type : p.type);
+    for (const PlyProperty& p : e.properties) bytes += ply_type_bytes(p.list ? p.count_type : p.type);
     need += static_cast<long double>(e.count) * static_cast<long double>(bytes);
   }
-  const std::uintmax_t body = file_bytes > header_end ? file_bytes - header_end : 0;
-  if (format != "ascii") {
-    if (need > static_cast<long double>(body))
-      throw SceneError(path.string() + ": the header declares elements needing at least " +
-                       std::to_string(static_cast<unsigned long long>(need)) + " bytes but only " +
-                       std::to_string(body) + " follow it (truncated?)");
-    // OpenMesh finds the binary body 12 bytes ("\nend_header\n", 14 with "\r\n") past the
-    // end of the last header statement: anything else there and it reads from the wrong byte.
-    std::ifstream at(path, std::ios::binary);
-    at.seekg(static_cast<std::streamoff>(openmesh_pos));
-    char c1 = 0, c2 = 0;
-    at.get(c1);
-    at.get(c2);
-    if (openmesh_pos + (c1 == '\r' && c2 == '\n' ? 14 : 12) != header_end)
-      throw SceneError(path.string() + ": a binary PLY's end_header must directly follow the last element or "
-                                       "property line (no comment, blank line or trailing space before or after it)");
-    in.clear();
-    in.seekg(static_cast<std::streamoff>(header_end));
-    const bool little = format == "binary_little_endian";
-    std::uintmax_t left = body;
-    for (std::size_t ei = 0; ei < elements.size(); ++ei) {
-      const Element& e = elements[ei];
-      if (first_face >= 0 && static_cast<int>(ei) > first_face) break;  // OpenMesh stops after the faces
-      bool has_list = false;
-      std::uintmax_t row = 0;
-      for (const Property& p : e.properties) {
-        has_list = has_list || p.list;
-        row += ply_type_bytes(p.type);
-      }
-      if (!has_list) {
-        const std::uintmax_t bytes = static_cast<std::uintmax_t>(e.count) * row;  // <= need <= body
-        in.ignore(static_cast<std::streamsize>(bytes));
-        left -= bytes;
-        continue;
-      }
-      for (long long k = 0; k < e.count; ++k)
-        for (const Property& p : e.properties) {
-          const std::size_t count_bytes = p.list ? ply_type_bytes(p.count_type) : 0;
-          const std::size_t value_bytes = ply_type_bytes(p.type);
-          if (left < (p.list ? count_bytes : value_bytes))
-            throw SceneError(path.string() + ": the file ends in " + e.name + " " + std::to_string(k) + " of the " +
-                             std::to_string(e.count) + " its header declares (truncated?)");
-          if (!p.list) {
-            in.ignore(static_cast<std::streamsize>(value_bytes));
-            left -= value_bytes;
-            continue;
-          }
-          unsigned char b[8] = {};
-          in.read(reinterpret_cast<char*>(b), static_cast<std::streamsize>(count_bytes));
-          left -= count_bytes;
-          unsigned long long u = 0;
-          for (std::size_t i = 0; i < count_bytes; ++i)
-            u |= static_cast<unsigned long long>(b[little ? i : count_bytes - 1 - i]) << (8 * i);
-          long long n = static_cast<long long>(u);
-          if (ply_signed_type(p.count_type) && (u >> (8 * count_bytes - 1)) != 0)
-            n = static_cast<long long>(u) - (1LL << (8 * count_bytes));
-          if (n < 0 || static_cast<unsigned long long>(n) * value_bytes > left)
-            throw SceneError(path.string() + ": " + e.name + " " + std::to_string(k) + " has a list of " +
-                             std::to_string(n) + " values, more than the " + std::to_string(left) +
-                             " bytes left in the file (a damaged or truncated file)");
-          in.ignore(static_cast<std::streamsize>(static_cast<unsigned long long>(n) * value_bytes));
-          left -= static_cast<std::uintmax_t>(n) * value_bytes;
-        }
+  const std::uintmax_t body = file_bytes > h.header_end ? file_bytes - h.header_end : 0;
+  if (need > static_cast<long double>(body))
+    throw SceneError(path.string() + ": the header declares elements needing at least " +
+                     std::to_string(static_cast<unsigned long long>(need)) + " bytes but only " +
+                     std::to_string(body) + " follow it (truncated?)");
+  // OpenMesh finds the binary body 12 bytes ("\nend_header\n", 14 with "\r\n") past the
+  // end of the last header statement: anything else there and it reads from the wrong byte.
+  std::ifstream at(path, std::ios::binary);
+  at.seekg(static_cast<std::streamoff>(h.openmesh_pos));
+  char c1 = 0, c2 = 0;
+  at.get(c1);
+  at.get(c2);
+  if (h.openmesh_pos + (c1 == '\r' && c2 == '\n' ? 14 : 12) != h.header_end)
+    throw SceneError(path.string() + ": a binary PLY's end_header must directly follow the last element or "
+                                     "property line (no comment, blank line or trailing space before or after it)");
+  in.clear();
+  in.seekg(static_cast<std::streamoff>(h.header_end));
+  const bool little = h.format == "binary_little_endian";
+  std::uintmax_t left = body;
+  for (std::size_t ei = 0; ei < h.elements.size(); ++ei) {
+    const PlyElement& e = h.elements[ei];
+    if (h.first_face >= 0 && static_cast<int>(ei) > h.first_face) break;  // OpenMesh stops after the faces
+    bool has_list = false;
+    std::uintmax_t row = 0;
+    for (const PlyProperty& p : e.properties) {
+      has_list = has_list || p.list;
+      row += ply_type_bytes(p.type);
     }
-    return out;
+    if (!has_list) {
+      const std::uintmax_t bytes = static_cast<std::uintmax_t>(e.count) * row;  // <= need <= body
+      in.ignore(static_cast<std::streamsize>(bytes));
+      left -= bytes;
+      continue;
+    }
+    for (long long k = 0; k < e.count; ++k)
+      for (const PlyProperty& p : e.properties) {
+        const std::size_t count_bytes = p.list ? ply_type_bytes(p.count_type) : 0;
+        const std::size_t value_bytes = ply_type_bytes(p.type);
+        if (left < (p.list ? count_bytes : value_bytes))
+          throw SceneError(path.string() + ": the file ends in " + e.name + " " + std::to_string(k) + " of the " +
+                           std::to_string(e.count) + " its header declares (truncated?)");
+        if (!p.list) {
+          in.ignore(static_cast<std::streamsize>(value_bytes));
+          left -= value_bytes;
+          continue;
+        }
+        unsigned char b[8] = {};
+        in.read(reinterpret_cast<char*>(b), static_cast<std::streamsize>(count_bytes));
+        left -= count_bytes;
+        unsigned long long u = 0;
+        for (std::size_t i = 0; i < count_bytes; ++i)
+          u |= static_cast<unsigned long long>(b[little ? i : count_bytes - 1 - i]) << (8 * i);
+        long long n = static_cast<long long>(u);
+        if (ply_signed_type(p.count_type) && (u >> (8 * count_bytes - 1)) != 0)
+          n = static_cast<long long>(u) - (1LL << (8 * count_bytes));
+        if (n < 0 || static_cast<unsigned long long>(n) * value_bytes > left)
+          throw SceneError(path.string() + ": " + e.name + " " + std::to_string(k) + " has a list of " +
+                           std::to_string(n) + " values, more than the " + std::to_string(left) +
+                           " bytes left in the file (a damaged or truncated file)");
+        in.ignore(static_cast<std::streamsize>(static_cast<unsigned long long>(n) * value_bytes));
+        left -= static_cast<std::uintmax_t>(n) * value_bytes;
+      }
   }
-  for (const Element& e : elements)
+}
+
+// An ASCII body: one line per element with the values its properties call for.
+void check_ply_ascii_body(std::ifstream& in, const fs::path& path, const PlyHeader& h) {
+  std::string line;
+  int line_no = h.line_no;
+  for (const PlyElement& e : h.elements)
     for (long long k = 0; k < e.count; ++k) {
       std::vector<std::string_view> tokens;
       while (tokens.empty()) {
@@ -421,7 +438,7 @@ DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
         tokens = split_words(line);
       }
       std::size_t at = 0;
-      for (const Property& p : e.properties) {
+      for (const PlyProperty& p : e.properties) {
         if (!p.list) {
           ++at;
           continue;
@@ -437,7 +454,17 @@ DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
                                                                std::to_string(tokens.size()) + " values, its header's properties call for " +
                                                                std::to_string(at) + " (truncated or damaged line)"));
     }
-  return out;
+}
+
+DeclaredCounts check_ply(const fs::path& path, std::uintmax_t file_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  const PlyHeader header = read_ply_header(in, path, file_bytes);
+  if (header.format != "ascii") {
+    check_ply_binary_body(in, path, file_bytes, header);
+  } else {
+    check_ply_ascii_body(in, path, header);
+  }
+  return header.counts;
 }
 
 // OFF. OpenMesh reads the keyword line, then the counts and every value number by number

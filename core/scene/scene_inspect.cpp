@@ -93,21 +93,21 @@ void count_edges(const TriangleMesh& mesh, const SceneOptions& frame, double tol
   }
 }
 
-}  // namespace
 
-SceneInspection inspect_scene(const Scene& scene, const TriangleMesh& mesh, const SceneOptions& frame,
-                              const RayCaster& caster, const InspectOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  SceneInspection out;
+// Per surface of the scene, its name and kind (counts filled in by the steps below).
+std::vector<SurfaceInspection> blank_surfaces(const Scene& scene, const InspectOptions& options) {
   std::vector<SurfaceInspection> all(scene.surfaces.size());
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
     all[s].name = scene.surfaces[s].name;
     all[s].is_luminaire = scene.surfaces[s].is_luminaire();
     all[s].two_sided = s < options.two_sided.size() && options.two_sided[s];
   }
-  count_edges(mesh, frame, options.weld_tolerance_m, out, all);
+  return all;
+}
 
-  // Geometry from the patches.
+// Geometry from the patches: area, bounds, the shares facing up, down and sideways and
+// the mean heights of the up and down parts, per surface and in all.
+void add_patch_geometry(const Scene& scene, std::vector<SurfaceInspection>& all, SceneInspection& out) {
   std::vector<double> up_area(all.size(), 0.0), down_area(all.size(), 0.0), up_z(all.size(), 0.0),
       down_z(all.size(), 0.0);
   for (const Patch& p : scene.patches) {
@@ -134,11 +134,13 @@ SceneInspection inspect_scene(const Scene& scene, const TriangleMesh& mesh, cons
     out.area_m2 += surface.area_m2;
   }
   out.patches = scene.patches.size();
-  out.triangles = mesh.triangles.size();
   out.bounds_m = scene.bounds_m;
+}
 
-  // Probe rays, every patch or an even stride; one slot per ray, so any thread count
-  // gives the same result.
+// Probe rays, every patch or an even stride; one slot per ray, so any thread count
+// gives the same result. Fills the escape and back-hit shares, per surface and in all.
+void cast_probe_rays(const Scene& scene, const RayCaster& caster, const InspectOptions& options,
+                     std::vector<SurfaceInspection>& all, SceneInspection& out) {
   const std::size_t stride = std::max<std::size_t>(1, (scene.patches.size() + options.max_probe_patches - 1) /
                                                          std::max<std::size_t>(1, options.max_probe_patches));
   const std::size_t probes = (scene.patches.size() + stride - 1) / stride;
@@ -189,12 +191,10 @@ SceneInspection inspect_scene(const Scene& scene, const TriangleMesh& mesh, cons
     all[s].escape_share = sent[s] > 0.0 ? escaped[s] / sent[s] : 0.0;
     all[s].back_struck_share = all[s].rays_received ? static_cast<double>(back_received[s]) / all[s].rays_received : 0.0;
   }
+}
 
-  // Surfaces with something in them, in scene order.
-  for (SurfaceInspection& s : all)
-    if (s.triangles > 0 || s.patches > 0) out.surfaces.push_back(std::move(s));
-
-  // Suggestions: the largest downward area high in the model, the largest upward area low in it.
+// Suggestions: the largest downward area high in the model, the largest upward area low in it.
+void suggest_mounting_and_floor(const Scene& scene, SceneInspection& out) {
   const double z0 = scene.bounds_m.min().z(), span = std::max(1e-12, scene.bounds_m.max().z() - z0);
   double best_mount = 0.0, best_floor = 0.0;
   for (std::size_t s = 0; s < out.surfaces.size(); ++s) {
@@ -211,8 +211,10 @@ SceneInspection inspect_scene(const Scene& scene, const TriangleMesh& mesh, cons
       out.floor = static_cast<int>(s);
     }
   }
+}
 
-  // Warnings.
+// What looks wrong or is missing, in words for the user.
+void add_warnings(const Scene& scene, const InspectOptions& options, SceneInspection& out) {
   auto& w = out.warnings;
   std::size_t mesh_surfaces = 0;
   const SurfaceInspection* largest = nullptr;
@@ -265,6 +267,24 @@ SceneInspection inspect_scene(const Scene& scene, const TriangleMesh& mesh, cons
   if (out.mounting < 0)
     w.push_back("no large surface faces down high in the model: nothing to suggest as a mounting surface");
   if (out.floor < 0) w.push_back("no large surface faces up low in the model: nothing to suggest as a floor");
+}
+
+}  // namespace
+
+SceneInspection inspect_scene(const Scene& scene, const TriangleMesh& mesh, const SceneOptions& frame,
+                              const RayCaster& caster, const InspectOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  SceneInspection out;
+  std::vector<SurfaceInspection> all = blank_surfaces(scene, options);
+  count_edges(mesh, frame, options.weld_tolerance_m, out, all);
+  add_patch_geometry(scene, all, out);
+  out.triangles = mesh.triangles.size();
+  cast_probe_rays(scene, caster, options, all, out);
+  // Surfaces with something in them, in scene order.
+  for (SurfaceInspection& s : all)
+    if (s.triangles > 0 || s.patches > 0) out.surfaces.push_back(std::move(s));
+  suggest_mounting_and_floor(scene, out);
+  add_warnings(scene, options, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -1,0 +1,356 @@
+// How the rows behind the sample operator are cast and read: the goal rows (once per
+// set of goals), the sample's rows, their sums split by what the rays struck, and the
+// direct light at goal, sample and hit patches with the closed-form luminaire loss.
+#include <chrono>
+#include <stdexcept>
+
+#include "core/light/direct_light.h"
+#include "core/operator/sample_operator.h"
+#include "core/operator/sample_operator_stages.h"
+#include "core/rays/point_gather.h"
+
+namespace ilp {
+namespace detail {
+
+SourceTable make_source_table(const Scene& scene, std::span<const LightSource> sources) {
+  SourceTable t;
+  std::vector<int> source_of_surface(scene.surfaces.size(), -1);
+  for (std::size_t l = 0; l < sources.size(); ++l) {
+    const int s = sources[l].surface;
+    if (s < 0 || s >= static_cast<int>(scene.surfaces.size()))
+      throw std::invalid_argument("light source '" + sources[l].name + "': surface " + std::to_string(s) +
+                                  " is not in the scene");
+    if (source_of_surface[s] >= 0)
+      throw std::invalid_argument("light source '" + sources[l].name + "': surface listed twice");
+    source_of_surface[s] = static_cast<int>(l);
+    const bool luminaire = scene.surfaces[s].is_luminaire();
+    t.emitting_index.push_back(luminaire ? -1 : static_cast<int>(t.gathered.size()));
+    t.absorbs.push_back(luminaire && !scene.surfaces[s].is_virtual);
+    if (!luminaire) t.gathered.push_back(static_cast<int>(l));
+    if (luminaire) {
+      t.luminaire_surfaces.push_back(s);
+      t.luminaire_source.push_back(static_cast<int>(l));
+    }
+  }
+  t.area_m2.assign(sources.size(), 0.0);
+  t.gathered_of_patch.assign(scene.patches.size(), -1);
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const int l = source_of_surface[scene.patches[i].surface];
+    if (l < 0) continue;
+    t.area_m2[l] += scene.patches[i].area_m2;
+    if (t.emitting_index[l] < 0) {
+      t.luminaire_patches.push_back(static_cast<int>(i));
+    } else {
+      t.gathered_of_patch[i] = t.emitting_index[l];
+    }
+  }
+  return t;
+}
+
+namespace {
+
+std::vector<bool> source_luminaire_mask(const Scene& scene, const SourceTable& sources) {
+  std::vector<bool> mask(scene.patches.size(), false);
+  for (int p : sources.luminaire_patches) mask[static_cast<std::size_t>(p)] = true;
+  return mask;
+}
+
+RowSums row_sums_from_rows(const Scene& scene, const SparseRows& F, const SourceTable& sources) {
+  const Eigen::Index rows = F.rows();
+  RowSums out{Eigen::VectorXd::Zero(rows), Eigen::MatrixXd::Zero(rows, static_cast<Eigen::Index>(sources.gathered.size())),
+              Eigen::VectorXd::Zero(rows), Eigen::VectorXd::Zero(rows)};
+  const std::vector<bool> luminaire = source_luminaire_mask(scene, sources);
+  for (Eigen::Index r = 0; r < rows; ++r)
+    for (SparseRows::InnerIterator it(F, r); it; ++it) {
+      if (luminaire[static_cast<std::size_t>(it.col())]) {
+        out.luminaire[r] += it.value();
+        continue;
+      }
+      out.kept[r] += it.value();
+      if (is_reflecting(scene, scene.patches[it.col()])) out.reflecting[r] += it.value();
+      if (const int e = sources.gathered_of_patch[it.col()]; e >= 0) out.gathered(r, e) += it.value();
+    }
+  return out;
+}
+
+// The same sums by counting rays only: bin 0 reflecting, 1 + e gathered source e,
+// 1 + m + e both (a reflecting emitter), 1 + 2m luminaires.
+RowSums row_sums_by_counting(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
+                             const SourceTable& sources, const FormFactorOptions& options,
+                             const ProgressCallback& progress) {
+  const int m = static_cast<int>(sources.gathered.size());
+  const std::vector<bool> luminaire = source_luminaire_mask(scene, sources);
+  std::vector<int> bin(scene.patches.size(), -1);
+  for (std::size_t j = 0; j < scene.patches.size(); ++j) {
+    const bool reflecting = is_reflecting(scene, scene.patches[j]);
+    const int e = sources.gathered_of_patch[j];
+    bin[j] = luminaire[j] ? 1 + 2 * m : e >= 0 ? (reflecting ? 1 + m + e : 1 + e) : (reflecting ? 0 : -1);
+  }
+  const int bins = 2 + 2 * m;
+  const Eigen::MatrixXd f = compute_row_bin_fractions(scene, caster, patches, bin, bins, options, progress);
+  RowSums out{f.col(0), Eigen::MatrixXd::Zero(f.rows(), m), f.col(1 + 2 * m), Eigen::VectorXd()};
+  for (int e = 0; e < m; ++e) {
+    out.reflecting += f.col(1 + m + e);
+    out.gathered.col(e) = f.col(1 + e) + f.col(1 + m + e);
+  }
+  // Columns bins and bins + 1 are the escaped and back-hit fractions.
+  out.kept = Eigen::VectorXd::Ones(f.rows()) - f.col(bins) - f.col(bins + 1) - out.luminaire;
+  return out;
+}
+
+// Rays that strike a luminaire only sample its solid angle, which the closed form
+// knows exactly. Each row's other entries are scaled by (kept + hits - closed) / kept
+// so that the row loses exactly the closed-form share to luminaires and keeps its
+// escaped and back-hit shares. Without this, a room of rho 0.999 whose only loss is
+// its luminaires gets that loss from 0 to 3 ray hits per row, and interreflection
+// multiplies the noise by 1 / (1 - rho s). `absorbed`: the rows' form factors to the
+// luminaires that absorb (DirectRows). Applies the scale to the sums and to D's
+// gathered columns.
+Eigen::VectorXd apply_closed_form_loss(RowSums& sums, Eigen::MatrixXd& D, const Eigen::MatrixXd& absorbed,
+                                       const SourceTable& sources) {
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(sums.kept.size());
+  for (Eigen::Index r = 0; r < scale.size(); ++r) {
+    const double closed = absorbed.row(r).sum();
+    if (sums.kept[r] > 0.0) scale[r] = std::max(0.0, sums.kept[r] + sums.luminaire[r] - closed) / sums.kept[r];
+  }
+  sums.reflecting.array() *= scale.array();
+  for (Eigen::Index e = 0; e < sums.gathered.cols(); ++e) sums.gathered.col(e).array() *= scale.array();
+  for (int l : sources.gathered) D.col(l).array() *= scale.array();
+  return scale;
+}
+
+// D(R,:): illuminance at each receiver per lumen of each source, and the receivers'
+// form factors to the luminaires that absorb (columns of the other sources are 0).
+struct DirectRows {
+  Eigen::MatrixXd D;
+  Eigen::MatrixXd absorbed;
+};
+
+DirectRows direct_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
+                        std::size_t source_count, const SourceTable& sources, const Eigen::MatrixXd& gathered,
+                        const DirectLightOptions& options) {
+  const auto R = static_cast<Eigen::Index>(receivers.size()), L = static_cast<Eigen::Index>(source_count);
+  DirectRows out{Eigen::MatrixXd::Zero(R, L), Eigen::MatrixXd::Zero(R, L)};
+  if (!sources.luminaire_surfaces.empty() && R > 0) {
+    const LuminaireLight light = compute_luminaire_light(scene, caster, receivers, sources.luminaire_surfaces, options);
+    for (std::size_t e = 0; e < sources.luminaire_surfaces.size(); ++e) {
+      const int l = sources.luminaire_source[e];
+      out.D.col(l) = light.lux_per_lm.col(static_cast<Eigen::Index>(e));
+      if (sources.absorbs[static_cast<std::size_t>(l)]) out.absorbed.col(l) = light.form_factor.col(static_cast<Eigen::Index>(e));
+    }
+  }
+  for (std::size_t e = 0; e < sources.gathered.size(); ++e) {
+    const int l = sources.gathered[e];
+    if (sources.area_m2[l] > 0.0) out.D.col(l) = gathered.col(static_cast<Eigen::Index>(e)) / sources.area_m2[l];
+  }
+  return out;
+}
+
+// D(Q,:) at goal points and their form factors to the absorbing luminaires, as
+// direct_light gives them for patches: luminaires through compute_luminaire_light_at_points,
+// gathered sources from the points' own rows (fraction of rays reaching the source / its area).
+DirectRows point_direct_light(const Scene& scene, const RayCaster& caster, std::span<const ReceiverPoint> points,
+                              std::size_t source_count, const SourceTable& table, const Eigen::MatrixXd& gathered,
+                              const DirectLightOptions& options) {
+  const auto Q = static_cast<Eigen::Index>(points.size()), L = static_cast<Eigen::Index>(source_count);
+  DirectRows out{Eigen::MatrixXd::Zero(Q, L), Eigen::MatrixXd::Zero(Q, L)};
+  if (!table.luminaire_surfaces.empty() && Q > 0) {
+    const LuminaireLight light =
+        compute_luminaire_light_at_points(scene, caster, points, table.luminaire_surfaces, options);
+    for (std::size_t e = 0; e < table.luminaire_surfaces.size(); ++e) {
+      const int l = table.luminaire_source[e];
+      out.D.col(l) = light.lux_per_lm.col(static_cast<Eigen::Index>(e));
+      if (table.absorbs[static_cast<std::size_t>(l)]) out.absorbed.col(l) = light.form_factor.col(static_cast<Eigen::Index>(e));
+    }
+  }
+  for (std::size_t e = 0; e < table.gathered.size(); ++e) {
+    const int l = table.gathered[e];
+    if (table.area_m2[l] > 0.0 && gathered.rows() > 0) out.D.col(l) = gathered.col(static_cast<Eigen::Index>(e)) / table.area_m2[l];
+  }
+  return out;
+}
+
+}  // namespace
+
+SampleRows cast_sample_rows(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                            const PatchSample& sample, const SourceTable& table, const SampleOperatorOptions& options,
+                            const ProgressCallback& progress, SampleOperatorStats& st) {
+  const std::vector<int>& P = sample.patches;
+  FormFactorRows rows = compute_form_factor_rows(scene, caster, P, options.form_factors, progress);
+  st.sample_row_seconds = rows.seconds;
+  st.rays_cast += rows.rays_cast;
+  RowSums sums = row_sums_from_rows(scene, rows.F, table);
+  std::vector<int> goal_slot(scene.patches.size(), -1), sample_slot(scene.patches.size(), -1);
+  for (std::size_t g = 0; g < goals.patches.size(); ++g) goal_slot[goals.patches[g]] = static_cast<int>(g);
+  for (std::size_t b = 0; b < P.size(); ++b) sample_slot[P[b]] = static_cast<int>(b);
+  return {std::move(rows), std::move(sums), std::move(sample_slot), std::move(goal_slot)};
+}
+
+// Direct light at the sample patches (copied where a sample patch is a goal).
+SampleDirect direct_light_at_sample(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                                    const PatchSample& sample, SampleRows& rows, const SourceTable& table,
+                                    const SampleOperatorOptions& options, const ProgressCallback& progress,
+                                    SampleOperatorStats& st) {
+  const std::span<const LightSource> sources = goals.sources;
+  const std::vector<int>& P = sample.patches;
+  const Eigen::Index k = static_cast<Eigen::Index>(P.size());
+  const Eigen::Index L = static_cast<Eigen::Index>(sources.size());
+  const std::vector<int>& goal_slot = rows.goal_slot;
+  std::vector<int> need_direct;
+  std::vector<Eigen::Index> need_direct_row;
+  for (Eigen::Index b = 0; b < k; ++b)
+    if (goal_slot[P[b]] < 0) {
+      need_direct.push_back(P[b]);
+      need_direct_row.push_back(b);
+    }
+  Eigen::MatrixXd gathered_needed(static_cast<Eigen::Index>(need_direct.size()), rows.sums.gathered.cols());
+  for (std::size_t m = 0; m < need_direct.size(); ++m)
+    gathered_needed.row(static_cast<Eigen::Index>(m)) = rows.sums.gathered.row(need_direct_row[m]);
+  DirectLightOptions sample_light = options.direct_light;
+  sample_light.progress = progress;
+  sample_light.progress_label = "direct light (sample)";
+  const DirectRows D_new = direct_light(scene, caster, need_direct, sources.size(), table, gathered_needed, sample_light);
+  SampleDirect out;
+  Eigen::MatrixXd& D_P = out.D_P;
+  D_P.resize(k, L);
+  Eigen::MatrixXd absorbed_P(k, L);
+  for (Eigen::Index b = 0; b < k; ++b)
+    if (goal_slot[P[b]] >= 0) {
+      D_P.row(b) = goals.direct_lux_per_lm.row(goal_slot[P[b]]);
+      absorbed_P.row(b) = goals.luminaire_form_factor.row(goal_slot[P[b]]);
+    }
+  for (std::size_t m = 0; m < need_direct.size(); ++m) {
+    D_P.row(need_direct_row[m]) = D_new.D.row(static_cast<Eigen::Index>(m));
+    absorbed_P.row(need_direct_row[m]) = D_new.absorbed.row(static_cast<Eigen::Index>(m));
+  }
+  st.direct_rows += need_direct.size();
+  // Rows copied from the goals are scaled already (same patch, same rays, same scale).
+  Eigen::MatrixXd D_scaled = D_P;
+  out.kept_scale = apply_closed_form_loss(rows.sums, D_scaled, absorbed_P, table);
+  for (std::size_t m = 0; m < need_direct.size(); ++m) D_P.row(need_direct_row[m]) = D_scaled.row(need_direct_row[m]);
+  require_finite(D_P, "direct light", scene, P, sources);
+  return out;
+}
+
+// Refinement: direct light at every reflecting patch the sample and goal rows hit.
+// Goal and sample patches reuse theirs; the others are only ever read through a
+// row's average over its hits, so a cheaper estimate (hit_direct_light) serves.
+HitDirect direct_light_at_hits(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                               const SampleRows& rows, const SampleDirect& direct, const SourceTable& table,
+                               const SampleOperatorOptions& options, const ProgressCallback& progress,
+                               SampleOperatorStats& st) {
+  const std::span<const LightSource> sources = goals.sources;
+  const Eigen::Index L = static_cast<Eigen::Index>(sources.size());
+  std::vector<int> hit_slot(scene.patches.size(), -1);
+  std::vector<int> hit, cheap;
+  std::vector<Eigen::Index> cheap_slot;
+  auto collect = [&](const SparseRows& F) {
+    for (Eigen::Index r = 0; r < F.rows(); ++r)
+      for (SparseRows::InnerIterator it(F, r); it; ++it)
+        if (hit_slot[it.col()] < 0 && is_reflecting(scene, scene.patches[it.col()])) {
+          hit_slot[it.col()] = static_cast<int>(hit.size());
+          hit.push_back(static_cast<int>(it.col()));
+        }
+  };
+  collect(rows.rows.F);
+  collect(goals.rows->F);
+  if (goals.point_rows) collect(goals.point_rows->F);
+  Eigen::MatrixXd D_hit(static_cast<Eigen::Index>(hit.size()), L);
+  for (std::size_t h = 0; h < hit.size(); ++h) {
+    const auto slot = static_cast<Eigen::Index>(h);
+    if (rows.sample_slot[hit[h]] >= 0) D_hit.row(slot) = direct.D_P.row(rows.sample_slot[hit[h]]);
+    else if (rows.goal_slot[hit[h]] >= 0) D_hit.row(slot) = goals.direct_lux_per_lm.row(rows.goal_slot[hit[h]]);
+    else {
+      cheap.push_back(hit[h]);
+      cheap_slot.push_back(slot);
+    }
+  }
+  // Gathered sources keep the plain form (their direct light is known only where rows were cast).
+  DirectLightOptions cheap_options = options.hit_direct_light;
+  cheap_options.seed = options.direct_light.seed;
+  cheap_options.threads = options.direct_light.threads;
+  cheap_options.progress = progress;
+  cheap_options.progress_label = "direct light (patches the rows hit)";
+  const Eigen::MatrixXd D_cheap = direct_light(
+      scene, caster, cheap, sources.size(), table,
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(cheap.size()), static_cast<Eigen::Index>(table.gathered.size())),
+      cheap_options).D;
+  for (std::size_t m = 0; m < cheap.size(); ++m) D_hit.row(cheap_slot[m]) = D_cheap.row(static_cast<Eigen::Index>(m));
+  for (std::size_t e = 0; e < table.gathered.size(); ++e) D_hit.col(table.gathered[e]).setZero();
+  st.cheap_direct_rows = cheap.size();
+  require_finite(D_hit, "direct light", scene, hit, sources);
+  return {std::move(hit_slot), RowMajorMatrix(D_hit)};
+}
+
+}  // namespace detail
+
+using namespace detail;
+
+GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::span<const int> goal_patches,
+                           std::span<const LightSource> sources, const SampleOperatorOptions& options,
+                           const ProgressCallback& progress) {
+  return compute_goal_rows(scene, caster, goal_patches, {}, sources, options, progress);
+}
+
+GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::span<const int> goal_patches,
+                           std::span<const ReceiverPoint> goal_points, std::span<const LightSource> sources,
+                           const SampleOperatorOptions& options, const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  require_valid_materials(scene);
+  for (int p : goal_patches)
+    if (p < 0 || p >= static_cast<int>(scene.patches.size()))
+      throw std::invalid_argument("compute_goal_rows: patch " + std::to_string(p) + " is not in the scene");
+  const SourceTable table = make_source_table(scene, sources);
+  GoalRows goals;
+  goals.patches.assign(goal_patches.begin(), goal_patches.end());
+  goals.sources.assign(sources.begin(), sources.end());
+  const bool any_reflecting = !reflecting_patches(scene).empty();
+  const Eigen::Index G = static_cast<Eigen::Index>(goal_patches.size());
+  RowSums sums{Eigen::VectorXd::Zero(G), Eigen::MatrixXd::Zero(G, static_cast<Eigen::Index>(table.gathered.size())),
+               Eigen::VectorXd::Zero(G), Eigen::VectorXd::Zero(G)};
+  if (options.indirect == IndirectMethod::exact_second_bounce && any_reflecting) {
+    goals.rows = compute_form_factor_rows(scene, caster, goal_patches, options.form_factors, progress);
+    sums = row_sums_from_rows(scene, goals.rows->F, table);
+    goals.rays_cast = goals.rows->rays_cast;
+  } else if (any_reflecting || !table.gathered.empty()) {
+    sums = row_sums_by_counting(scene, caster, goal_patches, table, options.form_factors, progress);
+    goals.rays_cast = static_cast<std::uint64_t>(goal_patches.size()) * options.form_factors.rays_per_patch;
+  }
+  DirectLightOptions goal_light = options.direct_light;
+  goal_light.progress = progress;
+  goal_light.progress_label = "direct light (goals)";
+  DirectRows direct = direct_light(scene, caster, goal_patches, sources.size(), table, sums.gathered, goal_light);
+  goals.direct_lux_per_lm = std::move(direct.D);
+  goals.luminaire_form_factor = std::move(direct.absorbed);
+  goals.kept_scale = apply_closed_form_loss(sums, goals.direct_lux_per_lm, goals.luminaire_form_factor, table);
+  goals.reflecting_fraction = sums.reflecting;
+  require_finite(goals.direct_lux_per_lm, "direct light", scene, goal_patches, sources);
+
+  // Goal points: their own full rows, then exact direct light at the point.
+  goals.points.assign(goal_points.begin(), goal_points.end());
+  const Eigen::Index Q = static_cast<Eigen::Index>(goal_points.size());
+  RowSums point_sums{Eigen::VectorXd::Zero(Q), Eigen::MatrixXd::Zero(Q, static_cast<Eigen::Index>(table.gathered.size())),
+                     Eigen::VectorXd::Zero(Q), Eigen::VectorXd::Zero(Q)};
+  if (Q > 0 && (any_reflecting || !table.gathered.empty())) {
+    // Points are few (a grid has hundreds, a mesh tens of thousands of patches) and each
+    // stands alone (no area to average over): their rows get kPointRayFactor x the rays.
+    FormFactorOptions point_options = options.form_factors;
+    point_options.rays_per_patch = options.form_factors.rays_per_patch * kPointRayFactor;
+    goals.point_rows = compute_point_rows(scene, caster, goal_points, point_options, progress);
+    point_sums = row_sums_from_rows(scene, goals.point_rows->F, table);
+    goals.rays_cast += goals.point_rows->rays_cast;
+  }
+  DirectRows point_direct = point_direct_light(scene, caster, goal_points, sources.size(), table, point_sums.gathered,
+                                               options.direct_light);
+  goals.point_direct_lux_per_lm = std::move(point_direct.D);
+  goals.point_kept_scale = apply_closed_form_loss(point_sums, goals.point_direct_lux_per_lm, point_direct.absorbed, table);
+  goals.point_reflecting_fraction = point_sums.reflecting;
+  if (Q > 0) {
+    const std::vector<int> labels = goal_row_labels({}, goal_points.size());
+    require_finite(goals.point_direct_lux_per_lm, "direct light", scene, labels, sources);
+  }
+  goals.seconds = seconds_since(start);
+  return goals;
+}
+
+}  // namespace ilp

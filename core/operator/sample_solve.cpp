@@ -1,0 +1,241 @@
+// The per-channel solve of the sample operator (core/operator/sample_operator.h):
+// (I - K) Bʳ_P = R_P D(P,:) (or, refined, the bounces after the first reflection) by
+// iteration or a dense LU, the goal rows' gather of Bʳ_P, and T assembled from it.
+#include <Eigen/LU>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "core/base/error.h"
+#include "core/operator/sample_operator_stages.h"
+
+namespace ilp::detail {
+namespace {
+
+// F(rows,:) B1 where B1_j = rho_j(channel) D(j,:) is known at the patches in `at`
+// (dense index `slot`): the first reflection gathered through full rows.
+// Row-major: each hit adds a whole row of D, and rows are split among threads (each
+// row's sum is its own, so the result does not depend on the split).
+Eigen::MatrixXd gather_first_reflection(const Scene& scene, const SparseRows& F, const std::vector<int>& slot,
+                                        const RowMajorMatrix& D, int channel) {
+  RowMajorMatrix out = RowMajorMatrix::Zero(F.rows(), D.cols());
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, F.rows(), 64), [&](const tbb::blocked_range<Eigen::Index>& r) {
+    for (Eigen::Index row = r.begin(); row < r.end(); ++row)
+      for (SparseRows::InnerIterator it(F, row); it; ++it)
+        if (const int s = slot[it.col()]; s >= 0)
+          out.row(row) += it.value() * scene.reflectance(static_cast<int>(it.col()), channel) * D.row(s);
+  });
+  return out;
+}
+
+// (I - K) X = rhs. By iteration (core/contraction_solve.h) when K's contraction
+// factor lets it converge in kMaxSweeps or k is too large for a dense k x k matrix
+// (memory grows as k, not k^2), else by a dense LU. The condition figure in the stats
+// is the LU's 1-norm estimate, or for the iteration the infinity-norm bound
+// (1 + q) / (1 - q); either way the largest over channels.
+constexpr int kMaxSweeps = 3000;
+constexpr Eigen::Index kLargestDenseSolve = 4000;  // 128 MB a copy
+
+Eigen::MatrixXd solve_interreflection(const ContractionSystem& system, const Eigen::MatrixXd& rhs,
+                                      SampleOperatorStats& st, int& sweeps) {
+  // No source (a scene without light) gives no column: nothing to solve, and Eigen's
+  // triangular solve of an empty right-hand side binds a reference to null (UBSan).
+  if (rhs.cols() == 0) return rhs;
+  const double q = contraction_factor(system);
+  const Eigen::Index k = system.W.rows();
+  const double needed = sweeps_needed(q, kSolveTolerance);
+  if (needed <= kMaxSweeps || k > kLargestDenseSolve) {
+    const int most = static_cast<int>(std::min(1e6, std::max<double>(kMaxSweeps, needed)));
+    if (std::optional<ContractionSolution> x = solve_contraction(system, rhs, kSolveTolerance, most)) {
+      st.condition_estimate = std::max(st.condition_estimate, (1.0 + q) / (1.0 - q));
+      sweeps = std::max(sweeps, x->sweeps);
+      return std::move(x->X);
+    }
+    if (k > kLargestDenseSolve)
+      throw NumericalError("interreflection solve: no convergence in " + std::to_string(most) +
+                           " sweeps (largest row sum of K " + std::to_string(q) + ")");
+  }
+  Eigen::MatrixXd dense = Eigen::MatrixXd(system.W);
+  for (Eigen::Index a = 0; a < k; ++a)
+    if (system.fallback_scale[a] > 0.0) dense.row(a) += system.fallback_scale[a] * system.ambient.transpose();
+  // I - K factorised in place: at k = n (10K patches) each k x k copy is 800 MB.
+  dense = -(system.rho.asDiagonal() * dense);
+  dense.diagonal().array() += 1.0;
+  const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(dense);
+  const double rcond = lu.rcond();
+  st.condition_estimate = std::max(st.condition_estimate, rcond > 0.0 ? 1.0 / rcond : INFINITY);
+  return lu.solve(rhs);
+}
+
+// Energy: a sample patch reflects rho_a s_a < 1 of what reaches it (row sums of
+// K), so no light is created and K is a contraction. Raises stats.max_row_sum.
+void require_energy_conserved(const Scene& scene, const std::vector<int>& P, const ContractionSystem& W_PP, int c,
+                              SampleOperatorStats& st) {
+  const Eigen::VectorXd& rho = W_PP.rho;
+  const double ambient_sum = W_PP.ambient.sum();
+  for (Eigen::Index a = 0; a < static_cast<Eigen::Index>(P.size()); ++a) {
+    const double row_sum = rho[a] * (W_PP.W.row(a).sum() + W_PP.fallback_scale[a] * ambient_sum);
+    st.max_row_sum = std::max(st.max_row_sum, row_sum);
+    if (!(row_sum < 1.0))
+      throw NumericalError("interreflection operator: " + patch_name(scene, P[a]) + " would reflect " +
+                           std::to_string(row_sum) + " of the light reaching it (rho " + std::to_string(rho[a]) +
+                           ", channel " + std::to_string(c) + "): energy would be created");
+  }
+}
+
+// One channel's reflected radiosity at the sample, Bʳ_P per lumen (refined: bounces 2
+// and up), and (refined) the first reflection gathered at the goal patches, F(G,:) B1.
+struct ChannelSolution {
+  Eigen::MatrixXd reflected;
+  Eigen::MatrixXd first_at_goals;
+};
+
+ChannelSolution solve_channel(const Scene& scene, const GoalRows& goals, const PatchSample& sample,
+                              const SampleRows& rows, const SampleDirect& direct, const HitDirect& hits,
+                              const SourceTable& table, bool refine, int c, ContractionSystem& W_PP,
+                              SampleOperatorStats& st, int& solve_sweeps) {
+  const std::vector<int>& P = sample.patches;
+  const Eigen::Index k = static_cast<Eigen::Index>(P.size());
+  const Eigen::Index L = static_cast<Eigen::Index>(goals.sources.size());
+  Eigen::VectorXd rho(k);
+  for (Eigen::Index b = 0; b < k; ++b) rho[b] = scene.reflectance(P[b], c);
+  W_PP.rho = rho;
+  require_energy_conserved(scene, P, W_PP, c, st);
+  // Plain: (I - K) Bʳ_P = R D_P, every reflection through the sample. Refined
+  // (luminaire columns): the first reflection B1 = R D is gathered exactly through
+  // full rows, S = F(P,:) B1, and the sample carries bounces 2 and up:
+  // Bʳ_P - B1_P = (I - K)^-1 R S, non-negative like every term here.
+  Eigen::MatrixXd rhs = rho.asDiagonal() * direct.D_P;
+  ChannelSolution out;
+  if (refine) {
+    const Eigen::MatrixXd S = direct.kept_scale.asDiagonal() * gather_first_reflection(scene, rows.rows.F, hits.slot, hits.D, c);
+    out.first_at_goals = goals.kept_scale.asDiagonal() * gather_first_reflection(scene, goals.rows->F, hits.slot, hits.D, c);
+    for (Eigen::Index l = 0; l < L; ++l)
+      if (table.emitting_index[l] < 0) rhs.col(l) = rho.asDiagonal() * S.col(l);
+  }
+  out.reflected = solve_interreflection(W_PP, rhs, st, solve_sweeps);
+  require_finite(out.reflected, "interreflection solve (I - K)", scene, P, goals.sources);
+  return out;
+}
+
+// The goal patches' and points' gather of one channel's Bʳ_P (plus, refined, the
+// first reflection), added to `sum` with the channel's luminance weight.
+void add_channel_response(const Scene& scene, const GoalRows& goals, const HitDirect& hits, const SourceTable& table,
+                          const GatherWeights& W, bool refine, int c, const ChannelSolution& solved,
+                          IndirectLight& sum) {
+  const Eigen::Index L = static_cast<Eigen::Index>(goals.sources.size());
+  const Eigen::Index G = static_cast<Eigen::Index>(goals.patches.size());
+  const Eigen::Index Q = static_cast<Eigen::Index>(goals.points.size());
+  const Eigen::MatrixXd& reflected = solved.reflected;
+  const Eigen::VectorXd& ambient = W.sample.ambient;
+  Eigen::MatrixXd channel_indirect = W.goals * reflected + W.goal_fallback_scale * (ambient.transpose() * reflected);
+  if (refine)
+    for (Eigen::Index l = 0; l < L; ++l)
+      if (table.emitting_index[l] < 0) channel_indirect.col(l) += solved.first_at_goals.col(l);
+  const double weight = scene.channels == 1 ? 1.0 : kLuminanceWeights[c];
+  sum.at_goals += weight * channel_indirect;
+  if (Q > 0) {
+    Eigen::MatrixXd at_points = W.points * reflected + W.point_fallback_scale * (ambient.transpose() * reflected);
+    if (refine && goals.point_rows) {
+      const Eigen::MatrixXd first =
+          goals.point_kept_scale.asDiagonal() * gather_first_reflection(scene, goals.point_rows->F, hits.slot, hits.D, c);
+      for (Eigen::Index l = 0; l < L; ++l)
+        if (table.emitting_index[l] < 0) at_points.col(l) += first.col(l);
+    }
+    sum.at_points += weight * at_points;
+  }
+  Eigen::VectorXd rho_goal(G);
+  for (Eigen::Index g = 0; g < G; ++g) rho_goal[g] = scene.reflectance(goals.patches[g], c);
+  sum.reflected += weight * (rho_goal.asDiagonal() * (goals.direct_lux_per_lm + channel_indirect));
+}
+
+// I - K is an M-matrix, so exact arithmetic gives T >= 0; LU round-off may leave
+// values a few ulps below 0, which are set to 0. Anything clearly negative is a bug.
+void clamp_round_off(Eigen::MatrixXd& T, const Scene& scene, std::span<const int> row_patches,
+                     std::span<const LightSource> sources) {
+  if (T.size() == 0) return;  // no rows (a job whose goals are all grid points)
+  const double tolerance = 1e-9 * std::max(T.cwiseAbs().maxCoeff(), 1e-300);
+  for (Eigen::Index c = 0; c < T.cols(); ++c)
+    for (Eigen::Index r = 0; r < T.rows(); ++r)
+      if (T(r, c) < 0.0) {
+        if (T(r, c) < -tolerance)
+          throw NumericalError("sample operator: negative illuminance " + std::to_string(T(r, c)) + " lux/lm at " +
+                               patch_name(scene, row_patches[static_cast<std::size_t>(r)]) + " for light source '" +
+                               sources[static_cast<std::size_t>(c)].name + "'");
+        T(r, c) = 0.0;
+      }
+}
+
+// T and D get the points' rows after the patches' (a no-op without points); the
+// reflected light is 0 at points.
+void append_point_rows(const GoalRows& goals, const Eigen::MatrixXd& point_total, SampleOperator& op) {
+  const Eigen::Index L = static_cast<Eigen::Index>(goals.sources.size());
+  const Eigen::Index G = static_cast<Eigen::Index>(goals.patches.size());
+  const Eigen::Index Q = static_cast<Eigen::Index>(goals.points.size());
+  if (Q == 0) return;
+  Eigen::MatrixXd direct(G + Q, L), total(G + Q, L), reflected = Eigen::MatrixXd::Zero(G + Q, L);
+  direct << op.direct_lux_per_lm, goals.point_direct_lux_per_lm;
+  total << op.total_lux_per_lm, point_total;
+  reflected.topRows(G) = op.reflected_lm_per_m2_per_lm;
+  op.direct_lux_per_lm = std::move(direct);
+  op.total_lux_per_lm = std::move(total);
+  op.reflected_lm_per_m2_per_lm = std::move(reflected);
+}
+
+}  // namespace
+
+IndirectLight solve_indirect_light(const Scene& scene, const GoalRows& goals, const PatchSample& sample,
+                                   const SampleRows& rows, const SampleDirect& direct, const HitDirect& hits,
+                                   const SourceTable& table, GatherWeights& weights,
+                                   const SampleOperatorOptions& options, const ProgressCallback& progress,
+                                   SampleOperatorStats& st) {
+  const Eigen::Index L = static_cast<Eigen::Index>(goals.sources.size());
+  const Eigen::Index G = static_cast<Eigen::Index>(goals.patches.size());
+  const Eigen::Index Q = static_cast<Eigen::Index>(goals.points.size());
+  const bool refine = options.indirect == IndirectMethod::exact_second_bounce;
+  const auto channels = static_cast<std::size_t>(scene.channels);
+  IndirectLight sum{Eigen::MatrixXd::Zero(G, L), Eigen::MatrixXd::Zero(Q, L), Eigen::MatrixXd::Zero(G, L), 0};
+  for (int c = 0; c < scene.channels; ++c) {
+    if (progress) progress("k x k solve", static_cast<std::size_t>(c), channels);
+    const auto solve_start = std::chrono::steady_clock::now();
+    const ChannelSolution solved =
+        solve_channel(scene, goals, sample, rows, direct, hits, table, refine, c, weights.sample, st, sum.solve_sweeps);
+    st.solve_seconds += seconds_since(solve_start);
+    const auto response_start = std::chrono::steady_clock::now();
+    add_channel_response(scene, goals, hits, table, weights, refine, c, solved, sum);
+    st.response_seconds += seconds_since(response_start);
+  }
+  if (progress) progress("k x k solve", channels, channels);
+  st.condition_bound_inf = (1.0 + st.max_row_sum) / (1.0 - st.max_row_sum);
+  return sum;
+}
+
+void assemble_response(const Scene& scene, const GoalRows& goals, const IndirectLight& indirect, SampleOperator& op) {
+  op.total_lux_per_lm = op.direct_lux_per_lm;
+  op.total_lux_per_lm += indirect.at_goals;
+  op.reflected_lm_per_m2_per_lm = indirect.reflected;
+  require_finite(op.total_lux_per_lm, "illuminance at goal patches", scene, goals.patches, goals.sources);
+  clamp_round_off(op.total_lux_per_lm, scene, goals.patches, goals.sources);
+  if (!goals.points.empty()) {
+    Eigen::MatrixXd point_total = goals.point_direct_lux_per_lm + indirect.at_points;
+    const std::vector<int> labels = goal_row_labels({}, goals.points.size());
+    require_finite(point_total, "illuminance at goal points", scene, labels, goals.sources);
+    clamp_round_off(point_total, scene, labels, goals.sources);
+    append_point_rows(goals, point_total, op);
+  }
+}
+
+void assemble_direct_only(const GoalRows& goals, SampleOperator& op) {
+  const Eigen::Index L = static_cast<Eigen::Index>(goals.sources.size());
+  const Eigen::Index G = static_cast<Eigen::Index>(goals.patches.size());
+  op.total_lux_per_lm = op.direct_lux_per_lm;
+  op.reflected_lm_per_m2_per_lm = Eigen::MatrixXd::Zero(G, L);
+  append_point_rows(goals, goals.point_direct_lux_per_lm, op);
+}
+
+}  // namespace ilp::detail
