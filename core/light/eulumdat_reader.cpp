@@ -39,7 +39,7 @@ class FieldReader : public BoundedNumbers<FieldReader> {
     const std::string_view t = raw(field);
     double v = 0;
     if (!parse_number(t, v, true)) {
-      fail(path_, at, name_of(field), "'" + std::string(t.substr(0, 40)) + "' is not a finite number");
+      fail(path_, at, name_of(field), std::string("'").append(t.substr(0, 40)).append("' is not a finite number"));
     }
     return v;
   }

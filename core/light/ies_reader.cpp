@@ -36,7 +36,8 @@ class TokenReader : public BoundedNumbers<TokenReader> {
     const Token& t = tokens_[pos_];
     double v = 0;
     if (!parse_number(t.text, v)) {
-      fail(path_, t.line, name_of(field), "'" + std::string(t.text.substr(0, 40)) + "' is not a finite number");
+      fail(path_, t.line, name_of(field),
+           std::string("'").append(t.text.substr(0, 40)).append("' is not a finite number"));
     }
     ++pos_;
     return v;

@@ -234,7 +234,7 @@ SurfaceSplitReport split_surfaces(TriangleMesh& mesh, const SceneOptions& frame,
     }
     if (piece.rule >= 0) continue;
     piece.name = mesh.surface_names[s];
-    if (options.connected) piece.name += "." + std::to_string(++rank[s]);
+    if (options.connected) piece.name.append(".").append(std::to_string(++rank[s]));
   }
   for (std::size_t r = 0; r < options.regions.size(); ++r)
     if (report.rule_pieces[r] == 0)

@@ -114,7 +114,7 @@ TEST(ReliabilityConfig, SecondYamlDocumentIsRefused) {
 // (found by config_fuzz).
 TEST(ReliabilityConfig, NulByteIsRefusedWithItsLine) {
   TempDir dir;
-  const std::string message = config_error(dir, kScene + std::string("\0\0ification:\n", 14));
+  const std::string message = config_error(dir, std::string(kScene).append("\0\0ification:\n", 14));
   EXPECT_TRUE(Contains(message, dir.file("job.yaml") + ":4:"));
   EXPECT_TRUE(Contains(message, "NUL byte"));
 }
