@@ -172,7 +172,8 @@ OutputSet::OutputSet(const std::string& folder, std::vector<std::string> owned)
   const fs::path parent = absolute.parent_path();
   fs::create_directories(parent, ec);
   if (ec) throw IlpError(parent.string() + ": cannot create the folder for outputs (" + ec.message() + ")");
-  staging_ = (parent / ("." + absolute.filename().string() + ".ilp-tmp-" + unique_suffix(true))).string();
+  const std::string folder_name = absolute.filename().string();
+  staging_ = (parent / ("." + folder_name + ".ilp-tmp-" + unique_suffix(true))).string();
   if (!fs::create_directory(staging_, ec) || ec)
     throw IlpError(folder + ": cannot write outputs beside it (" + (ec ? ec.message() : "exists") + ")");
 }
@@ -202,7 +203,8 @@ void OutputSet::write(const std::string& name, const std::function<void(std::ost
 std::vector<std::string> OutputSet::commit() {
   if (committed_) throw std::logic_error("OutputSet: committed twice");
   const fs::path folder(folder_), staging(staging_), parent = folder.parent_path();
-  const std::string hidden = "." + folder.filename().string();
+  const std::string folder_name = folder.filename().string();
+  const std::string hidden = "." + folder_name;
   const FolderLock lock(parent);
   remove_leftovers(parent, hidden + ".ilp-tmp-");
   std::error_code ec;

@@ -254,7 +254,8 @@ std::string which_set(const std::string& folder, const Files& old_set) {
 // Staging folders beside `folder` (".NAME.ilp-tmp-...", ".NAME.ilp-old-...").
 std::vector<std::string> leftovers_beside(const std::string& folder) {
   std::vector<std::string> out;
-  const std::string prefix = "." + fs::path(folder).filename().string() + ".ilp-";
+  const std::string name = fs::path(folder).filename().string();
+  const std::string prefix = "." + name + ".ilp-";
   for (const auto& entry : fs::directory_iterator(fs::path(folder).parent_path()))
     if (entry.path().filename().string().rfind(prefix, 0) == 0) out.push_back(entry.path().filename().string());
   return out;

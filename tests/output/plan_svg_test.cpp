@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/scene/reference_scenes.h"
@@ -95,6 +96,11 @@ Scene office() {
       0.0);
 }
 
+// A luminaire drawn as a square of side size_m (no outline, no product).
+PlanLuminaire square(std::string id, const V& position_m, double size_m, double flux_lm) {
+  return {std::move(id), position_m, size_m, flux_lm, {}, {}};
+}
+
 Eigen::VectorXd values(std::initializer_list<double> v) {
   Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
   Eigen::Index i = 0;
@@ -109,9 +115,8 @@ PlanView office_view() {
   view.goal_patches = {2, 3, 0, 1};
   view.goal_lux = values({500.0, 400.0, 0.0, 250.0});
   view.outline_patches = {0, 1};
-  view.luminaires = {{"L1", V(0.8, 0.5, 2.8), 0.6, 1500.0},
-                     {"L2", V(0.8, 2.5, 2.8), 0.6, 1500.0},
-                     {"L3", V(2.0, 0.5, 2.8), 0.6, 800.4}};
+  view.luminaires = {square("L1", V(0.8, 0.5, 2.8), 0.6, 1500.0), square("L2", V(0.8, 2.5, 2.8), 0.6, 1500.0),
+                     square("L3", V(2.0, 0.5, 2.8), 0.6, 800.4)};
   return view;
 }
 
@@ -189,7 +194,7 @@ TEST(PlanSvg, LuminairesAreLabelledWithIdAndFlux) {
 
 TEST(PlanSvg, LabelsNearTheRightWallGoLeftOfTheSquare) {
   PlanView view = office_view();
-  view.luminaires = {{"east", V(3.8, 1.5, 2.8), 0.3, 1200.0}};
+  view.luminaires = {square("east", V(3.8, 1.5, 2.8), 0.3, 1200.0)};
   const std::string svg = render_plan_svg(office(), view);
   EXPECT_EQ(attribute(text_tag(svg, "east"), "text-anchor"), "end");
   EXPECT_EQ(attribute(text_tag(svg, "1200 lm"), "text-anchor"), "end");
