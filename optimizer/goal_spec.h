@@ -1,7 +1,7 @@
 // What a goal is, for every stage that judges one: its metric and the one table of
 // metric rules (key, name, unit, bound, range of a valid target), the goal line the
 // search and the verification judge (its target already initial), and the objective.
-// The job's schema (job/config.h) reads its goal keys from this table.
+// The job file's goal keys and objective names are read from these tables.
 #pragma once
 
 #include <optional>
