@@ -27,7 +27,6 @@ class TokenReader : public BoundedNumbers<TokenReader> {
 
   std::size_t remaining() const { return tokens_.size() - pos_; }
   int line() const { return pos_ < tokens_.size() ? tokens_[pos_].line : last_line_; }
-  int line_of_last() const { return pos_ > 0 ? tokens_[pos_ - 1].line : line(); }
   const std::string& path() const { return path_; }
 
   template <class Name>
@@ -41,7 +40,6 @@ class TokenReader : public BoundedNumbers<TokenReader> {
     ++pos_;
     return v;
   }
-  const Token* peek() const { return pos_ < tokens_.size() ? &tokens_[pos_] : nullptr; }
 
  private:
   std::vector<Token> tokens_;

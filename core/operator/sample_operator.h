@@ -34,11 +34,10 @@
 #include <string>
 #include <vector>
 
-#include "core/light/direct_light.h"
-#include "core/rays/form_factors.h"
-#include "core/operator/patch_sample.h"
-#include "core/light/direct_light.h"
 #include "core/base/progress.h"
+#include "core/light/direct_light.h"
+#include "core/operator/patch_sample.h"
+#include "core/rays/form_factors.h"
 #include "core/rays/ray_caster.h"
 #include "core/scene/scene.h"
 
