@@ -135,7 +135,18 @@ struct LuminaireSearch {
   int array_columns = 0;
   std::optional<Eigen::Vector2d> array_spacing_m;
   std::optional<Eigen::Vector2d> array_offset_m;
+  // layout: field, rows or bays (the blocks field:, rows:, bays:).
+  RegularLayoutParams regular;
   FileLoc layout_loc;
+  // output: equal (default: every luminaire of the layout at one output, dimmed
+  // together) or individual (free layouts of the plain panel: each its own flux).
+  bool individual_output = false;
+  // zone: where luminaire centres may lie: a rectangle [[x0, y0], [x1, y1]] (scene
+  // frame, m), else the goals' outline in plan widened by margin_m.
+  std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> zone_m;
+  double zone_margin_m = 0.5;
+  bool zone_set = false;  // the job has a zone block
+  FileLoc zone_loc;
 };
 
 // One line of goals: a metric over the union of some surfaces. A goals entry with

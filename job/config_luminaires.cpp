@@ -15,7 +15,94 @@ namespace {
 constexpr const char* kSearchKeys[] = {"model",          "flux_lm",             "efficacy_lm_per_w",
                                        "mount_offset_m", "candidate_spacing_m", "count",
                                        "layout",         "array",               "wall_distance_m",
-                                       "ceiling_module_m"};
+                                       "ceiling_module_m", "field",             "rows",
+                                       "bays",           "zone",                "output"};
+
+constexpr int kMaxFreeCount = 64;        // luminaires a free layout may search (NLopt: 2-3 variables each)
+constexpr int kMaxRegularCount = 10000;  // luminaires of a field, rows or bays layout
+
+// A whole number N (the range [N, N]) or a range [min, max], each in [low, high].
+CountRange count_range(const Value& v, int low, int high) {
+  if (v.node().IsScalar()) {
+    const int n = static_cast<int>(v.integer(low, high));
+    return {n, n};
+  }
+  if (!v.node().IsSequence() || v.node().size() != 2) v.fail("must be a whole number N or a list [min, max]");
+  const CountRange r{static_cast<int>(v.element(0).integer(low, high)), static_cast<int>(v.element(1).integer(low, high))};
+  if (r.max < r.min) v.element(1).fail("must be >= the minimum [0]");
+  return r;
+}
+
+// edge_ratio: one number or a range [min, max], each in [0.05, 1].
+void read_edge_ratio(const Map& block, RegularLayoutParams& p) {
+  const auto v = block.get("edge_ratio");
+  if (!v) return;
+  const std::string rule = "[0.05, 1] (0.5: half a spacing to the zone's edge)";
+  if (v->node().IsScalar()) {
+    p.edge_ratio_min = p.edge_ratio_max = v->number_in(0.05, 1.0, false, rule);
+    return;
+  }
+  if (!v->node().IsSequence() || v->node().size() != 2) v->fail("must be a number or a range [min, max]");
+  p.edge_ratio_min = v->element(0).number_in(0.05, 1.0, false, rule);
+  p.edge_ratio_max = v->element(1).number_in(0.05, 1.0, false, rule);
+  if (p.edge_ratio_max < p.edge_ratio_min) v->element(1).fail("must be >= the minimum [0]");
+}
+
+double position_tolerance(const Map& block) {
+  const auto v = block.get("position_tolerance_m");
+  return v ? v->bounded(0.0, 10.0, " m") : 0.05;
+}
+
+void read_field(const Value& v, RegularLayoutParams& p) {
+  const Map block(v, {"rows", "columns", "edge_ratio", "max_spacing_ratio", "position_tolerance_m"});
+  if (auto r = block.get("rows")) p.rows = count_range(*r, 1, 100);
+  if (auto c = block.get("columns")) p.columns = count_range(*c, 1, 100);
+  read_edge_ratio(block, p);
+  if (auto r = block.get("max_spacing_ratio")) p.max_spacing_ratio = r->number_in(1.0, 100.0, false, "[1, 100]");
+  p.position_tolerance_m = position_tolerance(block);
+}
+
+void read_rows(const Value& v, RegularLayoutParams& p) {
+  const Map block(v, {"rows", "per_row", "continuous", "edge_ratio", "position_tolerance_m"});
+  p.rows = CountRange{1, 8};
+  p.columns = CountRange{1, 20};
+  if (auto r = block.get("rows")) p.rows = count_range(*r, 1, 100);
+  if (auto c = block.get("per_row")) p.columns = count_range(*c, 1, 200);
+  if (auto c = block.get("continuous")) {
+    const std::string t = c->text();
+    if (t != "true" && t != "false") c->fail("must be true or false");
+    p.continuous = t == "true";
+  }
+  read_edge_ratio(block, p);
+  p.position_tolerance_m = position_tolerance(block);
+}
+
+void read_bays(const Value& v, RegularLayoutParams& p) {
+  const Map block(v, {"module_m", "origin_m", "per_bay", "position_tolerance_m"});
+  p.bay_module_m = pair_of(block.require("module_m"), [](const Value& e) { return e.bounded(0.1, 1000.0, " m"); });
+  if (auto o = block.get("origin_m"))
+    p.bay_origin_m = pair_of(*o, [](const Value& e) { return e.bounded(-kMaxLength_m, kMaxLength_m, " m"); });
+  if (auto n = block.get("per_bay")) p.per_bay = count_range(*n, 1, 16);
+  p.position_tolerance_m = position_tolerance(block);
+}
+
+void read_zone(const Value& v, LuminaireSearch& search) {
+  const Map block(v, {"rectangle_m", "margin_m"});
+  search.zone_loc = v.loc();
+  search.zone_set = true;
+  const auto rect = block.get("rectangle_m"), margin = block.get("margin_m");
+  if (rect && margin) margin->fail("not with rectangle_m (the margin widens the goals' outline)");
+  if (margin) search.zone_margin_m = margin->bounded(0.0, 1000.0, " m");
+  if (!rect) return;
+  if (!rect->node().IsSequence() || rect->node().size() != 2) rect->fail("must be [[x0, y0], [x1, y1]] (m)");
+  auto corner = [](const Value& c) {
+    return pair_of(c, [](const Value& e) { return e.bounded(-kMaxLength_m, kMaxLength_m, " m"); });
+  };
+  const Eigen::Vector2d a = corner(rect->element(0)), b = corner(rect->element(1));
+  if (!((b - a).minCoeff() > 0.0)) rect->fail("the second corner must lie above the first in x and y");
+  search.zone_m = std::make_pair(a, b);
+  search.zone_loc = rect->loc();
+}
 
 
 // The square panel's flux: a fixed package (one number) or a range [min, max].
@@ -88,6 +175,69 @@ void read_products(const Value& section, JobConfig& job) {
   if (job.products.empty()) section.fail("must list at least one product");
 }
 
+void read_array(const Value& array, LuminaireSearch& search) {
+  const Map block(array, {"rows", "columns", "spacing_m", "offset_m"});
+  search.array_rows = static_cast<int>(block.require("rows").integer(1, 32));
+  search.array_columns = static_cast<int>(block.require("columns").integer(1, 32));
+  if (auto v = block.get("spacing_m"))
+    search.array_spacing_m = pair_of(*v, [](const Value& e) {
+      const double x = e.positive();
+      if (x > kMaxLength_m) e.fail("must be at most 1e+05 m");
+      return x;
+    });
+  if (auto v = block.get("offset_m"))
+    search.array_offset_m = pair_of(*v, [](const Value& e) { return e.bounded(0.0, kMaxLength_m, " m"); });
+}
+
+// layout: the family and its block (array:, field:, rows:, bays:), and count.
+void read_layout(const Map& luminaires, LuminaireSearch& search) {
+  const auto layout = luminaires.get("layout"), count = luminaires.get("count");
+  const std::pair<const char*, LayoutFamily> families[] = {{"free", LayoutFamily::free},
+                                                           {"array", LayoutFamily::array},
+                                                           {"field", LayoutFamily::field},
+                                                           {"rows", LayoutFamily::rows},
+                                                           {"bays", LayoutFamily::bays}};
+  if (layout) {
+    const std::string family = layout->text();
+    bool known = false;
+    for (const auto& [key, f] : families)
+      if (family == key) {
+        search.layout = f;
+        known = true;
+      }
+    if (!known) layout->fail("must be free, array, field, rows or bays");
+    search.layout_loc = layout->loc();
+  }
+  // Each block belongs to its family.
+  for (const auto& [key, f] : families)
+    if (auto block = luminaires.get(key); block && f != search.layout)
+      block->fail(std::string("needs luminaires.layout: ") + key);
+  const bool regular = search.layout != LayoutFamily::free && search.layout != LayoutFamily::array;
+  if (search.layout == LayoutFamily::array) {
+    if (!luminaires.get("array")) layout->fail("needs luminaires.array: {rows, columns}");
+    if (count) count->fail("not with layout: array (the array fixes the count)");
+    read_array(*luminaires.get("array"), search);
+    return;
+  }
+  if (search.layout == LayoutFamily::field && luminaires.get("field")) read_field(*luminaires.get("field"), search.regular);
+  if (search.layout == LayoutFamily::rows) {
+    search.regular.rows = CountRange{1, 8};
+    search.regular.columns = CountRange{1, 20};
+    if (auto v = luminaires.get("rows")) read_rows(*v, search.regular);
+  }
+  if (search.layout == LayoutFamily::bays) {
+    if (!luminaires.get("bays")) layout->fail("needs luminaires.bays: {module_m: [x, y], origin_m: [x, y]}");
+    read_bays(*luminaires.get("bays"), search.regular);
+  }
+  if (regular) search.count_max = kMaxRegularCount;  // the arrangements bound the count; `count` narrows it
+  if (count) {
+    const CountRange r = count_range(*count, 1, regular ? kMaxRegularCount : kMaxFreeCount);
+    search.count_min = r.min;
+    search.count_max = r.max;
+    search.count_loc = count->loc();
+  }
+}
+
 void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
   LuminaireSearch& search = job.search.emplace();
   search.mounting_surface = mounting.text();
@@ -115,44 +265,14 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
     search.candidate_spacing_m = v->bounded(kMinSpacing_m, kMaxLength_m, " m");
     search.spacing_loc = v->loc();
   }
-  const auto layout = luminaires.get("layout"), array = luminaires.get("array"), count = luminaires.get("count");
-  if (layout) {
-    const std::string family = layout->text();
-    if (family == "free") search.layout = LayoutFamily::free;
-    else if (family == "array") search.layout = LayoutFamily::array;
-    else layout->fail("must be free or array");
-    search.layout_loc = layout->loc();
-  }
-  if (search.layout == LayoutFamily::array) {
-    if (!array) layout->fail("needs luminaires.array: {rows, columns}");
-    if (count) count->fail("not with layout: array (the array fixes the count)");
-    const Map block(*array, {"rows", "columns", "spacing_m", "offset_m"});
-    search.array_rows = static_cast<int>(block.require("rows").integer(1, 32));
-    search.array_columns = static_cast<int>(block.require("columns").integer(1, 32));
-    if (auto v = block.get("spacing_m"))
-      search.array_spacing_m = pair_of(*v, [](const Value& e) {
-        const double x = e.positive();
-        if (x > kMaxLength_m) e.fail("must be at most 1e+05 m");
-        return x;
-      });
-    if (auto v = block.get("offset_m"))
-      search.array_offset_m = pair_of(*v, [](const Value& e) {
-        return e.bounded(0.0, kMaxLength_m, " m");
-      });
-  } else {
-    if (array) array->fail("needs luminaires.layout: array");
-    if (count) {
-      if (count->node().IsScalar()) {
-        search.count_min = search.count_max = static_cast<int>(count->integer(1, 64));
-      } else if (count->node().IsSequence() && count->node().size() == 2) {
-        search.count_min = static_cast<int>(count->element(0).integer(1, 64));
-        search.count_max = static_cast<int>(count->element(1).integer(1, 64));
-        if (search.count_max < search.count_min) count->element(1).fail("must be >= the minimum count[0]");
-      } else {
-        count->fail("must be a whole number N or a list [min, max]");
-      }
-      search.count_loc = count->loc();
-    }
+  read_layout(luminaires, search);
+  if (auto v = luminaires.get("zone")) read_zone(*v, search);
+  if (auto v = luminaires.get("output")) {
+    const std::string t = v->text();
+    if (t != "equal" && t != "individual") v->fail("must be equal or individual");
+    search.individual_output = t == "individual";
+    if (search.individual_output && (search.layout != LayoutFamily::free || !job.products.empty()))
+      v->fail("individual output is for free layouts of the plain panel (products and regular layouts dim together)");
   }
 }
 

@@ -79,10 +79,19 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
   if (job.search) {
     const LuminaireSearch& s = *job.search;
     const int most = job.constraints.max_luminaires ? std::min(s.count_max, *job.constraints.max_luminaires) : s.count_max;
-    const int counts = s.layout == LayoutFamily::array ? 1 : std::max(1, most - s.count_min + 1);
-    c.luminaires = s.layout == LayoutFamily::array ? s.array_rows * s.array_columns : most;
-    c.evaluations = static_cast<long long>(counts) *
-                    (job.optimizer.max_evaluations + job.optimizer.local_max_evaluations);
+    if (s.layout == LayoutFamily::free || s.layout == LayoutFamily::array) {
+      const int counts = s.layout == LayoutFamily::array ? 1 : std::max(1, most - s.count_min + 1);
+      c.luminaires = s.layout == LayoutFamily::array ? s.array_rows * s.array_columns : most;
+      c.evaluations = static_cast<long long>(counts) *
+                      (job.optimizer.max_evaluations + job.optimizer.local_max_evaluations);
+    } else {  // one evaluation per arrangement; the bays in the zone are not known before the scene
+      const RegularLayoutParams& r = s.regular;
+      const bool bays = s.layout == LayoutFamily::bays;
+      constexpr int kBaysAssumed = 256;
+      c.luminaires = std::min(most, bays ? kBaysAssumed * r.per_bay.max : r.rows.max * r.columns.max);
+      c.evaluations = bays ? r.per_bay.max - r.per_bay.min + 1
+                           : static_cast<long long>(r.rows.max - r.rows.min + 1) * (r.columns.max - r.columns.min + 1);
+    }
     c.search_max_seconds = job.optimizer.max_seconds;
   }
   const VerificationPlan plan =

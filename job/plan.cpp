@@ -34,6 +34,12 @@ CandidateSpec candidate_spec(const LuminaireSearch& s, const ProductVariant& pro
   c.mounting_loc = s.mounting_loc;
   c.spacing_loc = s.spacing_loc;
   c.offset_loc = product.mount_offset_m ? product.mount_offset_loc : s.offset_loc;
+  c.zone_m = s.zone_m;
+  // An array's offsets count from the surface's corner: it keeps the whole surface
+  // unless a zone is given.
+  if (s.layout != LayoutFamily::array || s.zone_set) c.zone_margin_m = s.zone_margin_m;
+  else c.zone_margin_m.reset();
+  c.zone_loc = s.zone_loc;
   return c;
 }
 
@@ -73,8 +79,9 @@ SearchSpec search_spec(const JobConfig& job, const VariantPlan& plan, const RunO
   if (plan.listed)  // one output for all, within the product's dimming range
     spec.luminaire = {p.type, p.rotation_deg, p.product, true, p.dim_min * p.rated_flux_lm, p.dim_max * p.rated_flux_lm,
                       p.rated_flux_lm / p.power_w};
-  else  // the plain panel: each its own flux in the flux_lm range
-    spec.luminaire = {p.type, p.rotation_deg, std::string(), false, s.flux_min_lm, s.flux_max_lm, s.efficacy_lm_per_w};
+  else  // the plain panel in the flux_lm range: one output for all unless output: individual
+    spec.luminaire = {p.type, p.rotation_deg, std::string(), !s.individual_output, s.flux_min_lm, s.flux_max_lm,
+                      s.efficacy_lm_per_w};
   LayoutSpec& layout = spec.layout;
   layout.family = s.layout;
   layout.count_min = s.count_min;
@@ -83,6 +90,7 @@ SearchSpec search_spec(const JobConfig& job, const VariantPlan& plan, const RunO
   layout.array_columns = s.array_columns;
   layout.array_spacing_m = s.array_spacing_m;
   layout.array_offset_m = s.array_offset_m;
+  layout.regular = s.regular;
   layout.ceiling_module_m = s.ceiling_module_m;
   layout.min_distance_m = job.constraints.min_distance_m;
   layout.mounting_surface = s.mounting_surface;

@@ -28,6 +28,10 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.program_version = program_version;
   r.config = job.path;
   r.objective = std::string(objective_rule(job.objective).key);
+  r.layout_family = std::string(layout_family_key(prepared.plan.search.layout.family));
+  r.arrangement = outcome.search.best.arrangement;
+  r.spacing_x_m = outcome.search.best.spacing_m.x();
+  r.spacing_y_m = outcome.search.best.spacing_m.y();
   for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
     const PlacedLuminaire& l = outcome.luminaires[j];
     r.luminaires.push_back({luminaire_name(j), l.position_m.x(), l.position_m.y(), l.position_m.z(), l.flux_lm, l.power_w,
@@ -78,7 +82,8 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.time_limited = outcome.search.time_limited;
   r.timings_s = timings;
   for (const CountAttempt& a : outcome.search.attempts)
-    r.attempts.push_back({a.luminaires, a.evaluations, a.seconds, a.feasible, a.power_w, a.global_stop, a.local_stop});
+    r.attempts.push_back(
+        {a.luminaires, a.evaluations, a.seconds, a.feasible, a.power_w, a.global_stop, a.local_stop, a.arrangement});
   return r;
 }
 

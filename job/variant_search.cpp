@@ -20,7 +20,9 @@ double least_power_w(const PreparedJob& prepared, const JobConfig& goals_job) {
 std::string tried_line(const VariantPlan& plan, const JobOutcome& outcome, double least_w, double to_beat) {
   std::ostringstream line;
   line << std::fixed << std::setprecision(1) << plan.product.product << " at " << plan.product.rotation_deg << " deg: ";
-  if (outcome.search.beaten && !std::isfinite(least_w))
+  if (!outcome.search.refused.empty())
+    line << "not searched: " << outcome.search.refused;
+  else if (outcome.search.beaten && !std::isfinite(least_w))
     line << "not searched: no count reaches an average target at full output";
   else if (outcome.search.beaten)
     line << "not searched: at least " << least_w << " W, no less than the " << to_beat << " W already found";
@@ -62,6 +64,7 @@ VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const Job
   if (bounded) std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return least_w[a] < least_w[b]; });
   VariantChoice best;
   bool have = false;
+  std::string refusal;  // the first variant whose layout could not be mounted
   best.tried.resize(prepared.size());
   for (const std::size_t v : order) {
     const double to_beat = bounded && have && best.outcome.all_met ? best.outcome.power_w : kNoPowerToBeat;
@@ -72,12 +75,19 @@ VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const Job
     }
     best.search_seconds += outcome.search.seconds;
     best.verify_seconds += outcome.verify_seconds;
-    if (outcome.search.beaten) continue;
+    if (outcome.search.beaten) {
+      if (refusal.empty() && !outcome.search.refused.empty()) refusal = outcome.search.refused;
+      continue;
+    }
     if (!have || better_outcome(outcome, best.outcome)) {
       best.variant = v;
       best.outcome = std::move(outcome);
       have = true;
     }
+  }
+  if (!have && !refusal.empty()) {
+    const LayoutSpec& layout = prepared.front().plan.search.layout;
+    throw ConfigError(located(layout.loc, "luminaires.layout: " + refusal));
   }
   if (!prepared.front().plan.listed) best.tried.clear();
   return best;

@@ -58,9 +58,20 @@ CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const Can
     throw std::invalid_argument("mounting surface '" + name +
                                 "' has no patch facing down: luminaires hang under a horizontal ceiling");
 
+  surface_box_ = box;
   const Eigen::Vector2d half = options.half_footprint_m.array() + options.wall_distance_m;
   lower_ = box.min() + half;
   upper_ = box.max() - half;
+  if (!options.zone_m.isEmpty()) {
+    lower_ = lower_.cwiseMax(options.zone_m.min());
+    upper_ = upper_.cwiseMin(options.zone_m.max());
+    if ((upper_.array() < lower_.array()).any())
+      throw std::invalid_argument((std::ostringstream() << "mounting surface '" << name << "': the mounting zone x ["
+                                                        << options.zone_m.min().x() << ", " << options.zone_m.max().x()
+                                                        << "] y [" << options.zone_m.min().y() << ", "
+                                                        << options.zone_m.max().y() << "] m holds no luminaire position")
+                                      .str());
+  }
   if (options.module_m > 0.0) {
     // The module's cell centres, counted from the surface's lower corner.
     for (int axis = 0; axis < 2; ++axis) {
@@ -189,6 +200,18 @@ GridPoint CandidateGrid::locate(const Eigen::Vector2d& xy_m) const {
   out.weights[0] = 1.0;
   out.position_m = positions_[static_cast<std::size_t>(out.candidates[0])];
   return out;
+}
+
+double CandidateGrid::mount_distance_m(const Eigen::Vector2d& xy_m) const {
+  if (!xy_m.allFinite()) return std::numeric_limits<double>::infinity();
+  // The nearest point of the centres' extent, then whether a whole cell holds it.
+  const Eigen::Vector2d inside = xy_m.cwiseMax(lower_).cwiseMin(upper_);
+  const Eigen::Vector2d cell = ((inside - lower_).array() / step_.array().max(1e-300)).matrix();
+  const int i = std::clamp(static_cast<int>(std::floor(cell.x())), 0, nx_ - 1);
+  const int j = std::clamp(static_cast<int>(std::floor(cell.y())), 0, ny_ - 1);
+  if (node(i, j) >= 0 && node(i + 1, j) >= 0 && node(i, j + 1) >= 0 && node(i + 1, j + 1) >= 0)
+    return (inside - xy_m).norm();
+  return (nearest_candidate_m(xy_m) - xy_m).norm();
 }
 
 Eigen::Vector2d CandidateGrid::nearest_candidate_m(const Eigen::Vector2d& xy_m) const {

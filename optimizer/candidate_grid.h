@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <string>
 #include <vector>
@@ -30,6 +31,8 @@ struct CandidateGridOptions {
   double wall_distance_m = 0.0;   // and keep at least this from the surface's edges (its walls)
   double module_m = 0.0;          // > 0: candidates at the cell centres of a ceiling module of this size
   double mount_offset_m = 0.02;   // the emitting face hangs this far below the surface
+  // Where centres may lie (the mounting zone, x and y); empty: the whole surface.
+  Eigen::AlignedBox2d zone_m;
 };
 
 // One point of a continuous layout, resolved against the grid.
@@ -58,6 +61,8 @@ class CandidateGrid {
   Eigen::Vector2d lower_m() const { return lower_; }
   Eigen::Vector2d upper_m() const { return upper_; }
   Eigen::Vector2d spacing_m() const { return step_; }
+  // The plan extent (x, y) of the mounting surface's patches facing down.
+  const Eigen::AlignedBox2d& surface_box_m() const { return surface_box_; }
   int nodes_x() const { return nx_ + 1; }
   int nodes_y() const { return ny_ + 1; }
   // Patches of the mounting surface facing down (the ones candidates sit under).
@@ -70,6 +75,9 @@ class CandidateGrid {
   // grid's edges), else bilinear over the cell's four, else the nearest candidate
   // (positions off the surface snap to it).
   GridPoint locate(const Eigen::Vector2d& xy_m) const;
+  // How far (x, y) is from the nearest point where a luminaire may be centred: 0 inside
+  // a cell whose four nodes hold candidates, else the distance to the nearest candidate.
+  double mount_distance_m(const Eigen::Vector2d& xy_m) const;
   // The grid node nearest to (x, y) that holds a candidate (for layouts snapped to a
   // ceiling module); (x, y) itself when the grid is empty.
   Eigen::Vector2d nearest_candidate_m(const Eigen::Vector2d& xy_m) const;
@@ -78,6 +86,7 @@ class CandidateGrid {
   int node(int i, int j) const { return candidate_of_node_[static_cast<std::size_t>(j * (nx_ + 1) + i)]; }
 
   Eigen::Vector2d lower_, upper_, step_;
+  Eigen::AlignedBox2d surface_box_;
   int nx_ = 0, ny_ = 0;                  // cells per axis
   std::vector<int> candidate_of_node_;   // -1 where no luminaire fits
   std::vector<Eigen::Vector3d> positions_;

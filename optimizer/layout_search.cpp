@@ -17,6 +17,7 @@
 
 #include "core/base/error.h"
 #include "optimizer/goal_metrics.h"
+#include "optimizer/regular_layout.h"
 
 namespace ilp {
 namespace {
@@ -589,10 +590,100 @@ CountSearch search_count(const LightingModel& model, const SearchSpec& spec, con
   return out;
 }
 
+// What a regular layout is laid in: the mounting zone within the mounting surface's
+// extent, the luminaire's outline as placed, the ceiling module's lattice.
+ArrangementFrame arrangement_frame(const LightingModel& model, const SearchSpec& spec) {
+  ArrangementFrame frame;
+  frame.zone_m = model.zone_m.isEmpty() ? model.grid.surface_box_m() : model.zone_m.intersection(model.grid.surface_box_m());
+  frame.luminaire_extent_m = 2.0 * spec.luminaire.type.half_footprint_m(spec.luminaire.rotation_deg);
+  frame.module_m = spec.layout.ceiling_module_m;
+  frame.module_origin_m = model.grid.lower_m();
+  return frame;
+}
+
+std::string metres(const Eigen::Vector2d& xy) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2) << "(" << xy.x() << ", " << xy.y() << ") m";
+  return out.str();
+}
+
+// Why an arrangement cannot be built (its first member without a legal mounting
+// point within the tolerance), or empty.
+std::string unmountable_member(const LightingModel& model, const LayoutSpec& layout, const Arrangement& a) {
+  for (const Eigen::Vector2d& xy : a.xy_m) {
+    const double d = model.grid.mount_distance_m(xy);
+    if (d <= layout.regular.position_tolerance_m) continue;
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(2) << "infeasible: the member at " << metres(xy)
+        << " has no mounting point on '" << layout.mounting_surface << "' within " << layout.regular.position_tolerance_m
+        << " m (the nearest is " << d << " m away)";
+    return out.str();
+  }
+  return {};
+}
+
+// Field, rows and bays: every arrangement judged at its one output (no NLopt: nothing
+// moves). Min_power skips an arrangement that cannot draw less than a layout already found.
+SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress,
+                            const SearchBounds& bounds) {
+  const auto start = Clock::now();
+  const std::vector<Arrangement> arrangements = regular_arrangements(spec.layout, arrangement_frame(model, spec));
+  if (arrangements.empty())
+    throw ConfigError(located(spec.layout.loc, "luminaires.layout: no arrangement of this layout has a luminaire count "
+                                               "in [" + std::to_string(spec.layout.count_min) + ", " +
+                                               std::to_string(spec.layout.count_max) + "] in the mounting zone"));
+  const Evaluator evaluate(model, spec);
+  const double least_flux_lm = least_total_flux_lm(model, spec);
+  const bool min_power = objective_rule(spec.objective).minimises_power;
+  SearchResult result;
+  std::optional<LayoutEvaluation> best;
+  std::string first_refusal;
+  bool skipped_for_power = false;
+  for (std::size_t i = 0; i < arrangements.size(); ++i) {
+    const Arrangement& a = arrangements[i];
+    const int n = static_cast<int>(a.xy_m.size());
+    CountAttempt attempt;
+    attempt.luminaires = n;
+    attempt.arrangement = a.label;
+    const double to_beat = std::min(bounds.power_to_beat_w, best && best->feasible ? best->power_w : kNoPowerToBeat);
+    const double least_w = count_bound(spec.luminaire, n, least_flux_lm).least_power_w;
+    std::string stop = unmountable_member(model, spec.layout, a);
+    if (stop.empty() && min_power && least_w >= to_beat) {
+      stop = "not searched: needs at least " + watts(least_w) + ", no less than the " + watts(to_beat) +
+             " of a layout already found";
+      skipped_for_power = true;
+    } else if (first_refusal.empty() && !stop.empty()) {
+      first_refusal = a.label + ": " + stop;
+    }
+    if (stop.empty()) {
+      LayoutEvaluation e = evaluate(a.xy_m, std::vector<double>(a.xy_m.size(), 1.0));
+      e.arrangement = a.label;
+      e.spacing_m = a.spacing_m;
+      attempt.evaluations = 1;
+      attempt.feasible = e.feasible;
+      attempt.power_w = e.power_w;
+      attempt.objective = e.objective;
+      stop = "evaluated (the arrangement is fixed)";
+      ++result.evaluations;
+      if (!best || better(e, *best, spec.objective)) best = std::move(e);
+    }
+    attempt.global_stop = attempt.local_stop = stop;
+    result.attempts.push_back(attempt);
+    if (progress) progress("search " + a.label, i + 1, arrangements.size());
+  }
+  if (!best && !skipped_for_power) result.refused = "no arrangement can be mounted; " + first_refusal;
+  result.beaten = !best;
+  if (best) result.best = std::move(*best);
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
 }  // namespace
 
 SearchResult search_layout(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress,
                            const SearchBounds& bounds) {
+  if (spec.layout.family != LayoutFamily::free && spec.layout.family != LayoutFamily::array)
+    return search_regular(model, spec, progress, bounds);
   const auto start = Clock::now();
   const auto deadline =
       start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(spec.options.max_seconds));

@@ -49,6 +49,8 @@ struct LayoutEvaluation {
   double objective = 0.0;             // what the search minimised, penalty included
   bool feasible = false;              // every constraint within tolerance
   Eigen::VectorXd lux;                // total illuminance at the goal patches
+  std::string arrangement;            // a regular layout's ("3 x 4 field"); empty for free and array layouts
+  Eigen::Vector2d spacing_m = Eigen::Vector2d::Zero();  // a regular layout's, along x and y
 };
 
 // Judges goals on illuminance at the goal patches (lux per LightingModel::goal_patches row).
@@ -59,6 +61,7 @@ double goal_tolerance(Objective objective, GoalMetric metric);
 
 struct CountAttempt {
   int luminaires = 0;
+  std::string arrangement;  // a regular layout's ("3 x 4 field"); empty for free and array layouts
   int evaluations = 0;
   double seconds = 0.0;
   bool feasible = false;
@@ -76,6 +79,9 @@ struct SearchResult {
   // No count was searched: none could draw less than the power to beat. `best` is
   // then empty (no luminaires) and means nothing.
   bool beaten = false;
+  // A regular layout none of whose arrangements can be mounted: why (the first
+  // refusal). `beaten` is then true too: there is nothing to verify.
+  std::string refused;
 };
 
 // No power to beat: every count that can reach the average targets is searched.
@@ -92,7 +98,11 @@ struct SearchBounds {
   std::vector<CountAttempt> easier;
 };
 
-// Searches spec.layout's family for spec.objective under spec.goals. Deterministic
+// Searches spec.layout's family for spec.objective under spec.goals. Regular
+// families (field, rows, bays; optimizer/regular_layout.h) are enumerated on the
+// model's mounting zone: every arrangement is judged at its one output, and one with
+// a member farther than layout.position_tolerance_m from a legal mounting point is
+// infeasible (its attempt names the member's position), never moved. Deterministic
 // for spec.options.seed as long as the evaluation budget, not max_seconds, ends each
 // stage.
 //

@@ -19,7 +19,7 @@ int find_goal_area(const LightingModel& model, const std::string& name) {
 
 namespace {
 
-CandidateGrid make_grid(const Scene& scene, const CandidateSpec& search) {
+CandidateGrid make_grid(const Scene& scene, const CandidateSpec& search, const Eigen::AlignedBox2d& zone) {
   const int surface = scene.find_surface(search.mounting_surface);
   if (surface < 0)
     throw ConfigError(located(search.mounting_loc, "luminaires.mounting_surface: unknown surface '" +
@@ -30,8 +30,11 @@ CandidateGrid make_grid(const Scene& scene, const CandidateSpec& search) {
                           .half_footprint_m = search.type.half_footprint_m(search.rotation_deg),
                           .wall_distance_m = search.wall_distance_m,
                           .module_m = search.ceiling_module_m,
-                          .mount_offset_m = search.mount_offset_m});
+                          .mount_offset_m = search.mount_offset_m,
+                          .zone_m = zone});
   } catch (const std::invalid_argument& e) {
+    if (search.zone_m && std::string_view(e.what()).find("zone") != std::string_view::npos)
+      throw ConfigError(located(search.zone_loc, std::string("luminaires.zone: ") + e.what()));
     throw ConfigError(located(search.mounting_loc, std::string("luminaires.mounting_surface: ") + e.what()));
   } catch (const std::length_error& e) {
     const FileLoc& at = search.spacing_loc.file.empty() ? search.mounting_loc : search.spacing_loc;
@@ -126,6 +129,31 @@ GoalArea make_area(const LightingModel& model, const Scene& job_scene, const Goa
   return area;
 }
 
+// The goals' outline in plan (x, y): grid points with their cells, goal patches with
+// their vertices.
+Eigen::AlignedBox2d goals_outline_m(const LightingModel& model, const Scene& job_scene) {
+  Eigen::AlignedBox2d box;
+  for (int p : model.goal_patches)
+    for (const Eigen::Vector3d& v : job_scene.patches[static_cast<std::size_t>(p)].vertices_m) box.extend(v.head<2>());
+  for (const CalcGrid& grid : model.grids) {
+    const Eigen::Vector3d du = 0.5 * grid.cell_u_m * grid.u_axis, dv = 0.5 * grid.cell_v_m * grid.v_axis;
+    for (const ReceiverPoint& q : grid.points)
+      for (const double su : {-1.0, 1.0})
+        for (const double sv : {-1.0, 1.0}) box.extend((q.position_m + su * du + sv * dv).head<2>());
+  }
+  return box;
+}
+
+// The mounting zone: the spec's rectangle, or the goals' outline widened by the margin.
+Eigen::AlignedBox2d mounting_zone_m(const LightingModel& model, const Scene& job_scene, const CandidateSpec& spec) {
+  if (spec.zone_m) return Eigen::AlignedBox2d(spec.zone_m->first, spec.zone_m->second);
+  if (!spec.zone_margin_m) return {};
+  Eigen::AlignedBox2d box = goals_outline_m(model, job_scene);
+  if (box.isEmpty()) return box;
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(*spec.zone_margin_m);
+  return Eigen::AlignedBox2d(box.min() - margin, box.max() + margin);
+}
+
 void log_candidates(LightingModel& model, const CandidateSpec& spec) {
   std::ostringstream grid;
   grid << std::fixed << std::setprecision(3) << "candidates: " << model.grid.size() << " positions on '"
@@ -134,6 +162,13 @@ void log_candidates(LightingModel& model, const CandidateSpec& spec) {
        << model.grid.lower_m().x() << ", " << model.grid.upper_m().x() << "] y [" << model.grid.lower_m().y() << ", "
        << model.grid.upper_m().y() << "] m, faces at z = " << model.grid.positions_m().front().z() << " m)";
   model.log.push_back(grid.str());
+  if (!model.zone_m.isEmpty()) {
+    std::ostringstream zone;
+    zone << std::fixed << std::setprecision(3) << "mounting zone: x [" << model.zone_m.min().x() << ", "
+         << model.zone_m.max().x() << "] y [" << model.zone_m.min().y() << ", " << model.zone_m.max().y() << "] m ("
+         << (spec.zone_m ? std::string("luminaires.zone") : "the goals' outline + " + std::to_string(*spec.zone_margin_m).substr(0, 4) + " m") << ")";
+    model.log.push_back(zone.str());
+  }
   if (model.grid.ignored_patches() > 0)
     model.log.push_back("candidates: " + std::to_string(model.grid.ignored_patches()) + " patches of '" +
                         spec.mounting_surface + "' do not face down and hold no luminaire");
@@ -148,8 +183,6 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& s
       throw std::invalid_argument("goal '" + area.name + "': no such grid");
   LightingModel model;
   model.scene = job_scene;
-  model.grid = make_grid(job_scene, spec.candidates);
-  add_candidates(model, job_scene, spec.candidates);
   // Goal rows: the areas' patches (ascending, each once), then every grid's points.
   lay_grids(model, job_scene, spec, caster);
   std::vector<std::vector<int>> patches;
@@ -164,6 +197,11 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& s
     model.goal_points.insert(model.goal_points.end(), grid.points.begin(), grid.points.end());
   }
   for (std::size_t a = 0; a < spec.areas.size(); ++a) model.areas.push_back(make_area(model, job_scene, spec.areas[a], patches[a]));
+  // The candidates where the goals are: patches are added after the goal rows' (the
+  // job scene's patches keep their indices).
+  model.zone_m = mounting_zone_m(model, job_scene, spec.candidates);
+  model.grid = make_grid(job_scene, spec.candidates, model.zone_m);
+  add_candidates(model, job_scene, spec.candidates);
   log_candidates(model, spec.candidates);
   return model;
 }

@@ -9,7 +9,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/grid/calc_grid.h"
@@ -37,7 +40,12 @@ struct CandidateSpec {
   double wall_distance_m = 0.0;    // an outline keeps at least this from the surface's edges
   double ceiling_module_m = 0.0;   // > 0: centres at a ceiling module's cell centres
   double mount_offset_m = 0.02;    // the emitting face this far below the surface
-  FileLoc mounting_loc, spacing_loc, offset_loc;
+  // The mounting zone, where centres may lie: this rectangle (lower and upper x, y
+  // corners, m) when given, else the goals' outline in plan widened by
+  // zone_margin_m, else (neither) the whole mounting surface.
+  std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> zone_m;
+  std::optional<double> zone_margin_m = 0.5;
+  FileLoc mounting_loc, spacing_loc, offset_loc, zone_loc;
 };
 
 // The operator cache's key (core/base/key_hash.h; defined in model_spec_hash.cpp):
@@ -87,6 +95,7 @@ struct GoalArea {
 struct LightingModel {
   Scene scene;  // the job's scene plus the candidates (virtual: not in the caster's BVH)
   CandidateGrid grid;
+  Eigen::AlignedBox2d zone_m;  // the mounting zone (x, y) the candidates lie in; regular layouts are centred on it
   std::vector<int> goal_patches;                 // ascending, each once: goal rows 0 ... #patches - 1
   std::vector<ReceiverPoint> goal_points;        // the grids' points, grid after grid: the goal rows after the patches
   std::vector<CalcGrid> grids;                   // every grid of the job (named by goals or only reported), in job.grids order

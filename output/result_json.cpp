@@ -1,5 +1,6 @@
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -21,6 +22,7 @@ json to_json(const ResultRecord& r) {
   j["program_version"] = r.program_version;
   j["config"] = r.config;
   j["objective"] = r.objective;
+  j["layout"] = {{"family", r.layout_family}, {"arrangement", r.arrangement}, {"spacing_m", {r.spacing_x_m, r.spacing_y_m}}};
   j["luminaires"] = json::array();
   for (const LuminaireRecord& l : r.luminaires)
     j["luminaires"].push_back({{"id", l.id},
@@ -88,7 +90,7 @@ json to_json(const ResultRecord& r) {
   for (const AttemptRecord& a : r.attempts)
     j["attempts"].push_back({{"luminaires", a.luminaires}, {"evaluations", a.evaluations}, {"seconds", a.seconds},
                              {"feasible", a.feasible}, {"power_w", a.power_w}, {"global_stop", a.global_stop},
-                             {"local_stop", a.local_stop}});
+                             {"local_stop", a.local_stop}, {"arrangement", a.arrangement}});
   return j;
 }
 
@@ -97,6 +99,16 @@ ResultRecord from_json(const json& j) {
   r.program_version = j.at("program_version").get<std::string>();
   r.config = j.at("config").get<std::string>();
   r.objective = j.at("objective").get<std::string>();
+  if (j.contains("layout")) {
+    const json& layout = j.at("layout");
+    r.layout_family = layout.value("family", std::string());
+    r.arrangement = layout.value("arrangement", std::string());
+    const std::vector<double> spacing = layout.value("spacing_m", std::vector<double>{0.0, 0.0});
+    if (spacing.size() == 2) {
+      r.spacing_x_m = spacing[0];
+      r.spacing_y_m = spacing[1];
+    }
+  }
   for (const json& l : j.at("luminaires"))
     r.luminaires.push_back({l.at("id").get<std::string>(), l.at("x_m").get<double>(), l.at("y_m").get<double>(),
                             l.at("z_m").get<double>(), l.at("flux_lm").get<double>(), l.at("power_w").get<double>(),
@@ -162,7 +174,8 @@ ResultRecord from_json(const json& j) {
   for (const json& a : j.at("attempts"))
     r.attempts.push_back({a.at("luminaires").get<int>(), a.at("evaluations").get<int>(), a.at("seconds").get<double>(),
                           a.at("feasible").get<bool>(), a.at("power_w").get<double>(),
-                          a.at("global_stop").get<std::string>(), a.at("local_stop").get<std::string>()});
+                          a.at("global_stop").get<std::string>(), a.at("local_stop").get<std::string>(),
+                          a.value("arrangement", std::string())});
   return r;
 }
 
@@ -196,6 +209,31 @@ ResultRecord read_result_json(const std::string& path) {
   }
 }
 
+namespace {
+
+// A regular layout's arrangements: those evaluated, a line each; those left out, by
+// reason, with the first of each (result.json keeps every one).
+void print_arrangements(std::ostream& os, const std::vector<AttemptRecord>& attempts) {
+  std::vector<std::pair<std::string, std::pair<int, std::string>>> left_out;  // kind, (count, first)
+  for (const AttemptRecord& a : attempts) {
+    if (a.arrangement.empty()) continue;
+    if (a.evaluations > 0) {
+      os << "  " << a.arrangement << " (" << a.luminaires << "): "
+         << (a.feasible ? fixed(a.power_w, 1) + " W as predicted" : std::string("infeasible as predicted")) << "\n";
+      continue;
+    }
+    const std::string kind = a.global_stop.substr(0, a.global_stop.find(':'));
+    auto it = std::find_if(left_out.begin(), left_out.end(), [&](const auto& k) { return k.first == kind; });
+    if (it == left_out.end()) left_out.push_back({kind, {1, a.arrangement + ": " + a.global_stop}});
+    else ++it->second.first;
+  }
+  for (const auto& [kind, first] : left_out)
+    os << "  " << first.first << (first.first == 1 ? " arrangement " : " arrangements ") << kind << ", e.g. "
+       << first.second << "\n";
+}
+
+}  // namespace
+
 void print_result(std::ostream& os, const ResultRecord& r) {
   // Missed as predicted already (the goals cannot be met as stated), or only as verified.
   bool missed_as_predicted = false;
@@ -209,7 +247,10 @@ void print_result(std::ostream& os, const ResultRecord& r) {
       os << "NOT MET: no layout found comes within the tolerance of every target; the closest found is shown\n";
   }
   os << (r.all_met ? "Optimal layout (" : "Closest layout found (") << r.objective << ", " << r.luminaires.size()
-     << " luminaires)\n";
+     << " luminaires";
+  if (!r.arrangement.empty())
+    os << ": " << r.arrangement << ", spacing " << fixed(r.spacing_x_m, 2) << " x " << fixed(r.spacing_y_m, 2) << " m";
+  os << ")\n";
   bool products = false;
   for (const LuminaireRecord& l : r.luminaires) products = products || !l.product.empty();
   os << std::right << std::setw(6) << "id" << std::setw(9) << "x m" << std::setw(9) << "y m" << std::setw(9) << "z m"
@@ -271,7 +312,9 @@ void print_result(std::ostream& os, const ResultRecord& r) {
   if (r.time_limited) os << " (the time budget ended a stage: the layout may depend on machine speed)";
   os << "\n";
   for (const std::string& line : r.calibration) os << "  " << line << "\n";
+  print_arrangements(os, r.attempts);
   for (const AttemptRecord& a : r.attempts) {
+    if (!a.arrangement.empty()) continue;
     if (a.evaluations == 0 && a.global_stop == a.local_stop) {  // left out before any search: why
       os << "  " << a.luminaires << " luminaires: " << a.global_stop << "\n";
       continue;

@@ -68,6 +68,7 @@ struct AttemptRecord {
   bool feasible = false;
   double power_w = 0.0;
   std::string global_stop, local_stop;
+  std::string arrangement;  // a regular layout's ("3 x 4 field"); empty for free and array layouts
 };
 
 struct ResultRecord {
@@ -75,6 +76,9 @@ struct ResultRecord {
   std::string config;
   std::string objective;                    // min_power or closest_to_target
   std::vector<LuminaireRecord> luminaires;
+  std::string layout_family;                // free, array, field, rows or bays
+  std::string arrangement;                  // a regular layout's ("3 x 4 field"); empty otherwise
+  double spacing_x_m = 0.0, spacing_y_m = 0.0;  // a regular layout's spacing between neighbours (0 where one)
   std::vector<GoalRecord> goals;
   double power_w = 0.0;
   double mounting_area_m2 = 0.0;
