@@ -147,6 +147,14 @@ struct LuminaireSearch {
   double zone_margin_m = 0.5;
   bool zone_set = false;  // the job has a zone block
   FileLoc zone_loc;
+  // suspended: {height_m}: instead of mounting_surface, luminaires hang on a plane this
+  // far above the floor over the zone (pendants, high-bays).
+  std::optional<double> suspended_height_m;
+  FileLoc suspended_loc;
+  // floor_surface: the finished floor heights are given and reported above (default:
+  // the first grid's over_surface).
+  std::string floor_surface;
+  FileLoc floor_loc;
 };
 
 // One line of goals: a metric over the union of some surfaces. A goals entry with

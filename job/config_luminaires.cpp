@@ -16,7 +16,8 @@ constexpr const char* kSearchKeys[] = {"model",          "flux_lm",             
                                        "mount_offset_m", "candidate_spacing_m", "count",
                                        "layout",         "array",               "wall_distance_m",
                                        "ceiling_module_m", "field",             "rows",
-                                       "bays",           "zone",                "output"};
+                                       "bays",           "zone",                "output",
+                                       "floor_surface"};
 
 constexpr int kMaxFreeCount = 64;        // luminaires a free layout may search (NLopt: 2-3 variables each)
 constexpr int kMaxRegularCount = 10000;  // luminaires of a field, rows or bays layout
@@ -240,9 +241,21 @@ void read_layout(const Map& luminaires, LuminaireSearch& search) {
 
 void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
   LuminaireSearch& search = job.search.emplace();
-  search.mounting_surface = mounting.text();
-  if (search.mounting_surface.empty()) mounting.fail("must name a surface");
+  if (mounting.key() == "luminaires.suspended") {  // a plane above the floor, no surface
+    const Map block(mounting, {"height_m"});
+    search.suspended_height_m = block.require("height_m").bounded(0.1, 1000.0, " m");
+    search.suspended_loc = block.require("height_m").loc();
+    if (auto v = luminaires.get("mount_offset_m")) v->fail("not with suspended (the height places the luminaires)");
+  } else {
+    search.mounting_surface = mounting.text();
+    if (search.mounting_surface.empty()) mounting.fail("must name a surface");
+  }
   search.mounting_loc = mounting.loc();
+  if (auto v = luminaires.get("floor_surface")) {
+    search.floor_surface = v->text();
+    if (search.floor_surface.empty()) v->fail("must name a surface");
+    search.floor_loc = v->loc();
+  }
   search.layout_loc = mounting.loc();  // where the layout is decided when layout is not given
   if (auto v = luminaires.get("model")) {
     search.model = v->text();
@@ -363,8 +376,10 @@ void read_luminaires(const Map& luminaires, JobConfig& job) {
       job.luminaires.push_back(std::move(setting));
     }
   }
-  if (auto mounting = luminaires.get("mounting_surface")) {
-    read_search(luminaires, *mounting, job);
+  const auto mounting = luminaires.get("mounting_surface"), suspended = luminaires.get("suspended");
+  if (mounting && suspended) suspended->fail("not with mounting_surface (one or the other)");
+  if (mounting || suspended) {
+    read_search(luminaires, mounting ? *mounting : *suspended, job);
   } else {
     // The first search key in the file, so the error points where the reader looks.
     for (const auto& item : luminaires.value().node())

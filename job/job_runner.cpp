@@ -244,7 +244,9 @@ namespace {
 // mounting surface's plan area.
 void set_floor_area(JobOutcome& out, const PreparedJob& prepared) {
   out.floor_area_m2 = out.mounting_area_m2;
-  out.floor_area_source = "plan area of the mounting surface '" + prepared.plan.model.candidates.mounting_surface + "'";
+  const CandidateSpec& c = prepared.plan.model.candidates;
+  out.floor_area_source = c.suspended_height_m ? std::string("plan area of the suspension zone")
+                                               : "plan area of the mounting surface '" + c.mounting_surface + "'";
   constexpr double kFloorLevelTolerance_m = 0.2;
   for (const CalcGridSetting& g : prepared.plan.model.grids)
     if (g.kind == GridKind::horizontal && !g.over_surface.empty()) {

@@ -232,8 +232,10 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
     for (const std::string& s : g.surfaces)
       require_patches(require_surface(s, g.surfaces_loc, "goals." + g.name + ".surface"), g.surfaces_loc,
                       "goals." + g.name + ".surface");
-  if (job.search)
+  if (job.search && !job.search->suspended_height_m)
     require_surface(job.search->mounting_surface, job.search->mounting_loc, "luminaires.mounting_surface");
+  if (job.search && !job.search->floor_surface.empty())
+    require_surface(job.search->floor_surface, job.search->floor_loc, "luminaires.floor_surface");
 
   double luminaire_flux_lm = 0.0, surface_flux_lm = 0.0;
   for (const Patch& p : scene.patches)

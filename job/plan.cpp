@@ -40,6 +40,10 @@ CandidateSpec candidate_spec(const LuminaireSearch& s, const ProductVariant& pro
   if (s.layout != LayoutFamily::array || s.zone_set) c.zone_margin_m = s.zone_margin_m;
   else c.zone_margin_m.reset();
   c.zone_loc = s.zone_loc;
+  c.suspended_height_m = s.suspended_height_m;
+  c.suspended_loc = s.suspended_loc;
+  c.floor_surface = s.floor_surface;
+  c.floor_loc = s.floor_loc;
   return c;
 }
 
@@ -93,7 +97,7 @@ SearchSpec search_spec(const JobConfig& job, const VariantPlan& plan, const RunO
   layout.regular = s.regular;
   layout.ceiling_module_m = s.ceiling_module_m;
   layout.min_distance_m = job.constraints.min_distance_m;
-  layout.mounting_surface = s.mounting_surface;
+  layout.mounting_surface = s.suspended_height_m ? "the suspension plane" : s.mounting_surface;
   layout.loc = s.layout_loc;
   spec.goals = goal_specs(job, plan.maintenance_factor);
   spec.objective = job.objective;

@@ -34,8 +34,10 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.spacing_y_m = outcome.search.best.spacing_m.y();
   for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
     const PlacedLuminaire& l = outcome.luminaires[j];
+    const std::optional<double> floor_z = prepared.model.floor_z_m;
     r.luminaires.push_back({luminaire_name(j), l.position_m.x(), l.position_m.y(), l.position_m.z(), l.flux_lm, l.power_w,
-                            luminaire.product, luminaire.rotation_deg});
+                            luminaire.product, luminaire.rotation_deg,
+                            floor_z ? std::optional<double>(l.position_m.z() - *floor_z) : std::nullopt});
   }
   for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
     const GoalOutcome& o = outcome.goals[g];

@@ -35,29 +35,7 @@ std::optional<double> surface_height(const Scene& scene, const std::vector<int>&
 
 }  // namespace
 
-CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const CandidateGridOptions& options) {
-  if (mounting_surface < 0 || mounting_surface >= static_cast<int>(scene.surfaces.size()))
-    throw std::invalid_argument("mounting surface: no surface with index " + std::to_string(mounting_surface));
-  const std::string& name = scene.surfaces[static_cast<std::size_t>(mounting_surface)].name;
-  if (!(options.spacing_m > 0.0) || !(options.half_footprint_m.minCoeff() > 0.0) || !(options.mount_offset_m > 0.0) ||
-      !(options.wall_distance_m >= 0.0) || !(options.module_m >= 0.0))
-    throw std::invalid_argument("mounting surface '" + name + "': spacing, luminaire size and offset must be > 0");
-  Eigen::AlignedBox2d box;
-  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
-    const Patch& p = scene.patches[i];
-    if (p.surface != mounting_surface) continue;
-    if (p.normal.z() > -kFacingDownCos) {
-      ++ignored_patches_;
-      continue;
-    }
-    mounting_patches_.push_back(static_cast<int>(i));
-    mounting_area_m2_ += p.area_m2;
-    for (const auto& v : p.vertices_m) box.extend(v.head<2>());
-  }
-  if (mounting_patches_.empty())
-    throw std::invalid_argument("mounting surface '" + name +
-                                "' has no patch facing down: luminaires hang under a horizontal ceiling");
-
+void CandidateGrid::lay_nodes(const Eigen::AlignedBox2d& box, const CandidateGridOptions& options, const std::string& name) {
   surface_box_ = box;
   const Eigen::Vector2d half = options.half_footprint_m.array() + options.wall_distance_m;
   lower_ = box.min() + half;
@@ -98,6 +76,33 @@ CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const Can
   step_ = Eigen::Vector2d(extent.x() / nx_, extent.y() / ny_);
   if (options.module_m > 0.0 && extent.minCoeff() <= 0.0)
     step_ = Eigen::Vector2d::Constant(options.module_m);  // a single row or column of modules
+}
+
+CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const CandidateGridOptions& options) {
+  if (mounting_surface < 0 || mounting_surface >= static_cast<int>(scene.surfaces.size()))
+    throw std::invalid_argument("mounting surface: no surface with index " + std::to_string(mounting_surface));
+  const std::string& name = scene.surfaces[static_cast<std::size_t>(mounting_surface)].name;
+  if (!(options.spacing_m > 0.0) || !(options.half_footprint_m.minCoeff() > 0.0) || !(options.mount_offset_m > 0.0) ||
+      !(options.wall_distance_m >= 0.0) || !(options.module_m >= 0.0))
+    throw std::invalid_argument("mounting surface '" + name + "': spacing, luminaire size and offset must be > 0");
+  Eigen::AlignedBox2d box;
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& p = scene.patches[i];
+    if (p.surface != mounting_surface) continue;
+    if (p.normal.z() > -kFacingDownCos) {
+      ++ignored_patches_;
+      continue;
+    }
+    mounting_patches_.push_back(static_cast<int>(i));
+    mounting_area_m2_ += p.area_m2;
+    for (const auto& v : p.vertices_m) box.extend(v.head<2>());
+  }
+  if (mounting_patches_.empty())
+    throw std::invalid_argument("mounting surface '" + name +
+                                "' has no patch facing down: luminaires hang under a horizontal ceiling");
+
+  lay_nodes(box, options, name);
+  const Eigen::Vector2d half = options.half_footprint_m.array() + options.wall_distance_m;
 
   // A candidate exists where the centre and the four corners of the footprint (just
   // inside, with the wall distance) all lie over the surface.
@@ -127,6 +132,24 @@ CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const Can
                                                       << 2.0 * options.half_footprint_m.y()).str() +
                                 " m luminaire fits" +
                                 (options.wall_distance_m > 0.0 ? " with the wall distance" : ""));
+}
+
+CandidateGrid::CandidateGrid(const Eigen::AlignedBox2d& plane_m, double z_m, const CandidateGridOptions& options) {
+  const std::string name = "the suspension plane";
+  if (plane_m.isEmpty() || !(plane_m.sizes().minCoeff() > 0.0) || !std::isfinite(z_m))
+    throw std::invalid_argument("suspended luminaires: the zone must be a rectangle of non-zero area");
+  if (!(options.spacing_m > 0.0) || !(options.half_footprint_m.minCoeff() > 0.0) || !(options.wall_distance_m >= 0.0) ||
+      !(options.module_m >= 0.0))
+    throw std::invalid_argument("suspended luminaires: spacing and luminaire size must be > 0");
+  mounting_area_m2_ = plane_m.volume();
+  lay_nodes(plane_m, options, name);
+  candidate_of_node_.assign(static_cast<std::size_t>((nx_ + 1) * (ny_ + 1)), -1);
+  for (int j = 0; j <= ny_; ++j)
+    for (int i = 0; i <= nx_; ++i) {
+      const Eigen::Vector2d xy = lower_ + Eigen::Vector2d(i * step_.x(), j * step_.y());
+      candidate_of_node_[static_cast<std::size_t>(j * (nx_ + 1) + i)] = static_cast<int>(positions_.size());
+      positions_.emplace_back(xy.x(), xy.y(), z_m);
+    }
 }
 
 namespace {

@@ -32,7 +32,7 @@ struct CandidateGridOptions {
   double module_m = 0.0;          // > 0: candidates at the cell centres of a ceiling module of this size
   double mount_offset_m = 0.02;   // the emitting face hangs this far below the surface
   // Where centres may lie (the mounting zone, x and y); empty: the whole surface.
-  Eigen::AlignedBox2d zone_m;
+  Eigen::AlignedBox2d zone_m = Eigen::AlignedBox2d();
 };
 
 // One point of a continuous layout, resolved against the grid.
@@ -52,6 +52,10 @@ class CandidateGrid {
   // Throws std::invalid_argument naming the surface if it has no patch facing down
   // or no position where a whole luminaire fits.
   CandidateGrid(const Scene& scene, int mounting_surface, const CandidateGridOptions& options);
+  // Suspended luminaires: every node of the rectangle plane_m (x, y; less the
+  // luminaire's half footprint and the wall distance, within options.zone_m) holds
+  // one, its emitting face at height z_m; no surface is needed.
+  CandidateGrid(const Eigen::AlignedBox2d& plane_m, double z_m, const CandidateGridOptions& options);
   CandidateGrid() = default;  // empty: no candidates
 
   std::size_t size() const { return positions_.size(); }
@@ -83,6 +87,8 @@ class CandidateGrid {
   Eigen::Vector2d nearest_candidate_m(const Eigen::Vector2d& xy_m) const;
 
  private:
+  // The nodes' extent and spacing over a plan box (the surface's or the plane's).
+  void lay_nodes(const Eigen::AlignedBox2d& box, const CandidateGridOptions& options, const std::string& name);
   int node(int i, int j) const { return candidate_of_node_[static_cast<std::size_t>(j * (nx_ + 1) + i)]; }
 
   Eigen::Vector2d lower_, upper_, step_;

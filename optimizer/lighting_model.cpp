@@ -19,19 +19,46 @@ int find_goal_area(const LightingModel& model, const std::string& name) {
 
 namespace {
 
-CandidateGrid make_grid(const Scene& scene, const CandidateSpec& search, const Eigen::AlignedBox2d& zone) {
+CandidateGridOptions grid_options(const CandidateSpec& search, const Eigen::AlignedBox2d& zone) {
+  return {.spacing_m = search.spacing_m,
+          .half_footprint_m = search.type.half_footprint_m(search.rotation_deg),
+          .wall_distance_m = search.wall_distance_m,
+          .module_m = search.ceiling_module_m,
+          .mount_offset_m = search.mount_offset_m,
+          .zone_m = zone};
+}
+
+// Suspended luminaires: a plane over the zone at the height above the floor, below
+// the scene's top.
+CandidateGrid suspension_grid(const Scene& scene, const CandidateSpec& search, const Eigen::AlignedBox2d& zone,
+                              std::optional<double> floor_z_m) {
+  const std::string key = "luminaires.suspended.height_m";
+  if (!floor_z_m)
+    throw ConfigError(located(search.suspended_loc, key + ": no floor to measure from: name luminaires.floor_surface "
+                                                          "(or lay a grid over_surface the floor)"));
+  if (zone.isEmpty())
+    throw ConfigError(located(search.suspended_loc, key + ": no zone to hang over: give luminaires.zone or goals"));
+  const double z = *floor_z_m + *search.suspended_height_m;
+  if (!(z < scene.bounds_m.max().z()))
+    throw ConfigError(located(search.suspended_loc, (std::ostringstream() << key << " = " << *search.suspended_height_m
+                                                      << ": at z = " << z << " m, at or above the top of the scene (z = "
+                                                      << scene.bounds_m.max().z() << " m, the ceiling)").str()));
+  try {
+    return CandidateGrid(zone, z, grid_options(search, Eigen::AlignedBox2d()));
+  } catch (const std::exception& e) {
+    throw ConfigError(located(search.suspended_loc, key + ": " + e.what()));
+  }
+}
+
+CandidateGrid make_grid(const Scene& scene, const CandidateSpec& search, const Eigen::AlignedBox2d& zone,
+                        std::optional<double> floor_z_m) {
+  if (search.suspended_height_m) return suspension_grid(scene, search, zone, floor_z_m);
   const int surface = scene.find_surface(search.mounting_surface);
   if (surface < 0)
     throw ConfigError(located(search.mounting_loc, "luminaires.mounting_surface: unknown surface '" +
                                                        search.mounting_surface + "'"));
   try {
-    return CandidateGrid(scene, surface,
-                         {.spacing_m = search.spacing_m,
-                          .half_footprint_m = search.type.half_footprint_m(search.rotation_deg),
-                          .wall_distance_m = search.wall_distance_m,
-                          .module_m = search.ceiling_module_m,
-                          .mount_offset_m = search.mount_offset_m,
-                          .zone_m = zone});
+    return CandidateGrid(scene, surface, grid_options(search, zone));
   } catch (const std::invalid_argument& e) {
     if (search.zone_m && std::string_view(e.what()).find("zone") != std::string_view::npos)
       throw ConfigError(located(search.zone_loc, std::string("luminaires.zone: ") + e.what()));
@@ -43,6 +70,39 @@ CandidateGrid make_grid(const Scene& scene, const CandidateSpec& search, const E
     const FileLoc& at = search.offset_loc.file.empty() ? search.mounting_loc : search.offset_loc;
     throw ConfigError(located(at, std::string("luminaires.mount_offset_m: ") + e.what()));
   }
+}
+
+// The finished floor: the named surface (or the first grid's over_surface), the
+// area-weighted height of its patches facing up.
+std::optional<double> floor_height_m(const Scene& scene, const ModelSpec& spec, std::string& surface_name) {
+  surface_name = spec.candidates.floor_surface;
+  if (surface_name.empty())
+    for (const CalcGridSetting& g : spec.grids)
+      if (!g.over_surface.empty()) {
+        surface_name = g.over_surface;
+        break;
+      }
+  const int surface = surface_name.empty() ? -1 : scene.find_surface(surface_name);
+  if (surface < 0) {
+    if (!spec.candidates.floor_surface.empty())
+      throw ConfigError(located(spec.candidates.floor_loc, "luminaires.floor_surface: unknown surface '" + surface_name + "'"));
+    surface_name.clear();
+    return std::nullopt;
+  }
+  double area = 0.0, z = 0.0;
+  for (const Patch& p : scene.patches)
+    if (p.surface == surface && p.normal.z() > 0.9) {
+      area += p.area_m2;
+      z += p.area_m2 * p.centroid_m.z();
+    }
+  if (!(area > 0.0)) {
+    if (!spec.candidates.floor_surface.empty())
+      throw ConfigError(located(spec.candidates.floor_loc,
+                                "luminaires.floor_surface: '" + surface_name + "' has no patch facing up"));
+    surface_name.clear();
+    return std::nullopt;
+  }
+  return z / area;
 }
 
 }  // namespace
@@ -156,8 +216,13 @@ Eigen::AlignedBox2d mounting_zone_m(const LightingModel& model, const Scene& job
 
 void log_candidates(LightingModel& model, const CandidateSpec& spec) {
   std::ostringstream grid;
-  grid << std::fixed << std::setprecision(3) << "candidates: " << model.grid.size() << " positions on '"
-       << spec.mounting_surface << "' (" << model.grid.nodes_x() << " x " << model.grid.nodes_y() << " grid, "
+  std::ostringstream where;
+  if (spec.suspended_height_m)
+    where << "a plane " << *spec.suspended_height_m << " m above the floor '" << model.floor_surface << "'";
+  else
+    where << "'" << spec.mounting_surface << "'";
+  grid << std::fixed << std::setprecision(3) << "candidates: " << model.grid.size() << " positions on "
+       << where.str() << " (" << model.grid.nodes_x() << " x " << model.grid.nodes_y() << " grid, "
        << model.grid.spacing_m().x() << " x " << model.grid.spacing_m().y() << " m apart, centres in x ["
        << model.grid.lower_m().x() << ", " << model.grid.upper_m().x() << "] y [" << model.grid.lower_m().y() << ", "
        << model.grid.upper_m().y() << "] m, faces at z = " << model.grid.positions_m().front().z() << " m)";
@@ -200,7 +265,8 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& s
   // The candidates where the goals are: patches are added after the goal rows' (the
   // job scene's patches keep their indices).
   model.zone_m = mounting_zone_m(model, job_scene, spec.candidates);
-  model.grid = make_grid(job_scene, spec.candidates, model.zone_m);
+  model.floor_z_m = floor_height_m(job_scene, spec, model.floor_surface);
+  model.grid = make_grid(job_scene, spec.candidates, model.zone_m, model.floor_z_m);
   add_candidates(model, job_scene, spec.candidates);
   log_candidates(model, spec.candidates);
   return model;

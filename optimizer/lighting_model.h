@@ -45,7 +45,13 @@ struct CandidateSpec {
   // zone_margin_m, else (neither) the whole mounting surface.
   std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> zone_m;
   std::optional<double> zone_margin_m = 0.5;
-  FileLoc mounting_loc, spacing_loc, offset_loc, zone_loc;
+  // Suspended: the emitting faces this far above the floor, on a plane over the zone
+  // (no mounting surface). The floor: floor_surface's patches facing up, or when it
+  // is empty the floor of the first grid laid over a surface; heights are reported
+  // above it.
+  std::optional<double> suspended_height_m;
+  std::string floor_surface;
+  FileLoc mounting_loc, spacing_loc, offset_loc, zone_loc, suspended_loc, floor_loc;
 };
 
 // The operator cache's key (core/base/key_hash.h; defined in model_spec_hash.cpp):
@@ -96,6 +102,8 @@ struct LightingModel {
   Scene scene;  // the job's scene plus the candidates (virtual: not in the caster's BVH)
   CandidateGrid grid;
   Eigen::AlignedBox2d zone_m;  // the mounting zone (x, y) the candidates lie in; regular layouts are centred on it
+  std::optional<double> floor_z_m;  // the finished floor's height (CandidateSpec::floor_surface), when known
+  std::string floor_surface;        // its surface
   std::vector<int> goal_patches;                 // ascending, each once: goal rows 0 ... #patches - 1
   std::vector<ReceiverPoint> goal_points;        // the grids' points, grid after grid: the goal rows after the patches
   std::vector<CalcGrid> grids;                   // every grid of the job (named by goals or only reported), in job.grids order

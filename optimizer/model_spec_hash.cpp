@@ -6,13 +6,14 @@
 
 namespace ilp {
 
-static_assert(field_count<CandidateSpec>() == 13, "CandidateSpec changed: hash the new field here (or say why not)");
+static_assert(field_count<CandidateSpec>() == 17, "CandidateSpec changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const CandidateSpec& c) {
   k.field("mounting_surface", c.mounting_surface).field("type", c.type).field("rotation_deg", c.rotation_deg);
   k.field("spacing_m", c.spacing_m).field("wall_distance_m", c.wall_distance_m);
   k.field("ceiling_module_m", c.ceiling_module_m).field("mount_offset_m", c.mount_offset_m);
   k.field("zone_m", c.zone_m).field("zone_margin_m", c.zone_margin_m);
-  // Not mounting_loc, spacing_loc, offset_loc, zone_loc: where the values were written.
+  k.field("suspended_height_m", c.suspended_height_m).field("floor_surface", c.floor_surface);
+  // Not the FileLocs: where the values were written.
 }
 
 static_assert(field_count<GoalAreaSpec>() == 4, "GoalAreaSpec changed: hash the new field here (or say why not)");

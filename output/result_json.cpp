@@ -32,7 +32,8 @@ json to_json(const ResultRecord& r) {
                                {"z_m", l.z_m},
                                {"rotation_deg", l.rotation_deg},
                                {"flux_lm", l.flux_lm},
-                               {"power_w", l.power_w}});
+                               {"power_w", l.power_w},
+                               {"above_floor_m", l.above_floor_m ? json(*l.above_floor_m) : json(nullptr)}});
   j["bill_of_materials"] = json::array();
   for (const BillLine& b : r.bill_of_materials)
     j["bill_of_materials"].push_back({{"product", b.product},
@@ -112,7 +113,10 @@ ResultRecord from_json(const json& j) {
   for (const json& l : j.at("luminaires"))
     r.luminaires.push_back({l.at("id").get<std::string>(), l.at("x_m").get<double>(), l.at("y_m").get<double>(),
                             l.at("z_m").get<double>(), l.at("flux_lm").get<double>(), l.at("power_w").get<double>(),
-                            l.value("product", std::string()), l.value("rotation_deg", 0.0)});
+                            l.value("product", std::string()), l.value("rotation_deg", 0.0),
+                            l.contains("above_floor_m") && l.at("above_floor_m").is_number()
+                                ? std::optional<double>(l.at("above_floor_m").get<double>())
+                                : std::nullopt});
   if (j.contains("bill_of_materials"))
     for (const json& b : j.at("bill_of_materials"))
       r.bill_of_materials.push_back({b.at("product").get<std::string>(), b.at("source").get<std::string>(),
@@ -251,16 +255,22 @@ void print_result(std::ostream& os, const ResultRecord& r) {
   if (!r.arrangement.empty())
     os << ": " << r.arrangement << ", spacing " << fixed(r.spacing_x_m, 2) << " x " << fixed(r.spacing_y_m, 2) << " m";
   os << ")\n";
-  bool products = false;
-  for (const LuminaireRecord& l : r.luminaires) products = products || !l.product.empty();
-  os << std::right << std::setw(6) << "id" << std::setw(9) << "x m" << std::setw(9) << "y m" << std::setw(9) << "z m"
-     << std::setw(11) << "flux lm" << std::setw(10) << "power W";
+  bool products = false, heights = false;
+  for (const LuminaireRecord& l : r.luminaires) {
+    products = products || !l.product.empty();
+    heights = heights || l.above_floor_m.has_value();
+  }
+  os << std::right << std::setw(6) << "id" << std::setw(9) << "x m" << std::setw(9) << "y m" << std::setw(9) << "z m";
+  if (heights) os << std::setw(13) << "h floor m";
+  os << std::setw(11) << "flux lm" << std::setw(10) << "power W";
   if (products) os << std::setw(7) << "rot °" << "  product";
   os << "\n";
   double flux = 0.0;
   for (const LuminaireRecord& l : r.luminaires) {
     os << std::setw(6) << l.id << std::setw(9) << fixed(l.x_m, 3) << std::setw(9) << fixed(l.y_m, 3) << std::setw(9)
-       << fixed(l.z_m, 3) << std::setw(11) << fixed(l.flux_lm, 1) << std::setw(10) << fixed(l.power_w, 2);
+       << fixed(l.z_m, 3);
+    if (heights) os << std::setw(13) << (l.above_floor_m ? fixed(*l.above_floor_m, 3) : std::string("-"));
+    os << std::setw(11) << fixed(l.flux_lm, 1) << std::setw(10) << fixed(l.power_w, 2);
     if (products) os << std::setw(7) << fixed(l.rotation_deg, 0) << "  " << l.product;
     os << "\n";
     flux += l.flux_lm;

@@ -17,6 +17,7 @@ struct LuminaireRecord {
   double power_w = 0.0;
   std::string product;      // the product's name ("" for the plain panel)
   double rotation_deg = 0.0;
+  std::optional<double> above_floor_m = std::nullopt;  // the emitting face's height above the finished floor, when known
 };
 
 // One line of the bill of materials: a product and how many of it the layout uses.
@@ -68,7 +69,7 @@ struct AttemptRecord {
   bool feasible = false;
   double power_w = 0.0;
   std::string global_stop, local_stop;
-  std::string arrangement;  // a regular layout's ("3 x 4 field"); empty for free and array layouts
+  std::string arrangement = {};  // a regular layout's ("3 x 4 field"); empty for free and array layouts
 };
 
 struct ResultRecord {

@@ -169,7 +169,7 @@ TEST(IlpReliability, CandidateGridTooFineIsRefusedAtItsKey) {
   const std::string job = write_job(
       dir, "a", "",
       "luminaires:\n  size_m: 0.3\n  flux_lm: [10, 20000]\n  mounting_surface: ceiling\n"
-      "  candidate_spacing_m: 0.001\n  count: 1\ngoals:\n  - surface: mat\n    average_lux: 200\n");
+      "  candidate_spacing_m: 0.001\n  count: 1\n  zone: {margin_m: 10}\ngoals:\n  - surface: mat\n    average_lux: 200\n");
   const RunResult r = run_ilp(dir, {"run", job, "--out", dir.file("out"), "-q", "--no-cache"});
   expect_exit(r, 1);
   EXPECT_TRUE(OutputContains(r.err, job + ":9:"));

@@ -43,6 +43,13 @@ TEST(CacheKey, CandidateSpecCoversEveryField) {
       left_out<CandidateSpec>("mounting_loc", [](CandidateSpec& s) { s.mounting_loc = kAt; }),
       left_out<CandidateSpec>("spacing_loc", [](CandidateSpec& s) { s.spacing_loc = kAt; }),
       left_out<CandidateSpec>("offset_loc", [](CandidateSpec& s) { s.offset_loc = kAt; }),
+      {"zone_m", [](CandidateSpec& s) { s.zone_m = std::make_pair(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1)); }},
+      {"zone_margin_m", [](CandidateSpec& s) { s.zone_margin_m = 1.0; }},
+      {"suspended_height_m", [](CandidateSpec& s) { s.suspended_height_m = 3.0; }},
+      {"floor_surface", [](CandidateSpec& s) { s.floor_surface = "floor"; }},
+      left_out<CandidateSpec>("zone_loc", [](CandidateSpec& s) { s.zone_loc = kAt; }),
+      left_out<CandidateSpec>("suspended_loc", [](CandidateSpec& s) { s.suspended_loc = kAt; }),
+      left_out<CandidateSpec>("floor_loc", [](CandidateSpec& s) { s.floor_loc = kAt; }),
   });
 }
 

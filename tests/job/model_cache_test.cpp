@@ -477,12 +477,23 @@ TEST(ModelCache, EveryLuminaireSettingThatChangesTheCandidatesReachesTheKey) {
       left_out<LuminaireSearch>("count_loc", [&](LuminaireSearch& s) { s.count_loc = at; }),
       {"wall_distance_m", [](LuminaireSearch& s) { s.wall_distance_m = 0.3; }},
       {"ceiling_module_m", [](LuminaireSearch& s) { s.ceiling_module_m = 0.6; }},
-      left_out<LuminaireSearch>("layout", [](LuminaireSearch& s) { s.layout = LayoutFamily::array; }),
+      // An array keeps the whole surface (no zone from the goals): the candidates change.
+      {"layout", [](LuminaireSearch& s) { s.layout = LayoutFamily::array; }},
       left_out<LuminaireSearch>("array_rows", [](LuminaireSearch& s) { s.array_rows = 2; }),
       left_out<LuminaireSearch>("array_columns", [](LuminaireSearch& s) { s.array_columns = 2; }),
       left_out<LuminaireSearch>("array_spacing_m", [](LuminaireSearch& s) { s.array_spacing_m = Eigen::Vector2d(1, 1); }),
       left_out<LuminaireSearch>("array_offset_m", [](LuminaireSearch& s) { s.array_offset_m = Eigen::Vector2d(0.5, 0.5); }),
       left_out<LuminaireSearch>("layout_loc", [&](LuminaireSearch& s) { s.layout_loc = at; }),
+      left_out<LuminaireSearch>("regular", [](LuminaireSearch& s) { s.regular.rows = {2, 3}; }),
+      left_out<LuminaireSearch>("individual_output", [](LuminaireSearch& s) { s.individual_output = true; }),
+      {"zone_m", [](LuminaireSearch& s) { s.zone_m = std::make_pair(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1)); }},
+      {"zone_margin_m", [](LuminaireSearch& s) { s.zone_margin_m = 1.0; }},
+      left_out<LuminaireSearch>("zone_set", [](LuminaireSearch& s) { s.zone_set = true; }),  // matters for arrays only
+      left_out<LuminaireSearch>("zone_loc", [&](LuminaireSearch& s) { s.zone_loc = at; }),
+      {"suspended_height_m", [](LuminaireSearch& s) { s.suspended_height_m = 2.0; }},
+      left_out<LuminaireSearch>("suspended_loc", [&](LuminaireSearch& s) { s.suspended_loc = at; }),
+      {"floor_surface", [](LuminaireSearch& s) { s.floor_surface = "floor"; }},
+      left_out<LuminaireSearch>("floor_loc", [&](LuminaireSearch& s) { s.floor_loc = at; }),
   }, [&](const LuminaireSearch& search) {
     JobConfig j = job;
     j.search = search;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/scene/scene.h"
 
@@ -152,6 +153,50 @@ TEST(CandidateGrid, AWallDistanceAndACeilingModuleShapeWhereCandidatesGo) {
     }
   EXPECT_NEAR(module.nearest_candidate_m(Eigen::Vector2d(1.1, 2.05)).x(), 0.9, 1e-12);
   EXPECT_NEAR(module.nearest_candidate_m(Eigen::Vector2d(1.1, 2.05)).y(), 2.1, 1e-12);
+}
+
+}  // namespace
+}  // namespace ilp
+
+namespace ilp {
+namespace {
+
+TEST(CandidateGrid, AZoneKeepsCentresInsideIt) {
+  const Scene scene = ceiling_scene({Eigen::Vector4d(0, 6, 0, 4)});
+  const CandidateGrid grid(scene, 0,
+                           {.spacing_m = 0.5, .half_footprint_m = Eigen::Vector2d::Constant(0.3), .mount_offset_m = 0.05,
+                            .zone_m = Eigen::AlignedBox2d(Eigen::Vector2d(1.0, -2.0), Eigen::Vector2d(3.0, 2.5))});
+  // x: the zone [1, 3]; y: the surface's [0.3, ...] up to the zone's 2.5.
+  EXPECT_NEAR(grid.lower_m().x(), 1.0, 1e-12);
+  EXPECT_NEAR(grid.upper_m().x(), 3.0, 1e-12);
+  EXPECT_NEAR(grid.lower_m().y(), 0.3, 1e-12);
+  EXPECT_NEAR(grid.upper_m().y(), 2.5, 1e-12);
+  for (const Eigen::Vector3d& p : grid.positions_m()) {
+    EXPECT_GE(p.x(), 1.0 - 1e-12);
+    EXPECT_LE(p.x(), 3.0 + 1e-12);
+  }
+  EXPECT_LT((grid.surface_box_m().min() - Eigen::Vector2d(0, 0)).norm(), 1e-9);
+  EXPECT_LT((grid.surface_box_m().max() - Eigen::Vector2d(6, 4)).norm(), 1e-9);
+  EXPECT_THROW(CandidateGrid(scene, 0, {.spacing_m = 0.5, .half_footprint_m = Eigen::Vector2d::Constant(0.3),
+                                        .mount_offset_m = 0.05,
+                                        .zone_m = Eigen::AlignedBox2d(Eigen::Vector2d(7, 1), Eigen::Vector2d(9, 2))}),
+               std::invalid_argument)
+      << "a zone beside the surface holds no position";
+}
+
+TEST(CandidateGrid, MountDistanceIsZeroWhereALuminaireFitsAndTheGapElsewhere) {
+  // L: [0, 4] x [0, 2] and [0, 2] x [2, 4], a 0.4 m luminaire: centres in x, y >= 0.2
+  // and, over the upper arm, x <= 1.8.
+  const Scene scene = ceiling_scene({Eigen::Vector4d(0, 4, 0, 2), Eigen::Vector4d(0, 2, 2, 4)});
+  const CandidateGrid grid(scene, 0, {.spacing_m = 0.4, .half_footprint_m = Eigen::Vector2d::Constant(0.2), .mount_offset_m = 0.05});
+  EXPECT_EQ(grid.mount_distance_m(Eigen::Vector2d(1.0, 1.0)), 0.0);
+  EXPECT_EQ(grid.mount_distance_m(Eigen::Vector2d(1.0, 3.0)), 0.0);
+  // 0.15 m beyond the surface's lower edge (centres from y = 0.2): 0.15 + 0.2 away.
+  EXPECT_NEAR(grid.mount_distance_m(Eigen::Vector2d(1.0, -0.15)), 0.35, 1e-9);
+  // Over the open corner: at least to the arm's last centres (x 1.8 or y 1.8).
+  // Over the open corner: the nearest centre is (3.4, 1.8) or (1.8, 3.4) (nodes every 0.4 m from 0.2).
+  EXPECT_NEAR(grid.mount_distance_m(Eigen::Vector2d(3.5, 3.5)), std::hypot(0.1, 1.7), 1e-9);
+  EXPECT_EQ(grid.mount_distance_m(Eigen::Vector2d(std::nan(""), 1.0)), std::numeric_limits<double>::infinity());
 }
 
 }  // namespace

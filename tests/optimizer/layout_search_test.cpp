@@ -10,6 +10,7 @@
 #include "job/job_scene.h"
 #include "job/job_runner.h"
 #include "job/model_cache.h"
+#include "job/variant_search.h"
 #include "tests/optimizer/optimizer_test_scenes.h"
 
 namespace ilp {
@@ -514,6 +515,187 @@ TEST(LayoutSearch, GridGoalIsSearchedAndVerifiedAtItsPoints) {
   EXPECT_NEAR(outcome.flux_correction, 1.0, 0.04) << "predicted / verified at the points";
   EXPECT_EQ(outcome.verification.point_lux.size(), 25);
   EXPECT_TRUE(outcome.all_met);
+}
+
+}  // namespace
+}  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// A 4 x 4 m room with a floor-wide goal: 0.3 m panels, kept 0.8 m from the walls (their
+// centres from 0.95 m), so that members near the walls have no mounting point.
+JobConfig regular_job(const TempDir& dir, const std::string& layout) {
+  dir.write("room.obj", room_obj({}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [100, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  wall_distance_m: 0.8\n" + layout;
+  return load_job_config(
+      dir.write("job.yaml", room_job("0.3", luminaires, "  - surface: floor\n    average_lux: 200\n", kOptimizer)));
+}
+
+const CountAttempt* attempt_named(const SearchResult& r, const std::string& arrangement) {
+  for (const CountAttempt& a : r.attempts)
+    if (a.arrangement == arrangement) return &a;
+  return nullptr;
+}
+
+TEST(RegularLayoutSearch, ARowMemberWithoutAMountingPointMakesItsCountInfeasible) {
+  TempDir dir;
+  // 1 row of 3 along x: x = 4/6, 2, 10/3; the first is 0.28 m short of the legal 0.95.
+  const JobConfig job = regular_job(dir, "  layout: rows\n  rows: {rows: 1, per_row: [2, 3]}\n");
+  const PreparedJob prepared = test::prepare(job);
+  const SearchResult r = search_layout(prepared.model, prepared.plan.search);
+  const CountAttempt* three = attempt_named(r, "1 row of 3 along x");
+  ASSERT_NE(three, nullptr);
+  EXPECT_FALSE(three->feasible);
+  EXPECT_EQ(three->evaluations, 0);
+  EXPECT_NE(three->global_stop.find("the member at (0.67, 2.00) m has no mounting point on 'ceiling'"), std::string::npos)
+      << three->global_stop;
+  // Two fit (x = 1, 3) and are the answer, where they were laid.
+  ASSERT_EQ(r.best.luminaires.size(), 2u);
+  EXPECT_EQ(r.best.arrangement, "1 row of 2 along x");
+  EXPECT_NEAR(r.best.luminaires[0].position_m.x(), 1.0, 1e-9);
+  EXPECT_NEAR(r.best.luminaires[1].position_m.x(), 3.0, 1e-9);
+  EXPECT_NEAR(r.best.luminaires[0].position_m.y(), 2.0, 1e-9);
+  EXPECT_TRUE(r.best.feasible);
+  EXPECT_EQ(r.best.luminaires[0].flux_lm, r.best.luminaires[1].flux_lm) << "one output for the row";
+}
+
+TEST(RegularLayoutSearch, ABayMemberWithoutAMountingPointMakesItsCountInfeasible) {
+  TempDir dir;
+  // Bays of 2 x 2 m: 4 bays. Two per bay sit at x = 0.5, 1.5, 2.5, 3.5: 0.5 is 0.45 m
+  // short of the legal 0.95. One per bay (1, 3) fits.
+  const JobConfig job = regular_job(dir, "  layout: bays\n  bays: {module_m: [2, 2], origin_m: [0, 0], per_bay: [1, 2]}\n");
+  const PreparedJob prepared = test::prepare(job);
+  const SearchResult r = search_layout(prepared.model, prepared.plan.search);
+  const CountAttempt* two = attempt_named(r, "2 per bay, 4 bays of 2 x 2 m");
+  ASSERT_NE(two, nullptr);
+  EXPECT_FALSE(two->feasible);
+  EXPECT_NE(two->global_stop.find("the member at (0.50, 1.00) m has no mounting point"), std::string::npos)
+      << two->global_stop;
+  ASSERT_EQ(r.best.luminaires.size(), 4u);
+  for (const PlacedLuminaire& l : r.best.luminaires) {
+    EXPECT_NEAR(std::abs(l.position_m.x() - 2.0), 1.0, 1e-9) << "bay centres";
+    EXPECT_NEAR(std::abs(l.position_m.y() - 2.0), 1.0, 1e-9);
+  }
+}
+
+TEST(RegularLayoutSearch, NoMountableArrangementIsRefusedWithThePosition) {
+  TempDir dir;
+  const JobConfig job = regular_job(dir, "  layout: rows\n  rows: {rows: 1, per_row: 3}\n");
+  std::vector<PreparedJob> prepared;
+  prepared.push_back(test::prepare(job));
+  const SearchResult r = search_layout(prepared[0].model, prepared[0].plan.search);
+  EXPECT_TRUE(r.beaten);
+  EXPECT_NE(r.refused.find("the member at (0.67, 2.00) m"), std::string::npos) << r.refused;
+  try {
+    solve_variants(prepared, job, {}, {});
+    FAIL() << "a job whose only layout cannot be mounted is refused";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("luminaires.layout: no arrangement can be mounted"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RegularLayoutSearch, AFieldIsCentredOnTheZoneAtOneOutputAndMeetsItsGoal) {
+  TempDir dir;
+  const JobConfig job = regular_job(dir, "  layout: field\n  field: {rows: [1, 3], columns: [1, 3]}\n");
+  const JobOutcome outcome = solve_prepared(test::prepare(job), job);
+  ASSERT_TRUE(outcome.all_met);
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const PlacedLuminaire& l : outcome.luminaires) {
+    centre += l.position_m.head<2>() / static_cast<double>(outcome.luminaires.size());
+    EXPECT_EQ(l.flux_lm, outcome.luminaires[0].flux_lm);
+  }
+  EXPECT_NEAR(centre.x(), 2.0, 1e-9);
+  EXPECT_NEAR(centre.y(), 2.0, 1e-9);
+}
+
+TEST(RegularLayoutSearch, ThePlainPanelDimsTogetherUnlessIndividualOutputIsAsked) {
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"left", {1.0, 1.2}}, {"right", {3.0, 2.8}}}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [100, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  count: 2\n";
+  const std::string goals = "  - surface: left\n    average_lux: 100\n  - surface: right\n    average_lux: 400\n";
+  const JobConfig equal = load_job_config(dir.write("equal.yaml", room_job("0", luminaires, goals, kOptimizer)));
+  EXPECT_TRUE(test::spec(equal).luminaire.uniform_output);
+  const JobOutcome a = solve_prepared(test::prepare(equal), equal);
+  ASSERT_EQ(a.luminaires.size(), 2u);
+  EXPECT_EQ(a.luminaires[0].flux_lm, a.luminaires[1].flux_lm);
+  const JobConfig own =
+      load_job_config(dir.write("own.yaml", room_job("0", luminaires + "  output: individual\n", goals, kOptimizer)));
+  EXPECT_FALSE(test::spec(own).luminaire.uniform_output);
+  const JobOutcome b = solve_prepared(test::prepare(own), own);
+  ASSERT_EQ(b.luminaires.size(), 2u);
+  EXPECT_GT(std::max(b.luminaires[0].flux_lm, b.luminaires[1].flux_lm),
+            1.5 * std::min(b.luminaires[0].flux_lm, b.luminaires[1].flux_lm))
+      << "each its own flux: the right mat wants four times the light";
+}
+
+}  // namespace
+}  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// A 10 x 10 x 8 m hall with no ceiling: floor and four walls, black.
+std::string open_hall_obj() {
+  return "g floor\nv 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nf 1 2 3 4\n"
+         "g walls\nv 0 0 0\nv 0 0 8\nv 10 0 8\nv 10 0 0\nf 5 6 7 8\n"
+         "v 10 0 0\nv 10 0 8\nv 10 10 8\nv 10 10 0\nf 9 10 11 12\n"
+         "v 10 10 0\nv 10 10 8\nv 0 10 8\nv 0 10 0\nf 13 14 15 16\n"
+         "v 0 10 0\nv 0 10 8\nv 0 0 8\nv 0 0 0\nf 17 18 19 20\n";
+}
+
+TEST(SuspendedLuminaires, AHighBayHangsAtItsHeightAboveTheFloorWithoutACeiling) {
+  TempDir dir;
+  dir.write("hall.obj", open_hall_obj());
+  const std::string job_text =
+      "scene:\n  mesh: hall.obj\n  max_patch_edge_m: 1.0\n  default_reflectance: 0\n"
+      "luminaires:\n  size_m: 0.6\n  flux_lm: [100, 100000]\n  efficacy_lm_per_w: 100\n"
+      "  suspended: {height_m: 6}\n  floor_surface: floor\n  candidate_spacing_m: 0.5\n"
+      "  layout: field\n  field: {rows: 1, columns: 1}\n"
+      "grids:\n  - {name: spot, rectangle_m: [[4.8, 4.8], [5.2, 5.2]], height_m: 0.01, border_m: 0, spacing_m: 0.4}\n"
+      "goals:\n  - grid: spot\n    min_lux: 100\n"
+      "solver:\n  rays_per_patch: 64\n  seed: 3\n  sample_fraction: 0.2\nverification:\n  rays_per_patch: 64\n";
+  const JobConfig job = load_job_config(dir.write("job.yaml", job_text));
+  const PreparedJob prepared = test::prepare(job);
+  ASSERT_TRUE(prepared.model.floor_z_m.has_value());
+  EXPECT_NEAR(*prepared.model.floor_z_m, 0.0, 1e-12);
+  const JobOutcome outcome = solve_prepared(prepared, job);
+  ASSERT_EQ(outcome.luminaires.size(), 1u);
+  const Eigen::Vector3d p = outcome.luminaires[0].position_m;
+  EXPECT_NEAR(p.x(), 5.0, 1e-9);
+  EXPECT_NEAR(p.y(), 5.0, 1e-9);
+  EXPECT_NEAR(p.z(), 6.0, 1e-12) << "the emitting face 6 m above the floor";
+  // The point 5.99 m below the centre of a 0.6 m Lambertian square: E = (flux / A) F,
+  // F four times the corner form factor of a 0.3 x 0.3 m rectangle at 5.99 m.
+  const double x = 0.3 / 5.99, s = std::sqrt(1.0 + x * x);
+  const double f = 4.0 * (1.0 / (2.0 * std::numbers::pi)) * 2.0 * (x / s) * std::atan(x / s);
+  const double flux_lm = 100.0 * 0.36 / f;
+  EXPECT_NEAR(outcome.luminaires[0].flux_lm, flux_lm, 0.005 * flux_lm);
+  EXPECT_TRUE(outcome.all_met);
+}
+
+TEST(SuspendedLuminaires, AHeightAtOrAboveTheTopOfTheSceneIsRefused) {
+  TempDir dir;
+  dir.write("hall.obj", open_hall_obj());
+  const std::string job_text =
+      "scene:\n  mesh: hall.obj\n  max_patch_edge_m: 1.0\n  default_reflectance: 0\n"
+      "luminaires:\n  size_m: 0.6\n  flux_lm: [100, 100000]\n  efficacy_lm_per_w: 100\n"
+      "  suspended: {height_m: 9}\n  floor_surface: floor\n  layout: field\n"
+      "goals:\n  - surface: floor\n    average_lux: 100\n";
+  const JobConfig job = load_job_config(dir.write("job.yaml", job_text));
+  try {
+    test::prepare(job);
+    FAIL() << "a luminaire above the hall's walls";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("job.yaml:9:"), std::string::npos) << what;
+    EXPECT_NE(what.find("luminaires.suspended.height_m = 9: at z = 9 m, at or above the top of the scene"), std::string::npos)
+        << what;
+  }
 }
 
 }  // namespace
