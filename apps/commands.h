@@ -88,6 +88,13 @@ int run_inspect(const InspectArgs& args);
 // $XDG_CACHE_HOME/ilp, else $HOME/.cache/ilp, else .ilp-cache in the working directory.
 std::string default_cache_dir();
 
+struct UgrTableArgs {
+  std::string file;           // a photometric file (.ies, .ldt)
+  bool csv = false;           // 19 rows x 10 columns, two decimals, no header
+  bool levin_formula = false; // position index by Levin's formula instead of CIE 117's table
+};
+int run_ugr_table(const UgrTableArgs& args);
+
 struct PrintArgs {
   std::string result;         // result.json
 };

@@ -155,6 +155,17 @@ CLI::App* add_inspect_command(CLI::App& app, ilp::cli::InspectArgs& args) {
   return command;
 }
 
+// The CIE 190 UGR table of a photometric file: `ilp ugr-table`.
+CLI::App* add_ugr_table_command(CLI::App& app, ilp::cli::UgrTableArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "ugr-table", "Print the CIE 190 unified glare rating table of a photometric file: rooms 2H x 2H to 12H x 8H, "
+                   "reflectances 70/50/20 ... 30/30/20, crosswise and endwise, spacing 0.25H, at the file's flux");
+  command->add_option("file", args.file, "photometric file (.ies, .ldt)")->required();
+  command->add_flag("--csv", args.csv, "19 rows x 10 columns (crosswise, then endwise), no header");
+  command->add_flag("--levin", args.levin_formula, "position index by Levin's formula instead of CIE 117 Table 4.1");
+  return command;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -176,6 +187,8 @@ int main(int argc, char** argv) {
   CLI::App* bench = add_bench_command(app, bench_args);
   ilp::cli::InspectArgs inspect_args;
   CLI::App* inspect = add_inspect_command(app, inspect_args);
+  ilp::cli::UgrTableArgs ugr_table_args;
+  CLI::App* ugr_table = add_ugr_table_command(app, ugr_table_args);
 
   try {
     app.parse(argc, argv);
@@ -192,6 +205,7 @@ int main(int argc, char** argv) {
     if (*print) return ilp::cli::run_print(print_args);
     if (*bench) return ilp::cli::run_bench(bench_args);
     if (*inspect) return ilp::cli::run_inspect(inspect_args);
+    if (*ugr_table) return ilp::cli::run_ugr_table(ugr_table_args);
   } catch (const std::bad_alloc&) {
     std::cerr << "error: out of memory (a smaller job: larger scene.max_patch_edge_m, fewer rays or candidates)\n";
     return 1;
