@@ -1,0 +1,65 @@
+// The shipped office_products job end to end (issue 19): the layout a designer would
+// build, a regular field of real luminaires, judged from the result.json it writes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "output/result_record.h"
+#include "tests/apps/cli_runner.h"
+#include "tests/test_support.h"
+
+namespace {
+
+using ilp::test::run_ilp;
+using ilp::test::RunResult;
+using ilp::test::TempDir;
+
+// The distinct values of a coordinate (within 1 mm), ascending.
+std::vector<double> distinct(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  std::vector<double> out;
+  for (double x : v)
+    if (out.empty() || x - out.back() > 1e-3) out.push_back(x);
+  return out;
+}
+
+// Equal steps between sorted values, within the tolerance.
+void expect_equal_spacing(const std::vector<double>& at, double tolerance_m, const char* axis) {
+  for (std::size_t i = 2; i < at.size(); ++i)
+    EXPECT_NEAR(at[i] - at[i - 1], at[1] - at[0], tolerance_m) << axis << " spacing " << i;
+}
+
+TEST(IlpLayouts, OfficeProductsIsACentredFieldAtOneOutputThatMeetsEveryGoal) {
+  TempDir dir;
+  const RunResult r = run_ilp(dir, {"run", ILP_SOURCE_DIR "/configs/office_products.yaml", "--out", dir.file("out"), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const ilp::ResultRecord result = ilp::read_result_json(dir.file("out/result.json"));
+  EXPECT_EQ(result.layout_family, "field");
+  EXPECT_NE(result.arrangement.find("field"), std::string::npos);
+  ASSERT_GE(result.luminaires.size(), 2u);
+  std::vector<double> xs, ys;
+  for (const ilp::LuminaireRecord& l : result.luminaires) {
+    xs.push_back(l.x_m);
+    ys.push_back(l.y_m);
+    EXPECT_EQ(l.flux_lm, result.luminaires[0].flux_lm) << l.id << ": one output for the field";
+    EXPECT_EQ(l.product, result.luminaires[0].product);
+  }
+  const std::vector<double> columns = distinct(xs), rows = distinct(ys);
+  EXPECT_EQ(columns.size() * rows.size(), result.luminaires.size()) << "every row has every column";
+  expect_equal_spacing(columns, 0.01, "x");
+  expect_equal_spacing(rows, 0.01, "y");
+  // The office's room is [0, 6] x [0, 4] m.
+  EXPECT_NEAR(0.5 * (columns.front() + columns.back()), 3.0, 0.02);
+  EXPECT_NEAR(0.5 * (rows.front() + rows.back()), 2.0, 0.02);
+  EXPECT_TRUE(result.all_met);
+  for (const ilp::GoalRecord& g : result.goals) {
+    ASSERT_TRUE(g.verified.has_value()) << g.name;
+    EXPECT_TRUE(g.met) << g.name << " " << g.metric;
+  }
+}
+
+}  // namespace
