@@ -36,12 +36,15 @@ double mirror_asymmetry(const Photometry& p, const Mirror& mirror) {
   return sum > 0.0 ? diff / sum : 0.0;
 }
 
-// Intensity-weighted mean |sin gamma| over the half-planes c and c + 180.
+// Intensity-weighted mean |sin gamma| over the half-planes c and c + 180 (trapezoid
+// rule in gamma).
 double plane_spread(const Photometry& p, double c) {
+  constexpr int kSteps = static_cast<int>(180.0 / kStepGammaDeg);
   double weighted = 0.0, total = 0.0;
   for (double half : {c, c + 180.0})
-    for (double g = 0.0; g <= 180.0; g += kStepGammaDeg) {
-      const double i = p.intensity_cd(half, g);
+    for (int k = 0; k <= kSteps; ++k) {
+      const double g = k * kStepGammaDeg;
+      const double i = p.intensity_cd(half, g) * (k == 0 || k == kSteps ? 0.5 : 1.0);
       weighted += i * std::abs(sin_deg(g));
       total += i;
     }
