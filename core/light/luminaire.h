@@ -5,9 +5,10 @@
 // the direct light asks it for its intensity (core/light/direct_light.h), the candidate
 // grid for its footprint, the operator cache for its key.
 //
-// Frames. A luminaire's own frame has z up, the opening's centre at the origin, its
-// length along +x (the C0-C180 axis of a photometric file) and its width along +y
-// (C90-C270); it hangs facing down (gamma 0 = nadir = -z). The placement first tilts
+// Frames. A luminaire's own frame has z up, the opening's centre at the origin, the
+// C0-C180 axis of a photometric file along +x (length_m: the opening's extent along x,
+// the file's length or width as photometric_opening decides) and C90-C270 along +y
+// (width_m); it hangs facing down (gamma 0 = nadir = -z). The placement first tilts
 // that frame about its own y axis (the C90-C270 axis) so that its nadir swings toward
 // its +x (C0), by tilt_deg in [0, 90] (90: facing horizontally along C0), then turns it
 // counter-clockwise about the scene's z axis by rotation_deg, seen from above. So a
