@@ -183,6 +183,27 @@ TEST(TiltedLuminaire, FacingSidewaysAtNinetyDegreesItLightsTheWallInFrontAndNoth
   }
 }
 
+TEST(TiltedLuminaire, ASidewaysOpeningIsShadedByWhatStandsInFrontOfIt) {
+  // A panel at tilt 90 (facing +x) at height 2, a 1 x 1 m blocker at x = 1 in front of it:
+  // the wall point straight ahead gets nothing, one beside the blocker's shadow all of the
+  // closed form, one in the penumbra part of it.
+  Scene scene = reference::make_quad_scene(
+      {{"blocker", V(1, -0.5, 1.5), V(1, 0.5, 1.5), V(1, 0.5, 2.5), V(1, -0.5, 2.5)},
+       {"blocker", V(1, 0.5, 1.5), V(1, -0.5, 1.5), V(1, -0.5, 2.5), V(1, 0.5, 2.5)}},
+      0.0);
+  const V at(0, 0, 2);
+  add_luminaire(scene, "washer", LuminaireType::square_lambertian(0.6), {at, 0.0, 90.0}, 1.0);
+  const std::vector<ReceiverPoint> points{{V(2, 0, 2), -V::UnitX()}, {V(2, 2.5, 2), -V::UnitX()}, {V(2, 0.95, 2), -V::UnitX()}};
+  const Eigen::VectorXd lux = lux_per_lm(scene, points);
+  const Axes a = axes(0.0, 90.0);
+  const double open_beside = lambertian_point_sum(at, a, 0.6, 0.6, points[1].position_m, points[1].normal, 300);
+  const double open_penumbra = lambertian_point_sum(at, a, 0.6, 0.6, points[2].position_m, points[2].normal, 300);
+  EXPECT_EQ(lux[0], 0.0);
+  EXPECT_NEAR(lux[1], open_beside, 1e-3 * open_beside);
+  EXPECT_GT(lux[2], 0.05 * open_penumbra);
+  EXPECT_LT(lux[2], 0.95 * open_penumbra);
+}
+
 TEST(TiltedLuminaire, ATurnedLuminairesLightEqualsTheSameLuminaireWithTheSceneTurnedTheOtherWay) {
   // Issue 19: "a rotated luminaire's direct light matches the same luminaire turned in
   // the scene". Luminaire turned by r: points x; luminaire not turned: points turned
