@@ -189,6 +189,24 @@ TEST(OpeningAxis, EachSharedFileRunsTheWayItsFormatDimensionsAndCurvesSay) {
   }
 }
 
+TEST(OpeningAxis, EachShippedProductRunsTheWayItsFormatDimensionsAndCurvesSay) {
+  // data/photometry: byte copies of three shared files (see its README), so the same
+  // decisions and reasons as sample_17, sample_01 and examp1 above.
+  const FileCase cases[] = {
+      {"erco_iku_downlight.ldt", 0, 0.076, 0.076, "not a linear opening"},  // round
+      {"linear_led_2112lm.ldt", 90, 0.038, 1.201, "symmetric end to end only along C90-C270"},
+      {"ledalite_direct_indirect.ies", 0, 1.231392, 0.259080, "IES LM-63"},  // "0 degree plane parallel to lamps"
+  };
+  for (const FileCase& c : cases) {
+    const Photometry p = load_photometry(kData + c.file);
+    const PhotometricOpening o = photometric_opening(p);
+    EXPECT_EQ(o.length_axis_c_deg, c.length_axis_c_deg) << c.file << ": " << o.reason;
+    EXPECT_NEAR(o.along_c0_m, c.along_c0_m, 1e-6) << c.file;
+    EXPECT_NEAR(o.along_c90_m, c.along_c90_m, 1e-6) << c.file;
+    EXPECT_NE(o.reason.find(c.why), std::string::npos) << c.file << ": " << o.reason;
+  }
+}
+
 TEST(OpeningAxis, TheIesCurvesThatTheStandardOverrules) {
   // examp1.ies ("0 degree plane parallel to lamps"): its curves agree with LM-63, the
   // C0-C180 plane (along the lamps) is the narrower. overhead.ies (a 2 x 4 ft high-bay):

@@ -80,32 +80,54 @@ Scene floor_and_wall() {
                                     0.0);
 }
 
-TEST(TiltedLuminaire, APointWebTiltedThirtyAndTurnedFortyGivesSumOfICosOverDSquaredOnFloorAndWall) {
+// Illuminance from the point web placed `at` at each point against sum I(C, gamma)
+// cos(incidence) / d^2 with C and gamma in the test's own frame; the largest relative error.
+double check_point_web(const LuminairePlacement& at, const std::vector<ReceiverPoint>& points) {
   const auto web = synthetic_point_web();
-  const double rotation = 40.0, tilt = 30.0;
-  const V at(0.5, -0.5, 3.0);
   Scene scene = floor_and_wall();
-  add_luminaire(scene, "spot", photometric_luminaire_type("spot", web), {at, rotation, tilt}, 1.0);
-  std::vector<ReceiverPoint> points;
-  for (const V& x : {V(0.5, -0.5, 0), V(2, 1, 0), V(3, -1, 0), V(1, 2.5, 0), V(-1, 0.5, 0), V(2.5, 3, 0)})
-    points.push_back({x, V::UnitZ()});
-  for (const V& x : {V(4, 0, 1), V(4, 1.5, 2), V(4, -1, 0.5), V(4, 2.5, 2.5)}) points.push_back({x, -V::UnitX()});
+  add_luminaire(scene, "spot", photometric_luminaire_type("spot", web), at, 1.0);
   const Eigen::VectorXd lux = web->luminaire_flux_lm * lux_per_lm(scene, points);
-  const Axes a = axes(rotation, tilt);
+  const Axes a = axes(at.rotation_deg, at.tilt_deg);
   double worst = 0.0;
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const V d = points[k].position_m - at;
+    const V d = points[k].position_m - at.position_m;
     const V local(d.dot(a.x), d.dot(a.y), d.dot(a.z));
     const double gamma = std::acos(-local.z() / local.norm()) / kDeg;
     const double c = std::atan2(local.y(), local.x()) / kDeg;
     const double cos_incidence = -points[k].normal.dot(d) / d.norm();
     const double expected = web_cd(c, gamma) * cos_incidence / d.squaredNorm();
-    ASSERT_GT(expected, 0.5) << "a point the spot lights: " << points[k].position_m.transpose();
+    EXPECT_GT(expected, 0.5) << "a point the spot lights: " << points[k].position_m.transpose();
     EXPECT_NEAR(lux[static_cast<Eigen::Index>(k)], expected, 5e-3 * expected)
         << points[k].position_m.transpose() << " C " << c << " gamma " << gamma;
     worst = std::max(worst, std::abs(lux[static_cast<Eigen::Index>(k)] / expected - 1.0));
   }
-  std::cout << "tilted point web: largest relative error " << worst << " over " << points.size() << " points\n";
+  return worst;
+}
+
+TEST(TiltedLuminaire, APointWebTiltedThirtyAndTurnedFortyGivesSumOfICosOverDSquaredOnFloorAndWall) {
+  std::vector<ReceiverPoint> points;
+  for (const V& x : {V(0.5, -0.5, 0), V(2, 1, 0), V(3, -1, 0), V(1, 2.5, 0), V(-1, 0.5, 0), V(2.5, 3, 0)})
+    points.push_back({x, V::UnitZ()});
+  for (const V& x : {V(4, 0, 1), V(4, 1.5, 2), V(4, -1, 0.5), V(4, 2.5, 2.5)}) points.push_back({x, -V::UnitX()});
+  const double worst = check_point_web({V(0.5, -0.5, 3.0), 40.0, 30.0}, points);
+  std::cout << "tilted point web (30 deg, turned 40): largest relative error " << worst << " over " << points.size()
+            << " points\n";
+}
+
+TEST(TiltedLuminaire, APointWebAimedSidewaysAndTurnedGivesTheSameClosedForm) {
+  // Tilt 90, turned -120: it aims at (-0.5, -0.866, 0). Points 1.5 m away in directions
+  // (C, gamma) of its own frame (C0 now points up), each on a plane tilted toward it.
+  const LuminairePlacement at{V(0.5, -0.5, 1.5), -120.0, 90.0};
+  const Axes a = axes(at.rotation_deg, at.tilt_deg);
+  std::vector<ReceiverPoint> points;
+  for (double c : {7.3, 71.1, 152.6, 223.9, 301.7})  // between the web's nodes
+    for (double gamma : {11.3, 33.7, 48.2}) {
+      const V dir = std::sin(gamma * kDeg) * (std::cos(c * kDeg) * a.x + std::sin(c * kDeg) * a.y) - std::cos(gamma * kDeg) * a.z;
+      points.push_back({at.position_m + 1.5 * dir, (-dir + V(0.2, -0.1, 0.3)).normalized()});
+    }
+  const double worst = check_point_web(at, points);
+  std::cout << "point web aimed sideways (90 deg, turned -120): largest relative error " << worst << " over "
+            << points.size() << " points\n";
 }
 
 // Illuminance per lumen of a Lambertian rectangle (length along `a.x`, width along
