@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/base/error.h"
+#include "core/light/opening_axis.h"
 #include "core/light/photometry.h"
 
 namespace ilp {
@@ -52,6 +53,8 @@ ProductVariant photometric_base(const ProductSetting& p) {
                     " W, " + format(100.0 * photometry->upward_fraction) + " % upward, opening " +
                     format(v.type.length_m) + " x " + format(v.type.width_m) + " m " +
                     (v.type.shape == OutlineShape::disc ? "round" : "rectangular"));
+  if (v.type.shape == OutlineShape::rectangle)
+    v.notes.push_back("product '" + p.name + "': opening " + photometric_opening(*photometry).reason);
   for (const std::string& w : photometry->warnings) v.notes.push_back("warning: " + w);
   return v;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -148,7 +149,17 @@ std::vector<IsoluxLuminaire> isolux_luminaires(const CalcGrid& grid, const std::
     IsoluxLuminaire d;
     d.id = l.id;
     d.product = l.product;
-    if (grid.kind == GridKind::horizontal) {
+    if (grid.kind == GridKind::horizontal && l.at.tilt_deg != 0.0) {
+      // A tilted outline projected on the plan, as its box in the luminaire's turned axes.
+      const Eigen::Rotation2Dd turn(l.at.rotation_deg * std::numbers::pi / 180.0);
+      Eigen::AlignedBox2d box;
+      for (const Eigen::Vector3d& v : luminaire_outline_m(l.type, l.at))
+        box.extend(turn.inverse() * (v - l.at.position_m).head<2>());
+      d.centre_m = l.at.position_m.head<2>() + turn * box.center();
+      d.length_m = box.sizes().x();
+      d.width_m = std::max(kMinThickness_m, box.sizes().y());
+      d.rotation_deg = l.at.rotation_deg;
+    } else if (grid.kind == GridKind::horizontal) {
       d.centre_m = l.at.position_m.head<2>();
       d.length_m = l.type.length_m;
       d.width_m = l.type.width_m;

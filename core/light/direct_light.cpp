@@ -99,7 +99,7 @@ std::vector<LuminaireGeometry> luminaire_geometry(const Scene& scene, std::span<
     LuminaireGeometry& g = out[l];
     g.type = &lum.type;
     g.centre_m = lum.placement.position_m;
-    g.to_scene = luminaire_rotation(lum.placement.rotation_deg);
+    g.to_scene = luminaire_rotation(lum.placement);
     g.to_local = g.to_scene.transpose();
     g.size_m = std::max(lum.type.length_m, lum.type.width_m);
     g.lambertian = lum.type.lambertian();

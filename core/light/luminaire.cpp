@@ -7,6 +7,8 @@
 #include <iomanip>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "core/base/key_hash.h"
 
@@ -48,8 +50,8 @@ std::vector<Eigen::Vector3d> LuminaireType::outline_local() const {
   return out;
 }
 
-Eigen::Vector2d LuminaireType::half_footprint_m(double rotation_deg) const {
-  const Eigen::Matrix3d r = luminaire_rotation(rotation_deg);
+Eigen::Vector2d LuminaireType::half_footprint_m(double rotation_deg, double tilt_deg) const {
+  const Eigen::Matrix3d r = luminaire_rotation(rotation_deg, tilt_deg);
   Eigen::Vector2d half = Eigen::Vector2d::Zero();
   for (const Eigen::Vector3d& v : outline_local()) half = half.cwiseMax((r * v).head<2>().cwiseAbs());
   return half;
@@ -68,15 +70,28 @@ LuminaireType LuminaireType::square_lambertian(double size_m) {
   return t;
 }
 
-Eigen::Matrix3d luminaire_rotation(double rotation_deg) {
-  return Eigen::AngleAxisd(rotation_deg * std::numbers::pi / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+Eigen::Matrix3d luminaire_rotation(double rotation_deg, double tilt_deg) {
+  if (!std::isfinite(rotation_deg) || !(tilt_deg >= 0.0 && tilt_deg <= 90.0))
+    throw std::invalid_argument("luminaire rotation " + std::to_string(rotation_deg) + " deg, tilt " +
+                                std::to_string(tilt_deg) + " deg: the rotation must be finite, the tilt in [0, 90]");
+  constexpr double kRad = std::numbers::pi / 180.0;
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(rotation_deg * kRad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  if (tilt_deg == 0.0) return turn;  // bit for bit what an untilted luminaire always had
+  return turn * Eigen::AngleAxisd(-tilt_deg * kRad, Eigen::Vector3d::UnitY()).toRotationMatrix();
 }
 
+Eigen::Matrix3d luminaire_rotation(const LuminairePlacement& at) { return luminaire_rotation(at.rotation_deg, at.tilt_deg); }
+
 std::vector<Eigen::Vector3d> luminaire_outline_m(const LuminaireType& type, const LuminairePlacement& at) {
-  const Eigen::Matrix3d r = luminaire_rotation(at.rotation_deg);
+  const Eigen::Matrix3d r = luminaire_rotation(at);
   std::vector<Eigen::Vector3d> out = type.outline_local();
   for (Eigen::Vector3d& v : out) v = at.position_m + r * v;
   return out;
+}
+
+static_assert(field_count<LuminairePlacement>() == 3, "LuminairePlacement changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const LuminairePlacement& p) {
+  k.field("position_m", p.position_m).field("rotation_deg", p.rotation_deg).field("tilt_deg", p.tilt_deg);
 }
 
 static_assert(field_count<LuminaireType>() == 5, "LuminaireType changed: hash the new field here (or say why not)");

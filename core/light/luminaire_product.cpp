@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/base/error.h"
+#include "core/light/opening_axis.h"
 
 namespace ilp {
 namespace {
@@ -49,15 +50,17 @@ std::string PhotometricDistribution::key() const {
   return os.str();
 }
 
-LuminaireType photometric_luminaire_type(const std::string& name, std::shared_ptr<const Photometry> photometry) {
+LuminaireType photometric_luminaire_type(const std::string& name, std::shared_ptr<const Photometry> photometry,
+                                         std::optional<double> length_axis_c_deg) {
   LuminaireType t;
   t.name = name;
   const LuminousOpening& o = photometry->opening;
   const bool flat_rectangle = o.shape == OpeningShape::rectangle && o.length_m > 0.0 && o.width_m > 0.0;
   if (flat_rectangle) {
+    const PhotometricOpening laid = photometric_opening(*photometry, length_axis_c_deg);
     t.shape = OutlineShape::rectangle;
-    t.length_m = o.length_m;
-    t.width_m = o.width_m;
+    t.length_m = laid.along_c0_m;  // LuminaireType: length along local x (C0)
+    t.width_m = laid.along_c90_m;
   } else {
     t.shape = OutlineShape::disc;
     const double d = std::max(o.length_m, o.width_m);

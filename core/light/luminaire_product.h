@@ -34,8 +34,12 @@ class PhotometricDistribution final : public IntensityDistribution {
 
 // The luminaire type of a photometric file: its distribution and its luminous opening
 // (a rectangle, or a disc for round, cylindrical and point openings; a point source
-// gets a 0.1 m disc so that it has an outline that shades and can be drawn).
-LuminaireType photometric_luminaire_type(const std::string& name, std::shared_ptr<const Photometry> photometry);
+// gets a 0.1 m disc so that it has an outline that shades and can be drawn). The
+// rectangle's length runs along the axis photometric_opening (core/light/opening_axis.h)
+// decides, `length_axis_c_deg` (0 or 90) overriding it for a product that says so, so
+// that the outline lies the way the curves were measured.
+LuminaireType photometric_luminaire_type(const std::string& name, std::shared_ptr<const Photometry> photometry,
+                                         std::optional<double> length_axis_c_deg = std::nullopt);
 
 struct ProductVariant {
   std::string product;     // the product's name

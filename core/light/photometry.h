@@ -5,7 +5,8 @@
 // Frame (the luminaire's own, metres): z up, the luminaire hangs facing -z. Type C angles:
 // gamma 0 = nadir (straight down, -z), 90 = horizontal, 180 = straight up; C is measured
 // counter-clockwise from +x seen from above, so C0 = +x, C90 = +y, C180 = -x, C270 = -y.
-// The C0-C180 plane is the luminaire's length axis (IES "length", EULUMDAT "length").
+// The file's length runs along C0-C180 (IES, LM-63) or the axis photometric_opening
+// (core/light/opening_axis.h) finds for an EULUMDAT linear luminaire.
 #pragma once
 
 #include <Eigen/Core>
@@ -43,8 +44,9 @@ enum class OpeningShape { point, rectangle, disc, cylinder };
 // The luminous opening, metres, in the luminaire's frame, centred on its origin.
 struct LuminousOpening {
   OpeningShape shape = OpeningShape::point;
-  double length_m = 0;  // along the C0-C180 axis (local +x)
-  double width_m = 0;   // along the C90-C270 axis (local +y); disc/cylinder: the diameter in y
+  double length_m = 0;  // the file's length (IES length; EULUMDAT field 16): along C0-C180 unless
+                        // photometric_opening lays it along C90-C270
+  double width_m = 0;   // the file's width, across the length; disc/cylinder: the diameter
   double height_m = 0;  // luminous sides (rectangle) or the cylinder's height; 0 for a flat opening
 };
 

@@ -148,7 +148,9 @@ TEST(ProductVariants, RotationsWattsAndFluxComeFromTheFileUnlessGiven) {
   EXPECT_EQ(v[2].rotation_deg, 90.0);
   EXPECT_NEAR(v[1].rated_flux_lm, 4222.4, 1e-9);
   EXPECT_NEAR(v[1].power_w, 2.0 * 22.3, 0.05);
-  EXPECT_NEAR(v[1].type.length_m, 1.201, 1e-9);
+  // Its 1.201 m length runs along C90 (local y): photometric_opening, OpeningAxis.* tests.
+  EXPECT_NEAR(v[1].type.length_m, 0.038, 1e-9);
+  EXPECT_NEAR(v[1].type.width_m, 1.201, 1e-9);
 
   JobConfig job;
   job.search.emplace();

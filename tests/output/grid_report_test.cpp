@@ -140,6 +140,23 @@ TEST(GridPlan, LuminairesKeepTheirRealSizeAndRotation) {
   EXPECT_DOUBLE_EQ(on_wall[0].width_m, 0.02);
 }
 
+TEST(GridPlan, ATiltedLuminaireIsDrawnAsItsOutlineProjectedOnThePlan) {
+  // 1.2 x 0.1 m, turned 30 degrees and tilted 60 about its width axis: on the plan its
+  // length shrinks to 1.2 cos 60 = 0.6 m, still along 30 degrees, centred where it hangs.
+  CalcGrid g;
+  ilp::LuminaireType linear = ilp::LuminaireType::square_lambertian(0.6);
+  linear.length_m = 1.2;
+  linear.width_m = 0.1;
+  ilp::LuminairePlacement at{Eigen::Vector3d(1, 2, 2.9), 30.0, 60.0};
+  const auto drawn = ilp::isolux_luminaires(g, {{"L1", "linear", linear, at}});
+  ASSERT_EQ(drawn.size(), 1u);
+  EXPECT_TRUE(drawn[0].centre_m.isApprox(V2(1, 2)));
+  EXPECT_NEAR(drawn[0].length_m, 0.6, 1e-9);
+  EXPECT_NEAR(drawn[0].width_m, 0.1, 1e-9);
+  EXPECT_DOUBLE_EQ(drawn[0].rotation_deg, 30.0);
+  EXPECT_FALSE(drawn[0].round);
+}
+
 TEST(GridFiles, StemsAreSafeFileNamesAndUnique) {
   EXPECT_EQ(ilp::isolux_file_stems({"work_plane", "board/left", "board left", "Tafel-1.a"}),
             (std::vector<std::string>{"isolux_work_plane", "isolux_board_left", "isolux_board_left_2", "isolux_Tafel-1.a"}));
