@@ -207,7 +207,7 @@ int run_solve(const SolveArgs& args) {
                                          static_cast<double>(c.population), job.sample.size_for(c.population)))
                                    : 0;
     }
-    const std::optional<double> budget = memory_budget_bytes(run.max_memory_bytes);
+    const std::optional<MemoryBudget> budget = memory_budget(run.max_memory_bytes);
     const CostEstimate estimate = estimate_job_cost(c);
     for (const std::string& line : format_estimate(estimate)) std::cerr << line << "\n";
     require_fits(estimate, budget, job.path);
