@@ -251,6 +251,17 @@ std::vector<std::string> write_outputs(OutputSet& set, const RunProducts& produc
   return set.commit();
 }
 
+// An outcome without a layout (every count screened out): the record says why, and only
+// result.json and the plan are written (write_outputs).
+void record_no_layout(ResultRecord& record) {
+  record.no_layout = "no luminaire count was searched (none can reach an average target at full output, or none "
+                     "could draw less than a layout already found)";
+  if (!record.attempts.empty())
+    record.no_layout += "; " + std::to_string(record.attempts.back().luminaires) + " luminaires: " +
+                        record.attempts.back().global_stop;
+  std::erase_if(record.files, [](const std::string& f) { return f != "result.json" && f != "plan.svg"; });
+}
+
 // Parses "KEY=V1,V2,..." into a sweep.
 SweepSetting parse_set(const std::string& text) {
   const auto eq = text.find('=');
@@ -317,14 +328,7 @@ int run_job(const RunArgs& args) {
   record.bill_of_materials = bill_of_materials(prepared.plan, outcome);
   record.variants = chosen.tried;
   record.files = run_output_names(job, true);
-  if (no_layout) {
-    record.no_layout = "no luminaire count was searched (none can reach an average target at full output, or none "
-                       "could draw less than a layout already found)";
-    if (!record.attempts.empty())
-      record.no_layout += "; " + std::to_string(record.attempts.back().luminaires) + " luminaires: " +
-                          record.attempts.back().global_stop;
-    std::erase_if(record.files, [](const std::string& f) { return f != "result.json" && f != "plan.svg"; });
-  }
+  if (no_layout) record_no_layout(record);
   print_result(std::cout, record);
   for (const std::string& file : write_outputs(set, {prepared, job, outcome, record, grids}))
     std::cout << "wrote " << file << "\n";

@@ -110,7 +110,7 @@ class Value {
   }
   // A file or folder path: at most kMaxPathChars.
   std::string path() const {
-    if (!node_.IsScalar()) fail("must be a path");
+    if (!node_.IsScalar()) fail("must be a string");
     const std::string& s = node_.Scalar();
     if (s.size() > kMaxPathChars)
       fail("is " + std::to_string(s.size()) + " characters long, more than " + std::to_string(kMaxPathChars));

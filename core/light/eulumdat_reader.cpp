@@ -246,7 +246,7 @@ StoredWeb read_intensities(FieldReader& in, const std::string& path, const Eulum
       if (v < 0) fail(path, at, field(), fmt(v) + " cd/klm is negative");
       const double cd = v * scale;
       if (cd > kMaxCandela) fail(path, at, field(), fmt(cd) + " cd is beyond any luminaire (limit 1e9 cd)");
-      if (cd > 0 && cd < kMinNonZeroCandela) fail(path, at, field(), fmt(cd) + " cd is not zero yet below 1e-9 cd: no measurement");
+      if (cd > 0 && cd < kMinNonZeroCandela) fail(path, at, field(), fmt(cd) + " cd is not zero yet below 1e-30 cd: no measurement");
       w.cd(static_cast<Eigen::Index>(j), i) = cd;
     }
   }

@@ -309,7 +309,7 @@ StoredWeb read_ies_web(TokenReader& in, const std::string& path, const IesParame
       if (v < 0) fail(path, at, field(), fmt(v) + " cd is negative");
       const double cd = v * scale;
       if (cd > kMaxCandela) fail(path, at, field(), fmt(cd) + " cd is beyond any luminaire (limit 1e9 cd)");
-      if (cd > 0 && cd < kMinNonZeroCandela) fail(path, at, field(), fmt(cd) + " cd is not zero yet below 1e-9 cd: no measurement");
+      if (cd > 0 && cd < kMinNonZeroCandela) fail(path, at, field(), fmt(cd) + " cd is not zero yet below 1e-30 cd: no measurement");
       w.cd(j, i) = cd;
     }
   }

@@ -30,7 +30,8 @@ inline constexpr std::size_t kMaxTextChars = 256;
 inline constexpr double kMaxCandela = 1e9;       // the brightest searchlights are ~1e9 cd
 // A non-zero intensity below this is no measurement (a subnormal such as 4e-320 once
 // made the flux underflow and the direct light NaN, far from the file): refused.
-inline constexpr double kMinNonZeroCandela = 1e-9;
+// Round-off of a computed web (1000 cos 90° = 6e-14) stays well above it.
+inline constexpr double kMinNonZeroCandela = 1e-30;
 inline constexpr double kMaxFluxLm = 1e8;        // a 1 MW sodium lamp makes ~1.5e8 lm
 inline constexpr double kMaxPowerW = 1e7;
 inline constexpr double kMaxDimensionM = 1000.0;
