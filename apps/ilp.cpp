@@ -2,7 +2,9 @@
 // No numerics here; every step is a library function the tests also call.
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <iostream>
+#include <streambuf>
 
 #include "apps/commands.h"
 #include "core/base/error.h"
@@ -16,6 +18,43 @@ constexpr const char* kMaxMemoryHelp =
 // back to output.directory without a word).
 const CLI::Validator kNonEmpty(
     [](std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); }, "PATH");
+
+// Every byte the program writes to stdout and stderr passes here: control characters
+// (but newline, carriage return and tab) from a file, such as a vendor's terminal escape
+// codes, are shown as \xNN, never obeyed by the terminal.
+class PrintableBuf : public std::streambuf {
+ public:
+  explicit PrintableBuf(std::streambuf* to) : to_(to) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    const auto u = static_cast<unsigned char>(traits_type::to_char_type(c));
+    if ((u >= 0x20 && u != 0x7f) || u == '\n' || u == '\r' || u == '\t') return to_->sputc(static_cast<char>(u));
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "\\x%02x", u);
+    return to_->sputn(hex, 4) == 4 ? c : traits_type::eof();
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    for (std::streamsize i = 0; i < n; ++i)
+      if (traits_type::eq_int_type(overflow(traits_type::to_int_type(s[i])), traits_type::eof())) return i;
+    return n;
+  }
+  int sync() override { return to_->pubsync(); }
+
+ private:
+  std::streambuf* to_;
+};
+
+// Puts a stream's own buffer back (flushed) before the PrintableBuf goes away.
+struct StreamRestore {
+  std::ostream& stream;
+  std::streambuf* original;
+  ~StreamRestore() {
+    stream.flush();
+    stream.rdbuf(original);
+  }
+};
 
 // The job's luminaires as placed: `ilp solve`.
 CLI::App* add_solve_command(CLI::App& app, ilp::cli::SolveArgs& args) {
@@ -163,6 +202,8 @@ CLI::App* add_inspect_command(CLI::App& app, ilp::cli::InspectArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  PrintableBuf out(std::cout.rdbuf()), err(std::cerr.rdbuf());
+  const StreamRestore restore_out{std::cout, std::cout.rdbuf(&out)}, restore_err{std::cerr, std::cerr.rdbuf(&err)};
   CLI::App app{"ilp: inverse lighting through a sample-based radiosity inverse"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "ilp 0.1.0");

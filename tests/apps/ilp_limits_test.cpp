@@ -235,3 +235,20 @@ TEST(IlpLimits, EscapeCodesInAVendorsFileAreShownNotObeyed) {
 }
 
 }  // namespace
+
+namespace {
+
+// A mesh's group names reach the terminal through `ilp inspect` (and every table):
+// everything ilp writes to stdout and stderr has its control characters escaped.
+TEST(IlpLimits, EscapeCodesInAMeshGroupAreShownNotObeyed) {
+  TempDir dir;
+  std::string obj = ilp::test::room_obj({{"mat", {1.3, 1.7}}});
+  obj.replace(obj.find("g mat"), 5, "g m\x1b[2Jat");
+  const std::string mesh = dir.write("room.obj", obj);
+  const RunResult r = run_ilp(dir, {"inspect", mesh});
+  expect_exit(r, 0);
+  EXPECT_FALSE(OutputContains(r.out + r.err, "\x1b"));
+  EXPECT_TRUE(OutputContains(r.out, "m\\x1b[2Jat"));
+}
+
+}  // namespace
