@@ -252,3 +252,22 @@ TEST(IlpLimits, EscapeCodesInAMeshGroupAreShownNotObeyed) {
 }
 
 }  // namespace
+
+namespace {
+
+// `ilp solve` counts its grids' points too, before laying them.
+TEST(IlpLimits, SolveRefusesAGridTooLargeBeforeItIsLaid) {
+  TempDir dir;
+  dir.write("room.obj", ilp::test::room_obj({{"mat", {1.3, 1.7}}}));
+  const std::string job = dir.write(
+      "fixed.yaml", "scene:\n  mesh: room.obj\n  max_patch_edge_m: 0.5\n  default_reflectance: 0.4\n"
+                    "luminaires:\n  size_m: 0.3\n  placed:\n    - {name: P1, position_m: [2, 2, 2.45], flux_lm: 4000}\n"
+                    "grids:\n  - name: fine\n    over_surface: floor\n    spacing_m: 0.004\n    max_points: 1000000\n");
+  const TimedRun t = run_ilp_with(dir, "", {"solve", job, "-q", "--max-memory", "300M"});
+  expect_exit(t.r, 1);
+  EXPECT_LT(t.seconds, 10.0);
+  EXPECT_TRUE(OutputContains(t.r.err, "estimate: laying grids (562500 points at most)"));
+  EXPECT_TRUE(OutputContains(t.r.err, "refused before any work"));
+}
+
+}  // namespace
