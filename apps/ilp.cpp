@@ -2,15 +2,59 @@
 // No numerics here; every step is a library function the tests also call.
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <iostream>
+#include <streambuf>
 
 #include "apps/commands.h"
+#include "core/base/error.h"
 
 namespace {
 constexpr int kMaxThreads = 1024;  // as solver.threads of a job
 constexpr const char* kMaxMemoryHelp =
     "memory budget, e.g. 4G or 512M (default: the machine's available memory); a job whose estimate exceeds it is "
     "refused before any work";
+// A path option given as '' is refused, never taken as "not given" (--out '' once fell
+// back to output.directory without a word).
+const CLI::Validator kNonEmpty(
+    [](std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); }, "PATH");
+
+// Every byte the program writes to stdout and stderr passes here: control characters
+// (but newline, carriage return and tab) from a file, such as a vendor's terminal escape
+// codes, are shown as \xNN, never obeyed by the terminal.
+class PrintableBuf : public std::streambuf {
+ public:
+  explicit PrintableBuf(std::streambuf* to) : to_(to) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    const auto u = static_cast<unsigned char>(traits_type::to_char_type(c));
+    if ((u >= 0x20 && u != 0x7f) || u == '\n' || u == '\r' || u == '\t') return to_->sputc(static_cast<char>(u));
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "\\x%02x", u);
+    return to_->sputn(hex, 4) == 4 ? c : traits_type::eof();
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    for (std::streamsize i = 0; i < n; ++i)
+      if (traits_type::eq_int_type(overflow(traits_type::to_int_type(s[i])), traits_type::eof())) return i;
+    return n;
+  }
+  int sync() override { return to_->pubsync(); }
+
+ private:
+  std::streambuf* to_;
+};
+
+// Puts a stream's own buffer back (flushed) before the PrintableBuf goes away.
+struct StreamRestore {
+  std::ostream& stream;
+  std::streambuf* original;
+  ~StreamRestore() {
+    stream.flush();
+    stream.rdbuf(original);
+  }
+};
 
 // The job's luminaires as placed: `ilp solve`.
 CLI::App* add_solve_command(CLI::App& app, ilp::cli::SolveArgs& args) {
@@ -19,10 +63,10 @@ CLI::App* add_solve_command(CLI::App& app, ilp::cli::SolveArgs& args) {
                                                   "Gauss-Seidel)");
   command->add_option("config", args.config, "job file (YAML)")->required();
   command->add_option("--csv", args.csv,
-                      "also write per-patch results (centroid, area, direct and total lux) for every patch to this CSV");
+                      "also write per-patch results (centroid, area, direct and total lux) for every patch to this CSV")->check(kNonEmpty);
   command->add_option("--out", args.out_dir,
                       "folder for the calculation grids' files: grid.csv, isolux_<grid>.svg and .png (default: the job's "
-                      "output folder + /solve)");
+                      "output folder + /solve)")->check(kNonEmpty);
   command->add_option("--method", args.method, "sample or exact (default: solver.method of the job, else sample)")
       ->check(CLI::IsMember({"sample", "exact"}));
   command->add_option("--threads", args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
@@ -39,7 +83,7 @@ CLI::App* add_accuracy_command(CLI::App& app, ilp::cli::AccuracyArgs& args) {
                   "per row, measure its error against the exact reference, predict it from pilot samples; writes "
                   "accuracy.csv and accuracy.svg");
   command->add_option("config", args.config, "job file (YAML)")->required();
-  command->add_option("--out", args.out_dir, "output folder")->capture_default_str();
+  command->add_option("--out", args.out_dir, "output folder")->capture_default_str()->check(kNonEmpty);
   command->add_option("--fractions", args.fractions, "sample sizes as fractions of the reflecting patches")
       ->delimiter(',')->check(CLI::Range(1e-9, 1.0))->capture_default_str();
   command->add_option("--seeds", args.seeds, "samples drawn per size")->check(CLI::Range(1, 1000))
@@ -70,10 +114,10 @@ CLI::App* add_run_command(CLI::App& app, ilp::cli::RunArgs& args) {
              "the job asks, verify the layout with an exact solve, print the layout and write result.json, "
              "illuminance.csv, plan.svg and scene.ply. Exit code 2 when a goal is missed");
   command->add_option("config", args.config, "job file (YAML)")->required();
-  command->add_option("--out", args.out_dir, "output folder (default: output.directory of the job, else results/<job>)");
+  command->add_option("--out", args.out_dir, "output folder (default: output.directory of the job, else results/<job>)")->check(kNonEmpty);
   command->add_option("--cache", args.cache_dir,
                       "operator cache folder (default: $XDG_CACHE_HOME/ilp or ~/.cache/ilp): a second run of the same "
-                      "scene and solver settings skips the build");
+                      "scene and solver settings skips the build")->check(kNonEmpty);
   command->add_flag("--no-cache", args.no_cache, "build the operator without reading or writing the cache");
   command->add_option("--threads", args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
       ->check(CLI::Range(0, kMaxThreads));
@@ -91,8 +135,8 @@ CLI::App* add_sweep_command(CLI::App& app, ilp::cli::SweepArgs& args) {
   command->add_option("--set", args.set,
                       "KEY=V1,V2,...: the parameter and its values, e.g. goals.desks.average_lux=300,500,750 (default: "
                       "the job's sweep block)");
-  command->add_option("--out", args.out_dir, "output folder (default: output.directory of the job, else results/<job>)");
-  command->add_option("--cache", args.cache_dir, "operator cache folder (default: $XDG_CACHE_HOME/ilp or ~/.cache/ilp)");
+  command->add_option("--out", args.out_dir, "output folder (default: output.directory of the job, else results/<job>)")->check(kNonEmpty);
+  command->add_option("--cache", args.cache_dir, "operator cache folder (default: $XDG_CACHE_HOME/ilp or ~/.cache/ilp)")->check(kNonEmpty);
   command->add_flag("--no-cache", args.no_cache, "build the operator without reading or writing the cache");
   command->add_option("--threads", args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
       ->check(CLI::Range(0, kMaxThreads));
@@ -121,7 +165,7 @@ CLI::App* add_bench_command(CLI::App& app, ilp::cli::BenchArgs& args) {
   command->add_option("--sample-fraction", args.sample_fraction, "override the sample size, of the reflecting patches")
       ->check(CLI::Range(1e-9, 1.0));
   command->add_flag("--skip-full-solve", args.skip_full_solve, "do not run the full radiosity solve");
-  command->add_option("--csv", args.csv, "append one row of figures to this CSV");
+  command->add_option("--csv", args.csv, "append one row of figures to this CSV")->check(kNonEmpty);
   command->add_option("--threads", args.threads, "worker threads (default: solver.threads of the job, 0 = all cores)")
       ->check(CLI::Range(0, kMaxThreads));
   command->add_option("--max-memory", args.max_memory, kMaxMemoryHelp);
@@ -169,6 +213,8 @@ CLI::App* add_ugr_table_command(CLI::App& app, ilp::cli::UgrTableArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  PrintableBuf out(std::cout.rdbuf()), err(std::cerr.rdbuf());
+  const StreamRestore restore_out{std::cout, std::cout.rdbuf(&out)}, restore_err{std::cerr, std::cerr.rdbuf(&err)};
   CLI::App app{"ilp: inverse lighting through a sample-based radiosity inverse"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "ilp 0.1.0");
@@ -210,7 +256,7 @@ int main(int argc, char** argv) {
     std::cerr << "error: out of memory (a smaller job: larger scene.max_patch_edge_m, fewer rays or candidates)\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << ilp::printable(e.what(), true) << "\n";
     return 1;
   } catch (...) {
     std::cerr << "error: an unexpected failure (please report it with the job file)\n";

@@ -100,6 +100,34 @@ void print_suggestion(const char* what, const SceneInspection& in, int index, bo
 
 }  // namespace
 
+namespace {
+
+// The estimate `ilp run` prints for each variant of the job (its products' files read),
+// the same figures from the same function (costed_geometry).
+void print_cost_estimates(const JobConfig& job, const RunOptions& run, const Scene& scene) {
+  const std::optional<MemoryBudget> budget = memory_budget(run.max_memory_bytes);
+  const std::optional<double> bytes = budget ? std::optional<double>(budget->bytes) : std::nullopt;
+  const std::vector<VariantPlan> plans = plan_job(job, run);
+  for (const VariantPlan& plan : plans) {
+    const CostedGeometry costed = costed_geometry(job, scene, plan.model, budget);
+    const CostCounts& counts = costed.counts;
+    std::cout << "cost estimate of `ilp run`";
+    if (plans.size() > 1) std::cout << " for " << printable(plan.product.product) << " at " << plan.product.rotation_deg << " deg";
+    std::cout << " (" << counts.goal_patches << " goal patches, " << counts.grid_points << " grid points, "
+              << costed.model.grid.size() << " candidates, k = " << counts.sample_size << ", " << counts.channels
+              << (counts.channels == 1 ? " channel" : " channels") << ", " << job.form_factors.rays_per_patch
+              << " rays per row; memory available "
+              << (budget ? format_bytes(budget->bytes) + " (" + budget->source + ")" : std::string("unknown")) << "):\n";
+    for (const std::string& line : format_estimate(costed.estimate)) std::cout << "  " << line << "\n";
+    const VerificationPlan verification = plan_verification(job, scene.patches.size(), counts.population,
+                                                            counts.goal_patches, counts.luminaires, bytes);
+    if (!verification.reason.empty()) std::cout << "  verification: " << verification.reason << "\n";
+    if (!costed.refusal.empty()) std::cout << "  would be refused: " << costed.refusal << "\n";
+  }
+}
+
+}  // namespace
+
 int run_inspect(const InspectArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   const JobConfig job = job_for(args);
@@ -138,26 +166,7 @@ int run_inspect(const InspectArgs& args) {
   // The cost of running the job, for an inverse job.
   if (job.search && !job.goals.empty()) {
     try {
-      const LightingModel geometry = lighting_model_geometry(scene, plan_job(job, run).front().model);
-      const std::optional<double> budget = memory_budget_bytes(run.max_memory_bytes);
-      const CostCounts counts = job_cost_counts(job, scene, geometry, budget);
-      const CostEstimate estimate = estimate_job_cost(counts);
-      std::cout << "cost estimate of `ilp run` (" << geometry.goal_patches.size() << " goal patches, "
-                << geometry.grid.size() << " candidates, k = " << counts.sample_size << ", " << counts.channels
-                << (counts.channels == 1 ? " channel" : " channels") << ", "
-                << job.form_factors.rays_per_patch << " rays per row; memory available "
-                << (budget ? format_bytes(*budget) : std::string("unknown")) << "):\n";
-      for (const std::string& line : format_estimate(estimate)) std::cout << "  " << line << "\n";
-      const VerificationPlan plan = plan_verification(job, scene.patches.size(), counts.population,
-                                                      counts.goal_patches, counts.luminaires, budget);
-      if (!plan.reason.empty()) std::cout << "  verification: " << plan.reason << "\n";
-      if (budget && estimate.peak_bytes() > *budget) {
-        try {
-          require_fits(estimate, budget, job.path);
-        } catch (const IlpError& e) {
-          std::cout << "  would be refused: " << e.what() << "\n";
-        }
-      }
+      print_cost_estimates(job, run, scene);
     } catch (const IlpError& e) {
       std::cout << "cost estimate: not available: " << e.what() << "\n";
     } catch (const std::invalid_argument& e) {

@@ -53,7 +53,7 @@ void log_build(const PreparedJob& prepared) {
             << prepared.model.grid.size() << " candidates\n";
 }
 
-void log_line(const std::string& line) { std::cerr << line << "\n"; }
+void log_line(const std::string& line) { std::cerr << printable(line, true) << "\n"; }
 
 // Every variant of the job prepared, each one's build logged.
 std::vector<PreparedJob> prepare_all(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
@@ -152,8 +152,15 @@ void stage_plan_svg(OutputSet& set, const RunProducts& p) {
   const bool verified = p.outcome.verification.method != "none";
   PlanView view;
   std::ostringstream title;
-  title << std::fixed << std::setprecision(1) << std::filesystem::path(p.job.path).stem().string() << ": "
-        << p.outcome.luminaires.size() << " luminaires, " << p.outcome.power_w << " W, "
+  title << std::fixed << std::setprecision(1) << std::filesystem::path(p.job.path).stem().string() << ": ";
+  if (!p.record.no_layout.empty()) {  // the room and the reason, no light to show
+    view.title = title.str() + "no layout (" + p.record.no_layout + ")";
+    view.outline_patches = p.prepared.model.grid.mounting_patches();
+    const std::string svg = render_plan_svg(p.prepared.loaded.scene, view);
+    set.write("plan.svg", [&](std::ostream& out) { out << svg; });
+    return;
+  }
+  title << p.outcome.luminaires.size() << " luminaires, " << p.outcome.power_w << " W, "
         << (verified ? "verified" : "predicted") << " illuminance";
   view.title = title.str();
   view.goal_patches = p.prepared.model.goal_patches;
@@ -230,9 +237,29 @@ std::vector<std::string> run_output_names(const JobConfig& job, bool selected_on
 // The formats output.formats selects, written as one set (OutputSet): the folder holds
 // the previous run's files or these, never a mix.
 std::vector<std::string> write_outputs(OutputSet& set, const RunProducts& products) {
-  for (const RunOutput& o : run_outputs())
-    if (products.job.output.*o.flag) o.write(set, products);
+  for (const RunOutput& o : run_outputs()) {
+    if (!(products.job.output.*o.flag)) continue;
+    // Without a layout there is no light: result.json and the plan say why.
+    const bool light_needed = o.write != stage_result_json && o.write != stage_plan_svg;
+    if (!products.record.no_layout.empty() && light_needed) continue;
+    try {
+      o.write(set, products);
+    } catch (const IlpError& e) {  // named by the output folder, not the staging folder
+      throw IlpError(set.explained(e.what()));
+    }
+  }
   return set.commit();
+}
+
+// An outcome without a layout (every count screened out): the record says why, and only
+// result.json and the plan are written (write_outputs).
+void record_no_layout(ResultRecord& record) {
+  record.no_layout = "no luminaire count was searched (none can reach an average target at full output, or none "
+                     "could draw less than a layout already found)";
+  if (!record.attempts.empty())
+    record.no_layout += "; " + std::to_string(record.attempts.back().luminaires) + " luminaires: " +
+                        record.attempts.back().global_stop;
+  std::erase_if(record.files, [](const std::string& f) { return f != "result.json" && f != "plan.svg"; });
 }
 
 // Parses "KEY=V1,V2,..." into a sweep.
@@ -292,18 +319,21 @@ int run_job(const RunArgs& args) {
       {"search", chosen.search_seconds},
       {"verification", chosen.verify_seconds},
       {"total", seconds_since(start)}};
-  const std::vector<GridResult> grids = run_grid_results(prepared, job, outcome);
+  // No layout (every count screened out): nothing lit to report per grid.
+  const bool no_layout = outcome.search.beaten;
+  const std::vector<GridResult> grids = no_layout ? std::vector<GridResult>{} : run_grid_results(prepared, job, outcome);
   std::vector<GridRecord> grid_records;
   for (const GridResult& g : grids) grid_records.push_back(grid_record(g, outcome.verification.method != "none"));
   ResultRecord record = make_record(kVersion, prepared, job, outcome, grid_records, timings);
   record.bill_of_materials = bill_of_materials(prepared.plan, outcome);
   record.variants = chosen.tried;
   record.files = run_output_names(job, true);
+  if (no_layout) record_no_layout(record);
   print_result(std::cout, record);
   for (const std::string& file : write_outputs(set, {prepared, job, outcome, record, grids}))
     std::cout << "wrote " << file << "\n";
   std::cout << std::fixed << std::setprecision(2) << "peak memory " << peak_memory_gb() << " GB (resident)\n";
-  return outcome.all_met ? 0 : 2;
+  return outcome.all_met && !no_layout ? 0 : 2;
 }
 
 int run_sweep(const SweepArgs& args) {

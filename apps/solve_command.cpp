@@ -175,6 +175,16 @@ int solve_exactly(const JobConfig& job, const RunOptions& run, const JobScene& l
   return 0;
 }
 
+// The grids' points in the cost: their cells (the most points they can have), counted
+// before any point is laid, so a grid the memory cannot hold is refused first.
+void add_grid_points(CostCounts& c, const Scene& scene, const JobConfig& job) {
+  for (const CalcGridSetting& setting : job.grids) {
+    const CalcGridSize size = calc_grid_size(scene, setting);
+    c.grid_points += size.cells;
+    c.grid_outline_tests += size.cells * size.outline_parts;
+  }
+}
+
 }  // namespace
 
 int run_solve(const SolveArgs& args) {
@@ -207,7 +217,8 @@ int run_solve(const SolveArgs& args) {
                                          static_cast<double>(c.population), job.sample.size_for(c.population)))
                                    : 0;
     }
-    const std::optional<double> budget = memory_budget_bytes(run.max_memory_bytes);
+    add_grid_points(c, scene, job);
+    const std::optional<MemoryBudget> budget = memory_budget(run.max_memory_bytes);
     const CostEstimate estimate = estimate_job_cost(c);
     for (const std::string& line : format_estimate(estimate)) std::cerr << line << "\n";
     require_fits(estimate, budget, job.path);

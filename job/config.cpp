@@ -60,7 +60,7 @@ void read_regions(const Value& list, JobConfig& job) {
 void read_scene(const Map& scene, JobConfig& job) {
   const Value mesh = scene.require("mesh");
   const std::filesystem::path base = std::filesystem::path(job.path).parent_path();
-  job.mesh_path = (base / mesh.text()).lexically_normal().string();
+  job.mesh_path = (base / mesh.path()).lexically_normal().string();
   job.mesh_loc = mesh.loc();
   if (auto v = scene.get("up_axis")) {
     const std::string axis = Value::lower(v->text());
@@ -193,6 +193,8 @@ void read_grids(const Value& section, JobConfig& job) {
     const Value name = entry.require("name");
     g.name = name.text();
     if (g.name.empty()) name.fail("must not be empty");
+    if (g.name.size() > kMaxGridNameChars)
+      name.fail("more than " + std::to_string(kMaxGridNameChars) + " characters: the grid's file names (isolux_NAME.svg) would not fit");
     if (find_grid(job, g.name) >= 0) name.fail("a grid of this name is already defined");
     const char* shapes[] = {"over_surface", "rectangle_m", "polygon_m", "vertical"};
     int given = 0;
@@ -469,7 +471,7 @@ void read_verification(const Map& verification, JobConfig& job) {
 void read_output(const Map& output, JobConfig& job) {
   OutputSettings& o = job.output;
   if (auto v = output.get("directory")) {
-    o.directory = v->text();
+    o.directory = v->path();
     if (o.directory.empty()) v->fail("must not be empty");
   }
   if (auto v = output.get("formats")) {
@@ -620,6 +622,7 @@ JobConfig load_job_config(const std::string& path) {
   {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw ConfigError(path + ": is a folder, not a config file");
+    if (const std::string why = not_a_regular_file(path, "config"); !why.empty()) throw ConfigError(why);
     std::ifstream probe(path);
     if (!probe) throw ConfigError(path + ": cannot open the config file");
   }
@@ -631,6 +634,7 @@ JobConfig load_job_config(const std::string& path) {
     if (const auto nul = text.find('\0'); nul != std::string::npos)
       throw ConfigError(located({path, 1 + static_cast<int>(std::count(text.begin(), text.begin() + nul, '\n'))},
                                 "a NUL byte: the config must be a text file"));
+    reject_deep_nesting(text, path);
     reject_second_document(text, path);
     root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
@@ -658,8 +662,7 @@ JobConfig load_job_config(const std::string& path) {
                       job);
     if (auto v = top.get("grids")) read_grids(*v, job);
     if (auto v = top.get("maintenance_factor")) {
-      job.maintenance_factor = v->number();
-      if (!(job.maintenance_factor > 0.0 && job.maintenance_factor <= 1.0)) v->fail("must be in (0, 1]");
+      job.maintenance_factor = v->number_in(0.1, 1.0, false, "[0.1, 1] (as a product's)");
       job.maintenance_loc = v->loc();
     }
     if (auto v = top.get("goals")) read_goals(*v, job);

@@ -139,7 +139,7 @@ void read_products(const Value& section, JobConfig& job) {
     const auto photometry = m.get("photometry"), model = m.get("model");
     if (photometry && model) model->fail("not with photometry (a product is one or the other)");
     if (photometry) {
-      p.photometry_path = (base / photometry->text()).lexically_normal().string();
+      p.photometry_path = (base / photometry->path()).lexically_normal().string();
       p.photometry_loc = photometry->loc();
       if (auto v = m.get("size_m")) v->fail("only for model: square_lambertian (a photometric file gives its size)");
     } else {

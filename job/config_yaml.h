@@ -27,6 +27,13 @@ constexpr double kMinSpacing_m = 1e-3;
 constexpr double kMinScale = 1e-6, kMaxScale = 1e6;
 constexpr double kMaxEfficacy_lm_per_w = 1000.0;  // 683 lm/W is the theoretical limit
 constexpr double kMaxSeconds = 1e7;
+// Bounds on the strings a user types: names and keywords (a 50 MB product name once
+// ran for minutes and wrote a 200 MB result.json), paths, and how deep YAML may nest
+// (yaml-cpp recurses per level).
+constexpr std::size_t kMaxNameChars = 256;
+constexpr std::size_t kMaxPathChars = 4096;  // PATH_MAX
+constexpr std::size_t kMaxGridNameChars = 200;  // isolux_NAME_N.png within a file name's 255 bytes
+constexpr int kMaxNestingLevels = 64;
 
 // A YAML node with the dotted key that led to it, for messages that say where.
 class Value {
@@ -42,7 +49,10 @@ class Value {
   const YAML::Node& node() const { return node_; }
 
   [[noreturn]] void fail(const std::string& rule) const {
-    std::string shown = node_.IsScalar() ? node_.Scalar() : node_.IsSequence() ? "[...]" : node_.IsMap() ? "{...}" : "";
+    std::string shown = node_.IsScalar()     ? shortened(printable(node_.Scalar()))
+                        : node_.IsSequence() ? "[...]"
+                        : node_.IsMap()      ? "{...}"
+                                             : "";
     throw ConfigError(located(loc(), key_ + (shown.empty() ? "" : " = " + shown) + ": " + rule));
   }
 
@@ -89,9 +99,22 @@ class Value {
       fail("must be between " + std::to_string(low) + " and " + std::to_string(high));
     return static_cast<long long>(v);
   }
+  // A name or keyword: at most kMaxNameChars, no control characters.
   std::string text() const {
     if (!node_.IsScalar()) fail("must be a string");
-    return node_.Scalar();
+    const std::string& s = node_.Scalar();
+    if (s.size() > kMaxNameChars)
+      fail("is " + std::to_string(s.size()) + " characters long, more than " + std::to_string(kMaxNameChars));
+    if (printable(s) != s) fail("must not hold control characters");
+    return s;
+  }
+  // A file or folder path: at most kMaxPathChars.
+  std::string path() const {
+    if (!node_.IsScalar()) fail("must be a string");
+    const std::string& s = node_.Scalar();
+    if (s.size() > kMaxPathChars)
+      fail("is " + std::to_string(s.size()) + " characters long, more than " + std::to_string(kMaxPathChars));
+    return s;
   }
   Eigen::Vector3d vector3() const {
     if (!node_.IsSequence() || node_.size() != 3) fail("must be a list of 3 numbers [x, y, z]");
@@ -153,6 +176,41 @@ inline void reject_second_document(const std::string& text, const std::string& p
   const YAML::Mark& mark = counter.second;
   throw ConfigError(located({path, mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0},
                             "a second YAML document (after '---'): a config file holds one job"));
+}
+
+// Flow collections nested deeper than kMaxNestingLevels ('[[[[...', '{{{...') or
+// block sequences ('- - - ...') are refused before yaml-cpp recurses into them.
+inline void reject_deep_nesting(const std::string& text, const std::string& path) {
+  int depth = 0, line = 1;
+  char quote = 0;
+  bool comment = false, line_start = true;
+  int dashes = 0;  // "- " items opened on this line before its first other character
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      comment = false;
+      line_start = true;
+      dashes = 0;
+      if (quote == '\'') quote = 0;  // (a plain scalar cannot span; keep the count honest)
+      continue;
+    }
+    if (comment) continue;
+    if (quote) {
+      if (c == '\\' && quote == '"') ++i;
+      else if (c == quote) quote = 0;
+      continue;
+    }
+    if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t' || line_start)) comment = true;
+    else if (c == '"' || c == '\'') quote = c;
+    else if (c == '[' || c == '{') ++depth;
+    else if ((c == ']' || c == '}') && depth > 0) --depth;
+    if (line_start && c == '-' && i + 1 < text.size() && (text[i + 1] == ' ' || text[i + 1] == '\t')) ++dashes;
+    else if (c != ' ' && c != '\t') line_start = false;
+    if (depth > kMaxNestingLevels || dashes > kMaxNestingLevels)
+      throw ConfigError(located({path, line, 0}, "YAML nesting deeper than " + std::to_string(kMaxNestingLevels) +
+                                                   " levels: not a job file"));
+  }
 }
 
 // yaml-cpp keeps repeated keys and lets lookups see the first: refuse them instead.

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "core/base/error.h"
 #include "core/operator/sample_operator.h"
 
 namespace ilp {
@@ -54,11 +55,19 @@ VerificationPlan plan_verification(const JobConfig& job, std::size_t patches, st
 }
 
 CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const LightingModel& geometry,
-                           std::optional<double> budget) {
+                           std::optional<double> budget, const std::vector<CalcGridSize>* grids) {
   CostCounts c;
   c.patches = job_scene.patches.size();
   c.population = reflecting_patches(job_scene).size();
   c.goal_patches = geometry.goal_patches.size();
+  c.grid_points = geometry.goal_points.size();
+  if (grids) {
+    c.grid_points = 0;
+    for (const CalcGridSize& g : *grids) {
+      c.grid_points += g.cells;
+      c.grid_outline_tests += g.cells * g.outline_parts;
+    }
+  }
   c.sources = scene_light_sources(geometry.scene).size();
   c.channels = job_scene.channels;
   c.rays_per_patch = job.form_factors.rays_per_patch;
@@ -104,6 +113,51 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
   c.verify_sample_size = static_cast<std::size_t>(plan.sample_size);
   c.verify_rounds = plan.method == VerificationMethod::none ? 1 : job.verification.rounds;
   return c;
+}
+
+namespace {
+
+// The estimate of `counts` and, when it exceeds the budget, require_fits's message.
+std::string refusal_of(const CostEstimate& estimate, const std::optional<MemoryBudget>& budget, const std::string& where) {
+  try {
+    require_fits(estimate, budget, where);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// Thrown by the check before the grids, to stop lighting_model_geometry there.
+struct RefusedBeforeGrids {
+  CostedGeometry costed;
+};
+
+}  // namespace
+
+CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, const ModelSpec& spec,
+                               const std::optional<MemoryBudget>& budget) {
+  const std::optional<double> bytes = budget ? std::optional<double>(budget->bytes) : std::nullopt;
+  auto before_grids = [&](const LightingModel& partial, const std::vector<CalcGridSize>& grids) {
+    if (grids.empty()) return;
+    CostedGeometry c;
+    c.counts = job_cost_counts(job, job_scene, partial, bytes, &grids);
+    c.estimate = estimate_job_cost(c.counts);
+    c.refusal = refusal_of(c.estimate, budget, job.path);
+    if (!c.refusal.empty()) {
+      c.model = partial;
+      throw RefusedBeforeGrids{std::move(c)};
+    }
+  };
+  CostedGeometry out;
+  try {
+    out.model = lighting_model_geometry(job_scene, spec, nullptr, before_grids);
+  } catch (RefusedBeforeGrids& refused) {
+    return std::move(refused.costed);
+  }
+  out.counts = job_cost_counts(job, job_scene, out.model, bytes);
+  out.estimate = estimate_job_cost(out.counts);
+  out.refusal = refusal_of(out.estimate, budget, job.path);
+  return out;
 }
 
 }  // namespace ilp

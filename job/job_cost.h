@@ -29,8 +29,23 @@ VerificationPlan plan_verification(const JobConfig& job, std::size_t patches, st
                                    std::size_t goal_patches, int luminaires, std::optional<double> budget_bytes);
 
 // Counts for the cost model. `sample_size`: k of the operator (0 when not known: the
-// configured size, or with solver.target_error the largest k it may choose).
+// configured size, or with solver.target_error the largest k it may choose). The
+// grids' points are geometry's (goal_points) unless `grids` gives their sizes (before
+// they are laid: the cells, the most points they can have).
 CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const LightingModel& geometry,
-                           std::optional<double> budget_bytes);
+                           std::optional<double> budget_bytes, const std::vector<CalcGridSize>* grids = nullptr);
+
+// One variant's model geometry with what `ilp run` costs: the estimate is made before
+// the grids are laid, from their cells, and a job that cannot fit is refused then (no
+// grid point is laid); else the grids are laid and the estimate made again from their
+// points. What prepare_job logs and refuses, and what `ilp inspect` prints.
+struct CostedGeometry {
+  LightingModel model;   // without grids and areas when refused
+  CostEstimate estimate;
+  CostCounts counts;
+  std::string refusal;   // require_fits's message; empty when the job fits
+};
+CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, const ModelSpec& spec,
+                               const std::optional<MemoryBudget>& budget);
 
 }  // namespace ilp

@@ -171,31 +171,32 @@ PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const Run
   auto start = Clock::now();
   // Meshing stops before it makes more patches than the memory could ever hold
   // (a scene, its BVH and the least build take about 1 kB a patch).
-  const std::optional<double> budget = memory_budget_bytes(run.max_memory_bytes);
+  const std::optional<MemoryBudget> memory = memory_budget(run.max_memory_bytes);
   JobConfig scene_job = job;
-  if (budget) scene_job.scene.max_patches = std::min(job.scene.max_patches, static_cast<std::size_t>(*budget / 1024.0));
+  if (memory) scene_job.scene.max_patches = std::min(job.scene.max_patches, static_cast<std::size_t>(memory->bytes / 1024.0));
   try {
     out.loaded = load_job_scene(scene_job);
   } catch (const ConfigError& e) {
-    if (scene_job.scene.max_patches == job.scene.max_patches) throw;
-    throw ConfigError(std::string(e.what()) + " (about 1 kB a patch within the " + format_bytes(*budget) +
-                      " of memory the job may use: the machine's available memory or --max-memory)");
+    if (!memory || scene_job.scene.max_patches == job.scene.max_patches) throw;
+    throw ConfigError(std::string(e.what()) + " (about 1 kB a patch within the " + format_bytes(memory->bytes) +
+                      " of memory the job may use: " + memory->source + ")");
   }
   out.scene_seconds = seconds_since(start);
   emit(out.loaded.log, 0);
   start = Clock::now();
   out.caster = std::make_unique<RayCaster>(out.loaded.scene, worker_threads(job, run));
   out.bvh_seconds = seconds_since(start);
-  out.model = lighting_model_geometry(out.loaded.scene, plan.model);
   {
-    // The cost model: printed, and a job that cannot fit is refused now, not minutes later.
-    // (Kept apart from the model's log, which the cache compares with the file's.)
-    const CostEstimate estimate = estimate_job_cost(job_cost_counts(job, out.loaded.scene, out.model, budget));
-    out.estimate_log = format_estimate(estimate);
-    if (budget) out.estimate_log.push_back("memory available to the job: " + format_bytes(*budget));
+    // The cost model: printed, and a job that cannot fit is refused now, not minutes
+    // later (before its grids are laid). (Kept apart from the model's log, which the
+    // cache compares with the file's.)
+    CostedGeometry costed = costed_geometry(job, out.loaded.scene, plan.model, memory);
+    out.model = std::move(costed.model);
+    out.estimate_log = format_estimate(costed.estimate);
+    if (memory) out.estimate_log.push_back("memory available to the job: " + format_bytes(memory->bytes) + ", " + memory->source);
     emit(out.model.log, 0);
     emit(out.estimate_log, 0);
-    require_fits(estimate, budget, job.path);
+    if (!costed.refusal.empty()) throw ConfigError(costed.refusal);
   }
   const std::size_t geometry_lines = out.model.log.size();
   if (cache_dir.empty()) {

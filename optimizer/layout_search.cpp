@@ -169,6 +169,15 @@ class LayoutCoding {
   std::vector<double> lower_, upper_, initial_;
 };
 
+// How far two outlines of one footprint (extent_m: the rotated outline's box) overlap
+// with centres delta apart, as a share of the footprint (0 apart on both axes: 1), or
+// 0 when they do not: outlines of a layout never overlap, whatever min_distance_m says.
+double outline_overlap(const Eigen::Vector2d& delta, const Eigen::Vector2d& extent_m) {
+  const Eigen::Vector2d gap = delta.cwiseAbs();
+  if (!(gap.x() < extent_m.x() && gap.y() < extent_m.y())) return 0.0;
+  return std::min((extent_m.x() - gap.x()) / extent_m.x(), (extent_m.y() - gap.y()) / extent_m.y());
+}
+
 class Evaluator {
  public:
   Evaluator(const LightingModel& model, const SearchSpec& spec)
@@ -262,12 +271,14 @@ class Evaluator {
       out.power_w += out.luminaires[j].power_w;
     }
     const double d_min = spec_.layout.min_distance_m;
-    if (d_min > 0.0)
-      for (std::size_t j = 0; j < n; ++j)
-        for (std::size_t k = j + 1; k < n; ++k) {
-          const double d = (out.luminaires[j].position_m - out.luminaires[k].position_m).head<2>().norm();
-          if (d < d_min) out.distance_violation += (d_min - d) / d_min;
-        }
+    const Eigen::Vector2d extent_m = 2.0 * s.type.half_footprint_m(s.rotation_deg);
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = j + 1; k < n; ++k) {
+        const Eigen::Vector2d delta = (out.luminaires[j].position_m - out.luminaires[k].position_m).head<2>();
+        const double d = delta.norm();
+        if (d < d_min) out.distance_violation += (d_min - d) / d_min;
+        out.distance_violation += outline_overlap(delta, extent_m);  // whatever min_distance_m says
+      }
     double penalty = out.distance_violation, deviation = 0.0;
     out.feasible = out.distance_violation <= kConstraintTolerance;
     for (const GoalJudgement& g : out.goals) {
@@ -426,7 +437,7 @@ std::string skip_reason(int n, const std::vector<int>& counts, const CountBound&
     return "not searched: infeasible as searched at the easier targets of an earlier round";
   // ... nor one that cannot draw less than a layout already found, nor one that drew
   // no less at the easier targets of an earlier round.
-  if (bound.least_power_w >= to_beat)
+  if (to_beat < kNoPowerToBeat && bound.least_power_w >= to_beat)  // (inf >= inf: nothing to beat yet)
     return "not searched: needs at least " + watts(bound.least_power_w) + ", no less than the " + watts(to_beat) +
            " of a layout already found";
   if (easier && easier->feasible && easier->power_w >= to_beat)

@@ -241,7 +241,8 @@ void log_candidates(LightingModel& model, const CandidateSpec& spec) {
 
 }  // namespace
 
-LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& spec, const RayCaster* caster) {
+LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& spec, const RayCaster* caster,
+                                      const BeforeGrids& before_grids) {
   if (spec.areas.empty()) throw std::invalid_argument("the job has no goals");
   for (const GoalAreaSpec& area : spec.areas)
     if (area.grid >= static_cast<int>(spec.grids.size()))
@@ -249,7 +250,6 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& s
   LightingModel model;
   model.scene = job_scene;
   // Goal rows: the areas' patches (ascending, each once), then every grid's points.
-  lay_grids(model, job_scene, spec, caster);
   std::vector<std::vector<int>> patches;
   for (const GoalAreaSpec& area : spec.areas) {
     patches.push_back(area_patches(job_scene, area));
@@ -257,6 +257,12 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& s
   }
   std::sort(model.goal_patches.begin(), model.goal_patches.end());
   model.goal_patches.erase(std::unique(model.goal_patches.begin(), model.goal_patches.end()), model.goal_patches.end());
+  if (before_grids) {
+    std::vector<CalcGridSize> sizes;
+    for (const CalcGridSetting& setting : spec.grids) sizes.push_back(calc_grid_size(job_scene, setting));
+    before_grids(model, sizes);
+  }
+  lay_grids(model, job_scene, spec, caster);
   for (const CalcGrid& grid : model.grids) {
     model.grid_first_row.push_back(static_cast<Eigen::Index>(model.goal_patches.size() + model.goal_points.size()));
     model.goal_points.insert(model.goal_points.end(), grid.points.begin(), grid.points.end());

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -130,7 +131,13 @@ int find_goal_area(const LightingModel& model, const std::string& name);
 // pointing at the config for a mounting surface that cannot hold luminaires or a grid
 // that cannot be laid (core/grid/calc_grid.h). `caster` (the job scene's) finds grid points
 // inside solids; without it a temporary one is built when the spec has grids.
-LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& spec, const RayCaster* caster = nullptr);
+// `before_grids`, when given, is called after the candidates and goal patches are
+// placed and before any grid is laid (every grid point costs rays), with the model so
+// far (no grids, no areas) and each grid's size (calc_grid_size): it may throw to
+// refuse a job whose grids it cannot afford.
+using BeforeGrids = std::function<void(const LightingModel& partial, const std::vector<CalcGridSize>& grids)>;
+LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& spec, const RayCaster* caster = nullptr,
+                                      const BeforeGrids& before_grids = {});
 
 // The expensive part, on a model from lighting_model_geometry: builds the operator
 // and fills fixed_lux, the candidate columns, sample_size, stats, build_seconds and

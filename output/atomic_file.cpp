@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -159,6 +160,11 @@ OutputSet::OutputSet(const std::string& folder, std::vector<std::string> owned)
   if (!absolute.has_filename()) absolute = absolute.parent_path();  // "out/" -> "out"
   if (!absolute.has_filename() || absolute == absolute.root_path())
     throw IlpError(folder + ": cannot be the output folder (give a folder of its own, e.g. results/job)");
+  // A symbolic link to a folder stays a link: the set goes into its target.
+  if (fs::is_symlink(absolute, ec)) {
+    absolute = fs::weakly_canonical(absolute, ec);
+    if (ec) throw IlpError(folder + ": cannot resolve the link to the output folder (" + ec.message() + ")");
+  }
   folder_ = absolute.string();
   const fs::path cwd = fs::current_path(ec).lexically_normal();
   if (!ec) {
@@ -173,6 +179,7 @@ OutputSet::OutputSet(const std::string& folder, std::vector<std::string> owned)
   fs::create_directories(parent, ec);
   if (ec) throw IlpError(parent.string() + ": cannot create the folder for outputs (" + ec.message() + ")");
   const std::string folder_name = absolute.filename().string();
+  remove_leftovers(parent, "." + folder_name + ".ilp-tmp-");  // of killed runs: they would pile up
   staging_ = (parent / ("." + folder_name + ".ilp-tmp-" + unique_suffix(true))).string();
   if (!fs::create_directory(staging_, ec) || ec)
     throw IlpError(folder + ": cannot write outputs beside it (" + (ec ? ec.message() : "exists") + ")");
@@ -196,8 +203,26 @@ void OutputSet::staged(const std::string& name) {
 }
 
 void OutputSet::write(const std::string& name, const std::function<void(std::ostream&)>& writer) {
-  write_file_atomically(staging_path(name), writer);
+  try {
+    write_file_atomically(staging_path(name), writer);
+  } catch (const IlpError& e) {
+    throw IlpError(explained(e.what()));
+  }
   staged(name);
+}
+
+std::string OutputSet::explained(const std::string& message) const {
+  std::string out = message;
+  for (std::size_t at = out.find(staging_); at != std::string::npos; at = out.find(staging_, at + folder_.size()))
+    out.replace(at, staging_.size(), folder_);
+  struct statvfs fs_stat {};
+  if (out.find("free on its file system)") == std::string::npos && ::statvfs(fs::path(staging_).parent_path().c_str(), &fs_stat) == 0) {
+    const double free_mb = static_cast<double>(fs_stat.f_bavail) * static_cast<double>(fs_stat.f_frsize) / 1e6;
+    char note[96];
+    std::snprintf(note, sizeof note, " (%.0f MB free on its file system)", free_mb);
+    out += note;
+  }
+  return out;
 }
 
 std::vector<std::string> OutputSet::commit() {

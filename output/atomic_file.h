@@ -41,8 +41,10 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 class OutputSet {
  public:
   // `folder`: the output folder; `owned`: the names of every file this command can
-  // write there. Creates the staging folder (and the parents of `folder`). Throws
-  // IlpError when `folder` is not a folder or holds the current working folder.
+  // write there. Creates the staging folder (and the parents of `folder`), after
+  // removing staging folders of killed runs beside it. A symbolic link to a folder is
+  // kept: the set goes into its target. Throws IlpError when `folder` is not a folder
+  // or holds the current working folder.
   OutputSet(const std::string& folder, std::vector<std::string> owned);
   ~OutputSet();  // removes the staging folder unless committed
   OutputSet(const OutputSet&) = delete;
@@ -60,6 +62,11 @@ class OutputSet {
   std::vector<std::string> commit();
 
   const std::string& folder() const { return folder_; }
+
+  // A failure's message with the staging folder's path replaced by the output
+  // folder's (the user's name for where the files go) and the space left on its file
+  // system: what a disk-full failure says.
+  std::string explained(const std::string& message) const;
 
  private:
   std::string given_;    // as the caller named it (for the paths commit returns)

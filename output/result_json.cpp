@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/base/error.h"
 #include "output/atomic_file.h"
 #include "output/result_record.h"
 
@@ -72,6 +73,7 @@ json to_json(const ResultRecord& r) {
   j["fixed_flux_lm"] = r.fixed_flux_lm;
   j["feasible"] = r.feasible;
   j["all_met"] = r.all_met;
+  if (!r.no_layout.empty()) j["no_layout"] = r.no_layout;
   j["flux_correction"] = r.flux_correction;
   j["flux_correction_limited"] = r.flux_correction_limited;
   j["verification"] = {{"method", r.verification}, {"rays_per_patch", r.verification_rays_per_patch}};
@@ -160,6 +162,7 @@ ResultRecord from_json(const json& j) {
   r.fixed_flux_lm = j.at("fixed_flux_lm").get<double>();
   r.feasible = j.at("feasible").get<bool>();
   r.all_met = j.at("all_met").get<bool>();
+  r.no_layout = j.value("no_layout", std::string());
   r.flux_correction = j.at("flux_correction").get<double>();
   r.flux_correction_limited = j.at("flux_correction_limited").get<bool>();
   r.verification = j.at("verification").at("method").get<std::string>();
@@ -196,12 +199,14 @@ std::string goal_value(const GoalRecord& g, double v) { return fixed(v, g.unit.e
 
 void write_result_json(const std::string& path, const ResultRecord& result) {
   const json j = to_json(result);
-  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+  // Invalid UTF-8 (a name from a file) is replaced, not a throw after the whole run.
+  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2, ' ', false, json::error_handler_t::replace) << "\n"; });
 }
 
 ResultRecord read_result_json(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(path + ": is a folder, not a result file");
+  if (const std::string why = not_a_regular_file(path, "result"); !why.empty()) throw std::runtime_error(why);
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open the result file");
   try {
@@ -236,9 +241,12 @@ void print_arrangements(std::ostream& os, const std::vector<AttemptRecord>& atte
        << first.second << "\n";
 }
 
-}  // namespace
-
-void print_result(std::ostream& os, const ResultRecord& r) {
+void print_result_text(std::ostream& os, const ResultRecord& r) {
+  if (!r.no_layout.empty()) {
+    os << "NO LAYOUT: " << r.no_layout << "\n";
+    for (const std::string& v : r.variants) os << "  " << v << "\n";
+    return;
+  }
   // Missed as predicted already (the goals cannot be met as stated), or only as verified.
   bool missed_as_predicted = false;
   for (const GoalRecord& g : r.goals) missed_as_predicted = missed_as_predicted || (!g.met && !g.fails_only_on_verification);
@@ -338,6 +346,16 @@ void print_result(std::ostream& os, const ResultRecord& r) {
   for (std::size_t k = 0; k < r.timings_s.size(); ++k)
     os << (k ? ", " : " ") << r.timings_s[k].first << " " << fixed(r.timings_s[k].second, 2) << " s";
   os << "\n";
+}
+
+}  // namespace
+
+// Text from the job and vendors' files (names, keywords) reaches the terminal here:
+// its control characters are shown escaped, never obeyed.
+void print_result(std::ostream& os, const ResultRecord& r) {
+  std::ostringstream text;
+  print_result_text(text, r);
+  os << printable(text.str(), true);
 }
 
 void print_grid_table(std::ostream& os, const std::vector<GridRecord>& grids, const std::string& basis) {

@@ -92,6 +92,7 @@ struct ResultRecord {
   double fixed_flux_lm = 0.0;
   bool feasible = false;                    // predicted
   bool all_met = false;
+  std::string no_layout;                    // why no layout was found (every count screened out); empty: one was
   double flux_correction = 1.0;
   bool flux_correction_limited = false;     // the flux range allowed less than the goals wanted
   std::string verification;                 // exact, sample or none

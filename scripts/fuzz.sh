@@ -9,6 +9,7 @@
 #   bash scripts/fuzz.sh            # 60 s each (what CI can run)
 #   bash scripts/fuzz.sh 600        # the longer run of docs/reliability.md
 #   bash scripts/fuzz.sh 60 config  # one harness
+#   FUZZ_PARALLEL=1 bash scripts/fuzz.sh 600 config,products_grids   # some, at once
 #   FUZZ_PARALLEL=1 bash scripts/fuzz.sh 600   # every harness at once
 #
 # Needs clang (Debian package clang), installed when missing and the script runs as
@@ -33,7 +34,9 @@ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Debug -DBUILD_TESTING=OFF -DILP_BUIL
 harnesses=()
 for source in fuzz/*_fuzz.cpp; do
   name="$(basename "$source" .cpp)"
-  [ -n "$only" ] && [ "$name" != "${only}_fuzz" ] && [ "$name" != "$only" ] && continue
+  if [ -n "$only" ]; then  # one name, or several separated by commas
+    case ",$only," in *",${name%_fuzz},"* | *",$name,"*) ;; *) continue ;; esac
+  fi
   harnesses+=("$name")
 done
 [ ${#harnesses[@]} -gt 0 ] || { echo "fuzz: no harness fuzz/*_fuzz.cpp${only:+ named $only}" >&2; exit 1; }

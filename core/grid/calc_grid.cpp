@@ -134,16 +134,27 @@ bool polygon_is_simple(const std::vector<Eigen::Vector2d>& poly) {
   return true;
 }
 
-CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcGridSetting& s) {
-  CalcGrid grid;
+namespace {
+
+// A grid's lattice before its points are tested (no rays): the outline, the plane's
+// normal, the cells. Throws the setting's ConfigErrors that need no ray.
+struct GridLattice {
+  CalcGrid grid;  // name, kind, axes, origin, spacing, cells
+  Outline outline;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+};
+
+GridLattice lay_lattice(const Scene& scene, const CalcGridSetting& s) {
+  GridLattice lattice;
+  CalcGrid& grid = lattice.grid;
+  Outline& outline = lattice.outline;
+  Eigen::Vector3d& normal = lattice.normal;
   grid.name = s.name;
   grid.kind = s.kind;
   const Eigen::AlignedBox3d& bounds = scene.bounds_m;
   const double tolerance = 1e-6 * (1.0 + bounds.diagonal().norm());
   const std::string label = "grids." + s.name;
-  Outline outline;
   double lu = 0.0, lv = 0.0;
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   if (s.kind == GridKind::horizontal) {
     double z = s.height_m;
     if (!s.over_surface.empty()) {
@@ -215,6 +226,24 @@ CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcG
   grid.cells_v = n.y();
   grid.cell_u_m = lu / n.x();
   grid.cell_v_m = lv / n.y();
+  return lattice;
+}
+
+}  // namespace
+
+CalcGridSize calc_grid_size(const Scene& scene, const CalcGridSetting& setting) {
+  const GridLattice lattice = lay_lattice(scene, setting);
+  return {static_cast<std::size_t>(lattice.grid.cells_u) * static_cast<std::size_t>(lattice.grid.cells_v),
+          lattice.outline.triangles.size() + lattice.outline.polygon.size()};
+}
+
+CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcGridSetting& s) {
+  GridLattice lattice = lay_lattice(scene, s);
+  CalcGrid& grid = lattice.grid;
+  const Outline& outline = lattice.outline;
+  const Eigen::Vector3d normal = lattice.normal;
+  const Eigen::Vector2i n(grid.cells_u, grid.cells_v);
+  const std::string label = "grids." + s.name;
   std::size_t no_floor = 0;
   for (int j = 0; j < n.y(); ++j)
     for (int i = 0; i < n.x(); ++i) {
@@ -247,9 +276,9 @@ CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcG
                                          " inside solid objects)"));
   grid.area_m2 = static_cast<double>(grid.points.size()) * grid.cell_u_m * grid.cell_v_m;
   grid.border_m = s.border_m;
-  grid.outline_polygon_m = std::move(outline.polygon);
-  grid.outline_triangles_m = std::move(outline.triangles);
-  return grid;
+  grid.outline_polygon_m = std::move(lattice.outline.polygon);
+  grid.outline_triangles_m = std::move(lattice.outline.triangles);
+  return std::move(grid);
 }
 
 static_assert(field_count<CalcGridSetting>() == 19, "CalcGridSetting changed: hash the new field here (or say why not)");

@@ -88,6 +88,15 @@ struct CalcGrid {
   std::vector<std::array<Eigen::Vector2d, 3>> outline_triangles_m;
 };
 
+// What laying a grid costs, known without a ray: its cells (the most points it can
+// have) and the outline's triangles or polygon edges each cell is tested against.
+// Throws the ConfigErrors of make_calc_grid that need no ray (max_points among them).
+struct CalcGridSize {
+  std::size_t cells = 0;
+  std::size_t outline_parts = 0;
+};
+CalcGridSize calc_grid_size(const Scene& scene, const CalcGridSetting& setting);
+
 // Builds the grid on the scene. Throws ConfigError (at the setting's file:line) when the
 // surface is unknown or has no patch facing up, the band leaves nothing, the grid would
 // have more than max_points points, the height is outside the scene, the grid lies

@@ -32,7 +32,10 @@ class FieldReader : public BoundedNumbers<FieldReader> {
     }
     return trim(lines_[pos_++]);
   }
-  std::string text(const std::string& field) { return to_utf8(raw(field)); }
+  std::string text(const std::string& field) {
+    const int at = line();
+    return bounded_text(raw(field), path_, at, field);
+  }
   template <class Name>
   double number(const Name& field) {
     const int at = line();
@@ -69,9 +72,11 @@ LuminousOpening eulumdat_opening(const std::array<double, 9>& mm, Photometry& p)
     if (length > 0) warn(p, "luminous area not given (fields 16-17 are 0): the luminaire dimensions are used");
   }
   if (length == 0 && width == 0) return o;
-  if (width == 0) {
+  if (width == 0) {  // EULUMDAT: width 0 = round
     o.shape = height > 0 ? OpeningShape::cylinder : OpeningShape::disc;
     width = length;
+  } else if (length == 0) {  // only a width: a line across
+    o.shape = OpeningShape::line;
   } else {
     o.shape = OpeningShape::rectangle;
   }
@@ -241,6 +246,7 @@ StoredWeb read_intensities(FieldReader& in, const std::string& path, const Eulum
       if (v < 0) fail(path, at, field(), fmt(v) + " cd/klm is negative");
       const double cd = v * scale;
       if (cd > kMaxCandela) fail(path, at, field(), fmt(cd) + " cd is beyond any luminaire (limit 1e9 cd)");
+      if (cd > 0 && cd < kMinNonZeroCandela) fail(path, at, field(), fmt(cd) + " cd is not zero yet below 1e-30 cd: no measurement");
       w.cd(static_cast<Eigen::Index>(j), i) = cd;
     }
   }

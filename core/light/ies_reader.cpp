@@ -98,28 +98,40 @@ PhotometricSymmetry ies_symmetry(const std::vector<double>& h, const std::string
            " is not a valid type C symmetry (one angle, 0..90, 0..180, 90..270 or 0..360)");
 }
 
+// LM-63-2002's signs (docs/photometry.md, "Luminous openings"): 0 is no extent, a
+// negative value a round extent (disc, ellipse, cylinder, sphere), a positive one a
+// straight one. The footprint seen from below decides the shape.
 LuminousOpening ies_opening(double width, double length, double height, Photometry& p) {
   LuminousOpening o;
-  if (width == 0 && length == 0 && height == 0) return o;
-  if (width < 0 || length < 0) {  // round: disc, vertical cylinder, sphere
-    const double w = width != 0 ? std::abs(width) : std::abs(length);
-    const double l = length != 0 ? std::abs(length) : std::abs(width);
-    o.width_m = w;
-    o.length_m = l;
-    if (height == 0) {
-      o.shape = OpeningShape::disc;
-    } else {
-      o.shape = OpeningShape::cylinder;
-      o.height_m = std::abs(height);
-      if (height < 0) warn(p, "spherical or horizontal-cylinder opening (negative height) taken as a vertical cylinder");
-    }
+  o.width_m = std::abs(width);
+  o.length_m = std::abs(length);
+  o.height_m = std::abs(height);
+  if (width == 0 && length == 0) {  // a point (a luminous height alone has no footprint)
+    if (height != 0) warn(p, "a luminous height of " + fmt(o.height_m) + " m without width or length: taken as a point");
+    o.height_m = 0;
     return o;
   }
-  o.shape = OpeningShape::rectangle;
-  o.width_m = width;
-  o.length_m = length;
-  o.height_m = std::abs(height);
-  if (height < 0) warn(p, "negative height with a rectangular opening: taken as " + fmt(o.height_m) + " m");
+  if (width == 0 || length == 0) {
+    if (width < 0 || length < 0) {  // LM-63 vertical circle: its diameter as a disc
+      o.shape = OpeningShape::disc;
+      o.width_m = o.length_m = std::max(o.width_m, o.length_m);
+      warn(p, "a round opening with one size 0: taken as a disc of " + fmt(o.width_m) + " m");
+      return o;
+    }
+    o.shape = OpeningShape::line;  // a bare tube or a strip: one size 0
+    return o;
+  }
+  if (width < 0 && length < 0) {  // disc, ellipse, vertical cylinder, sphere
+    o.shape = height == 0 ? OpeningShape::disc : OpeningShape::cylinder;
+    if (o.width_m != o.length_m) warn(p, "an elliptical opening: taken as round, " + fmt(std::max(o.width_m, o.length_m)) + " m across");
+    if (height < 0) warn(p, "spherical opening (negative height) taken as a vertical cylinder");
+    return o;
+  }
+  o.shape = OpeningShape::rectangle;  // or a horizontal cylinder (one negative size): its footprint
+  if (width < 0 || length < 0)
+    warn(p, "a horizontal cylinder (one negative size): its footprint taken as a rectangle of " + fmt(o.length_m) +
+                " x " + fmt(o.width_m) + " m");
+  if (height < 0) warn(p, "negative height: taken as " + fmt(o.height_m) + " m");
   return o;
 }
 
@@ -166,9 +178,13 @@ IesPreamble read_ies_preamble(const std::vector<std::string_view>& lines, const 
     if (l.size() >= 2 && l.front() == '[' && l.find(']') != std::string_view::npos) {
       const std::size_t close = l.find(']');
       const std::string key = upper(trim(l.substr(1, close - 1)));
-      const std::string value = to_utf8(trim(l.substr(close + 1)));
+      const int at = static_cast<int>(i) + 1;
+      std::string field(1, '[');  // (not "[" + ...: GCC 12 warns falsely, -Wrestrict)
+      field.append(printable(shortened(key, 40))).push_back(']');
+      const std::string value = bounded_text(trim(l.substr(close + 1)), path, at, field);
       if (key == "MORE" && last_keyword) {
         *last_keyword += " " + value;
+        if (last_keyword->size() > kMaxTextChars) bounded_text(*last_keyword, path, at, "[MORE]");
         continue;
       }
       last_keyword = nullptr;
@@ -178,7 +194,7 @@ IesPreamble read_ies_preamble(const std::vector<std::string_view>& lines, const 
       if (last_keyword && last_keyword->empty()) *last_keyword = value;
       else last_keyword = nullptr;
     } else if (free_text.empty() && !l.empty()) {
-      free_text = to_utf8(l);
+      free_text = bounded_text(l, path, static_cast<int>(i) + 1, "text");
     }
   }
   if (p.luminaire.empty() && p.version.empty()) p.luminaire = free_text;  // 1986: first line of text
@@ -293,6 +309,7 @@ StoredWeb read_ies_web(TokenReader& in, const std::string& path, const IesParame
       if (v < 0) fail(path, at, field(), fmt(v) + " cd is negative");
       const double cd = v * scale;
       if (cd > kMaxCandela) fail(path, at, field(), fmt(cd) + " cd is beyond any luminaire (limit 1e9 cd)");
+      if (cd > 0 && cd < kMinNonZeroCandela) fail(path, at, field(), fmt(cd) + " cd is not zero yet below 1e-30 cd: no measurement");
       w.cd(j, i) = cd;
     }
   }

@@ -13,6 +13,7 @@ namespace ilp {
 namespace {
 
 constexpr double kPointSourceDiameterM = 0.1;
+constexpr double kLineSourceWidthM = 0.02;  // a line source's drawn and meshed width (a T5 tube is 16 mm)
 
 }  // namespace
 
@@ -61,6 +62,10 @@ LuminaireType photometric_luminaire_type(const std::string& name, std::shared_pt
     t.shape = OutlineShape::rectangle;
     t.length_m = laid.along_c0_m;  // LuminaireType: length along local x (C0)
     t.width_m = laid.along_c90_m;
+  } else if (o.shape == OpeningShape::line) {  // a thin rectangle along its one size
+    t.shape = OutlineShape::rectangle;
+    t.length_m = o.length_m > 0.0 ? o.length_m : kLineSourceWidthM;
+    t.width_m = o.width_m > 0.0 ? o.width_m : kLineSourceWidthM;
   } else {
     t.shape = OutlineShape::disc;
     const double d = std::max(o.length_m, o.width_m);

@@ -74,6 +74,12 @@ bool valid_utf8(std::string_view s) {
 }  // namespace
 
 // Text fields as UTF-8: kept if they already are, else read as ISO-8859-1 (EULUMDAT's charset).
+std::string bounded_text(std::string_view s, const std::string& path, int line, const std::string& field) {
+  if (s.size() > kMaxTextChars)
+    fail(path, line, field, std::to_string(s.size()) + " characters, more than " + std::to_string(kMaxTextChars));
+  return printable(to_utf8(s));
+}
+
 std::string to_utf8(std::string_view s) {
   if (valid_utf8(s)) return std::string(s);
   std::string out;

@@ -39,7 +39,8 @@ enum class PhotometricSymmetry {
   none,               // full web (IES 0..360 or 0..>180 closed periodically, Isym 0)
 };
 
-enum class OpeningShape { point, rectangle, disc, cylinder };
+// line: one of length and width is 0 (a bare tube or LED strip), the other > 0.
+enum class OpeningShape { point, rectangle, disc, cylinder, line };
 
 // The luminous opening, metres, in the luminaire's frame, centred on its origin.
 struct LuminousOpening {

@@ -24,7 +24,14 @@ inline constexpr double kFeetToMetres = 0.3048;
 // Angles closer than this (degrees) are the same angle (files print 2-6 decimals).
 inline constexpr double kAngleTolDeg = 1e-6;
 // Plausibility limits: beyond them a value is a corrupt file, not a luminaire.
+// A text field or keyword (luminaire, manufacturer, catalogue): at most this long
+// (LM-63 lines are at most 256 characters, EULUMDAT's 78).
+inline constexpr std::size_t kMaxTextChars = 256;
 inline constexpr double kMaxCandela = 1e9;       // the brightest searchlights are ~1e9 cd
+// A non-zero intensity below this is no measurement (a subnormal such as 4e-320 once
+// made the flux underflow and the direct light NaN, far from the file): refused.
+// Round-off of a computed web (1000 cos 90° = 6e-14) stays well above it.
+inline constexpr double kMinNonZeroCandela = 1e-30;
 inline constexpr double kMaxFluxLm = 1e8;        // a 1 MW sodium lamp makes ~1.5e8 lm
 inline constexpr double kMaxPowerW = 1e7;
 inline constexpr double kMaxDimensionM = 1000.0;
@@ -46,6 +53,11 @@ std::string upper(std::string_view s);
 std::string_view trim(std::string_view s);
 // Text fields as UTF-8: kept if they already are, else read as ISO-8859-1 (EULUMDAT's charset).
 std::string to_utf8(std::string_view s);
+
+// A text field as kept: at most kMaxTextChars (else fail at path:line naming `field`),
+// UTF-8, control characters escaped (\xNN: a vendor's escape codes are shown, never
+// obeyed by a terminal).
+std::string bounded_text(std::string_view s, const std::string& path, int line, const std::string& field);
 // The text without a UTF-8 BOM and without anything from a DOS end-of-file byte (^Z) on.
 std::string_view strip_bom_and_eof(std::string_view text);
 // Lines split at LF, CRLF or a lone CR; line i of the result is file line i + 1.

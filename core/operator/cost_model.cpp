@@ -4,11 +4,13 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 
 #include "core/base/error.h"
+#include "core/operator/sample_operator.h"
 
 namespace ilp {
 namespace {
@@ -24,6 +26,8 @@ constexpr double kProcessBytes = 50e6;  // the program, its libraries and thread
 // of the row result and the sparse matrix entry (double + int).
 constexpr double kRowNnzPeakBytes = 20.0;
 constexpr double kRowNnzBytes = 12.0;
+// A grid point while grids are laid and kept: its position and normal, its cell.
+constexpr double kGridPointBytes = 64.0;
 
 double d(std::size_t v) { return static_cast<double>(v); }
 
@@ -75,17 +79,28 @@ const PhaseEstimate* CostEstimate::largest_phase() const {
 
 CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
   CostEstimate out;
-  const double n = d(c.patches), G = d(c.goal_patches), L = d(c.sources), k = d(c.sample_size);
+  const double n = d(c.patches), L = d(c.sources), k = d(c.sample_size);
   const double pop = d(c.population);
   out.scene_bytes = kProcessBytes + n * (2.0 * kPatchBytes + kBvhBytesPerPatch + kIndexBytesPerPatch);
   const bool reflecting = c.population > 0 && c.sample_size > 0;
-  const double goal_nnz = reflecting && c.exact_second_bounce ? row_nnz(G, c.rays_per_patch, c.patches) : 0.0;
+  const double P = d(c.grid_points), G = d(c.goal_patches) + P;  // every goal row: patches, then points
+  const int point_rays = kPointRayFactor * c.rays_per_patch;
+  const double goal_nnz = reflecting && c.exact_second_bounce
+                              ? row_nnz(G - P, c.rays_per_patch, c.patches) + row_nnz(P, point_rays, c.patches)
+                              : 0.0;
   const double D_goal = 8.0 * G * L;
-
-  out.phases.push_back({"goal rows and direct light at goal patches",
-                        G * c.rays_per_patch * m.gather_ray_s + G * L * c.direct_rays * m.precise_pair_ray_s,
+  const std::string grid_setting = "grids[].spacing_m (fewer points) or grids[].max_points";
+  if (c.grid_points > 0)
+    out.phases.push_back({"laying grids (" + std::to_string(c.grid_points) + " points at most)",
+                          P * m.grid_rays_per_cell * m.gather_ray_s + d(c.grid_outline_tests) * m.outline_test_s,
+                          P * kGridPointBytes, grid_setting});
+  out.phases.push_back({"goal rows and direct light at goal patches" + std::string(P > 0 ? " and grid points" : ""),
+                        ((G - P) * c.rays_per_patch + P * point_rays) * m.gather_ray_s +
+                            G * L * c.direct_rays * m.precise_pair_ray_s,
                         goal_nnz * kRowNnzPeakBytes + 2.0 * D_goal,
-                        "scene.max_patch_edge_m (fewer goal patches) or luminaires.candidate_spacing_m (fewer candidates)"});
+                        P > 0 ? grid_setting + ", or luminaires.candidate_spacing_m (fewer candidates)"
+                              : "scene.max_patch_edge_m (fewer goal patches) or luminaires.candidate_spacing_m (fewer "
+                                "candidates)"});
   // One sample-based build of size kk on top of the goal rows.
   auto build = [&](double kk, const std::string& label, const std::string& setting) {
     const double hits = c.exact_second_bounce
@@ -133,7 +148,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                           model_bytes + 4.0 * G * L, "optimizer.max_evaluations"});
   const double Lv = c.luminaires + 1.0;
   if (c.verify == CostCounts::Verify::exact) {
-    const double per = n * c.verify_rays * m.gather_ray_s + G * Lv * c.direct_rays * m.precise_pair_ray_s +
+    const double per = (n + P) * c.verify_rays * m.gather_ray_s + G * Lv * c.direct_rays * m.precise_pair_ray_s +
                        n * Lv * m.cheap_pair_s +
                        m.gauss_seidel_sweeps * row_nnz(n, c.verify_rays, c.patches) * m.gauss_seidel_nnz_s;
     out.phases.push_back({"verification (exact, " + std::to_string(c.verify_rays) + " rays per patch, up to " +
@@ -149,7 +164,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                               std::to_string(c.verify_rounds) + " rounds)",
                           c.verify_rounds * per,
                           model_bytes + n * (kPatchBytes + kBvhBytesPerPatch) +
-                              sample_verification_bytes(c.verify_sample_size, c.goal_patches, c.luminaires + 1,
+                              sample_verification_bytes(c.verify_sample_size, c.goal_patches + c.grid_points, c.luminaires + 1,
                                                        c.verify_rays),
                           "verification.sample_fraction or verification.method"});
   }
@@ -191,20 +206,87 @@ std::optional<double> available_memory_bytes() {
   return std::nullopt;
 }
 
-std::optional<double> memory_budget_bytes(std::optional<double> max_memory_bytes) {
-  std::optional<double> available = available_memory_bytes();
-  if (available && max_memory_bytes) return std::min(*available, *max_memory_bytes);
-  return max_memory_bytes ? max_memory_bytes : available;
+namespace {
+
+// A limit file's value in bytes; nullopt for "max", a missing file or v1's "no limit" (>= 2^60).
+std::optional<double> read_limit(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string text;
+  if (!in || !(in >> text) || text == "max") return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || !(v > 0.0) || v >= 1152921504606846976.0) return std::nullopt;
+  return v;
 }
 
-void require_fits(const CostEstimate& e, std::optional<double> budget, const std::string& where) {
+// The least limit in `file_name` of `dir`/`path` and each of its ancestors up to `dir`.
+void least_limit(const std::filesystem::path& dir, const std::string& path, const std::string& file_name,
+                 std::optional<MemoryBudget>& least) {
+  std::filesystem::path p = std::filesystem::path(path).relative_path();
+  for (;;) {
+    const std::filesystem::path file = dir / p / file_name;
+    if (const auto v = read_limit(file); v && (!least || *v < least->bytes))
+      least = MemoryBudget{*v, "the cgroup limit in " + file.lexically_normal().string()};
+    if (p.empty()) break;
+    p = p.parent_path();
+  }
+}
+
+}  // namespace
+
+std::optional<MemoryBudget> cgroup_memory_limit(const CgroupFiles& files) {
+  std::string root = files.root;
+  if (root.empty()) {
+    const char* env = std::getenv("ILP_CGROUP_ROOT");
+    root = env && *env ? env : "/sys/fs/cgroup";
+  }
+  std::optional<MemoryBudget> least;
+  std::ifstream in(files.self_cgroup);
+  for (std::string line; std::getline(in, line);) {
+    const auto a = line.find(':'), b = a == std::string::npos ? a : line.find(':', a + 1);
+    if (b == std::string::npos) continue;
+    std::string controllers(1, ',');  // (not "," + ...: GCC 12 warns falsely, -Wrestrict)
+    controllers.append(line, a + 1, b - a - 1).push_back(',');
+    const std::string path = line.substr(b + 1);
+    if (controllers == ",,") {  // v2 (or the hybrid layout's unified tree)
+      least_limit(root, path, "memory.max", least);
+      least_limit(std::filesystem::path(root) / "unified", path, "memory.max", least);
+    } else if (controllers.find(",memory,") != std::string::npos) {
+      least_limit(std::filesystem::path(root) / "memory", path, "memory.limit_in_bytes", least);
+    }
+  }
+  return least;
+}
+
+std::optional<MemoryBudget> memory_budget(std::optional<double> max_memory_bytes, const CgroupFiles& files) {
+  std::optional<MemoryBudget> least;
+  auto consider = [&](std::optional<double> bytes, const std::string& source) {
+    if (bytes && (!least || *bytes < least->bytes)) least = MemoryBudget{*bytes, source};
+  };
+  consider(available_memory_bytes(), "the machine's available memory (MemAvailable)");
+  if (const auto cgroup = cgroup_memory_limit(files)) consider(cgroup->bytes, cgroup->source);
+  consider(max_memory_bytes, "--max-memory");
+  return least;
+}
+
+std::optional<double> memory_budget_bytes(std::optional<double> max_memory_bytes) {
+  const std::optional<MemoryBudget> budget = memory_budget(max_memory_bytes);
+  return budget ? std::optional<double>(budget->bytes) : std::nullopt;
+}
+
+void require_fits(const CostEstimate& e, const std::optional<MemoryBudget>& budget, const std::string& where) {
+  if (budget) require_fits(e, budget->bytes, where, budget->source);
+}
+
+void require_fits(const CostEstimate& e, std::optional<double> budget, const std::string& where,
+                  const std::string& budget_source) {
   if (!budget || e.peak_bytes() <= *budget) return;
   const PhaseEstimate* p = e.largest_phase();
   std::ostringstream os;
   os << where << ": the job would need about " << format_bytes(e.peak_bytes()) << " of memory";
   if (p) os << " (" << p->name << ": " << format_bytes(e.scene_bytes + p->bytes) << ")";
   os << ", more than the " << format_bytes(*budget)
-     << " it may use (the machine's available memory or --max-memory); refused before any work";
+     << " it may use (" << budget_source << "); refused before any work";
   if (p) os << ": change " << p->setting;
   throw ConfigError(os.str());
 }

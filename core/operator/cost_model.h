@@ -26,6 +26,8 @@ struct MachineCosts {
   double gauss_seidel_nnz_s = 2.0e-9;       // one non-zero of F per Gauss-Seidel sweep
   int gauss_seidel_sweeps = 24;             // sweeps a typical solve needs (relative residual 1e-6)
   double hit_coverage = 0.06;               // distinct patches hit ~ pop (1 - exp(-coverage rows rays / pop))
+  int grid_rays_per_cell = 8;               // laying a grid: 6 inside-solid rays and 2 floor rays a cell
+  double outline_test_s = 1.5e-8;           // one point against one outline triangle, 9 times (the band)
 };
 
 // The counts a job's cost follows.
@@ -33,6 +35,11 @@ struct CostCounts {
   std::size_t patches = 0;           // n, in the job scene
   std::size_t population = 0;        // reflecting patches
   std::size_t goal_patches = 0;      // G
+  // Calculation-grid points P: goal rows too (their own gather rows of kPointRayFactor x
+  // rays, direct light, rows of D and T), and laid first (the inside-solid and floor
+  // rays per cell, the outline test per cell and outline part).
+  std::size_t grid_points = 0;       // the grids' cells when not laid yet (the most points)
+  std::size_t grid_outline_tests = 0;  // cells x outline parts (triangles or polygon edges)
   std::size_t sources = 0;           // L: fixed sources + candidates
   std::size_t sample_size = 0;       // k (0: direct light only)
   int channels = 1;
@@ -81,12 +88,38 @@ std::vector<std::string> format_estimate(const CostEstimate& estimate);
 // MemAvailable of /proc/meminfo in bytes; nullopt where it cannot be read.
 std::optional<double> available_memory_bytes();
 
-// The memory a job may use: the smaller of MemAvailable and `max_memory_bytes`.
+// A memory limit and where it comes from, for messages: "the machine's available
+// memory (MemAvailable)", "the cgroup limit (/sys/fs/cgroup/.../memory.max)", "--max-memory".
+struct MemoryBudget {
+  double bytes = 0.0;
+  std::string source;
+};
+
+// Where the cgroup files are: /proc/self/cgroup names this process's cgroup per
+// hierarchy ("0::/PATH" for v2, "N:memory:/PATH" for v1); `root` is where the
+// hierarchies are mounted (empty: $ILP_CGROUP_ROOT if set, else /sys/fs/cgroup; v1's
+// memory controller in ROOT/memory, v2 in ROOT or ROOT/unified).
+struct CgroupFiles {
+  std::string self_cgroup = "/proc/self/cgroup";
+  std::string root;
+};
+
+// The least memory limit of this process's cgroup and its ancestors (v2 memory.max,
+// v1 memory.limit_in_bytes; "max" and v1's near-2^63 mean none); nullopt when none.
+// A container sees its own cgroup as the root, so the walk goes up to ROOT itself.
+std::optional<MemoryBudget> cgroup_memory_limit(const CgroupFiles& files = {});
+
+// The memory a job may use: the least of MemAvailable, the cgroup limit and
+// `max_memory_bytes`, with the name of the one that applied.
+std::optional<MemoryBudget> memory_budget(std::optional<double> max_memory_bytes, const CgroupFiles& files = {});
 std::optional<double> memory_budget_bytes(std::optional<double> max_memory_bytes);
 
 // Throws ConfigError when the estimate's peak exceeds the budget, naming the phase,
-// both figures and the setting to change; `where` prefixes the message (the config file).
-void require_fits(const CostEstimate& estimate, std::optional<double> budget_bytes, const std::string& where);
+// both figures, the budget's source and the setting to change; `where` prefixes the
+// message (the config file).
+void require_fits(const CostEstimate& estimate, std::optional<double> budget_bytes, const std::string& where,
+                  const std::string& budget_source = "the machine's available memory or --max-memory");
+void require_fits(const CostEstimate& estimate, const std::optional<MemoryBudget>& budget, const std::string& where);
 
 // "2.5 GB" / "512 MB", for messages.
 std::string format_bytes(double bytes);

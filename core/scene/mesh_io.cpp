@@ -70,6 +70,8 @@ std::vector<MeshMaterial> load_mtl(const fs::path& path, const FileLoc& referenc
   std::error_code ec;
   if (fs::is_directory(path, ec))
     throw SceneError(located(referenced_from, "mtllib: '" + path.string() + "' is a folder, not a material file"));
+  if (const std::string why = not_a_regular_file(path.string(), "material"); !why.empty())
+    throw SceneError(located(referenced_from, "mtllib: " + why));
   std::ifstream in(path);
   if (!in) throw SceneError(located(referenced_from, "mtllib: cannot open material file '" + path.string() + "'"));
   std::vector<MeshMaterial> materials;
@@ -617,6 +619,7 @@ TriangleMesh load_mesh(const std::string& path_string, const MeshReadOptions& op
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw SceneError(path_string + ": is a folder, not a mesh file");
+  if (const std::string why = not_a_regular_file(path_string, "mesh"); !why.empty()) throw SceneError(why);
   TriangleMesh mesh;
   if (ext == ".obj") mesh = load_obj(path, options);
   else if (ext == ".ply" || ext == ".off") mesh = load_with_openmesh(path, ext);

@@ -75,7 +75,7 @@ TEST(CostModel, ALargeSampleIsRefusedBeyondTheBudgetNamingTheSetting) {
   const std::string msg = test::error_of<ConfigError>([&] { require_fits(e, 0.5 * e.peak_bytes(), "conference.yaml"); });
   EXPECT_TRUE(Contains(msg, "conference.yaml: the job would need about"));
   EXPECT_TRUE(Contains(msg, "change "));
-  EXPECT_NO_THROW(require_fits(e, std::nullopt, "x"));
+  EXPECT_NO_THROW(require_fits(e, std::optional<double>(), "x"));
   EXPECT_NO_THROW(require_fits(e, 2.0 * e.peak_bytes(), "x"));
 }
 

@@ -1722,7 +1722,8 @@ TEST(JobConfigGrids, BadGridsNameFileLineAndKey) {
        ":6:12: goals[0].grid = g", "not both"},
       {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, preset: office}\n",
        ":6:23: goals[0].preset = office", "unknown preset (EN 12464-1 rows: office_writing"},
-      {"maintenance_factor: 1.2\n", ":3:21: maintenance_factor = 1.2", "must be in (0, 1]"},
+      {"maintenance_factor: 1.2\n", ":3:21: maintenance_factor = 1.2", "must be in [0.1, 1]"},
+      {"maintenance_factor: 1e-300\n", ":3:21: maintenance_factor = 1e-300", "must be in [0.1, 1]"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.body);

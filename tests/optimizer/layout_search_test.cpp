@@ -287,6 +287,28 @@ TEST(LayoutSearch, MinimumDistanceKeepsLuminairesApart) {
   EXPECT_TRUE(outcome.feasible);
 }
 
+// With min_distance_m left at 0, two luminaires could overlap (1 mm apart): outlines
+// never overlap now, whatever min_distance_m says (issue 24).
+TEST(LayoutSearch, OutlinesNeverOverlapWhateverMinDistanceSays) {
+  TempDir dir;
+  std::string luminaires = kOneLuminaire;
+  luminaires.replace(luminaires.find("count: 1"), 8, "count: 2");
+  const JobConfig job = mat_job(dir, 100, "0", luminaires);
+  const PreparedJob prepared = test::prepare(job);
+  const std::vector<double> w{1.0, 1.0};
+  const LayoutEvaluation overlapping =
+      evaluate_layout(prepared.model, test::spec(job), {{1.5, 2.0}, {1.501, 2.0}}, w);
+  EXPECT_GT(overlapping.distance_violation, 0.9);
+  EXPECT_FALSE(overlapping.feasible);
+  const LayoutEvaluation touching = evaluate_layout(prepared.model, test::spec(job), {{1.5, 2.0}, {1.8, 2.0}}, w);
+  EXPECT_EQ(touching.distance_violation, 0.0);
+  // Both luminaires want to be right over the one mat: the search keeps them apart.
+  const JobOutcome outcome = solve_prepared(prepared, job);
+  ASSERT_EQ(outcome.luminaires.size(), 2u);
+  const Eigen::Vector2d gap = (outcome.luminaires[0].position_m - outcome.luminaires[1].position_m).head<2>().cwiseAbs();
+  EXPECT_TRUE(gap.x() >= 0.3 * (1.0 - 1e-3) || gap.y() >= 0.3 * (1.0 - 1e-3)) << gap.transpose();
+}
+
 TEST(LayoutSearch, FixedArrayIsPlacedAsConfigured) {
   TempDir dir;
   dir.write("room.obj", room_obj({{"mat", {2.0, 2.0}}}));

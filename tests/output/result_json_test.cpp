@@ -116,6 +116,23 @@ TEST(ResultJson, ACountNotSearchedSaysWhyNotThatItWasInfeasible) {
   EXPECT_TRUE(test::Contains(text, "4 luminaires: 123.4 W as searched, 6643 evaluations", "report"));
 }
 
+// An outcome without a layout (issue 24: every count screened out crashed the report)
+// says so on the terminal and in result.json; names from files are shown escaped.
+TEST(ResultJson, AnOutcomeWithoutALayoutSaysWhyAndEscapesControlCharacters) {
+  ResultRecord r = sample_record();
+  r.luminaires.clear();
+  r.no_layout = "no luminaire count was searched (none can reach an average target at full output)";
+  r.variants = {"evil\x1b[2J at 0.0 deg: not searched"};
+  std::ostringstream os;
+  print_result(os, r);
+  EXPECT_TRUE(test::Contains(os.str(), "NO LAYOUT: no luminaire count was searched", "report"));
+  EXPECT_TRUE(test::Contains(os.str(), "evil\\x1b[2J", "report"));
+  EXPECT_FALSE(test::Contains(os.str(), "\x1b", "report"));
+  test::TempDir dir;
+  write_result_json(dir.file("result.json"), r);
+  EXPECT_EQ(read_result_json(dir.file("result.json")).no_layout, r.no_layout);
+}
+
 TEST(ResultJson, NotAResultIsAClearError) {
   test::TempDir dir;
   const std::string missing = dir.file("none.json");
