@@ -170,7 +170,7 @@ void stage_plan_svg(OutputSet& set, const RunProducts& p) {
   for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j) {
     PlanLuminaire l{luminaire_name(j), p.outcome.luminaires[j].position_m, s.type.length_m, p.outcome.luminaires[j].flux_lm,
                     {}, s.product};
-    for (const Eigen::Vector3d& v : luminaire_outline_m(s.type, {l.position_m, s.rotation_deg})) l.outline_m.push_back(v.head<2>());
+    for (const Eigen::Vector3d& v : luminaire_outline_m(s.type, {l.position_m, s.rotation_deg, s.tilt_deg})) l.outline_m.push_back(v.head<2>());
     view.luminaires.push_back(std::move(l));
   }
   const std::string svg = render_plan_svg(p.prepared.loaded.scene, view);
@@ -193,7 +193,7 @@ std::vector<DrawnLuminaire> run_luminaires(const RunProducts& p) {
   const SearchLuminaire& s = p.prepared.plan.search.luminaire;
   std::vector<DrawnLuminaire> out = scene_luminaires(p.prepared.loaded.scene);
   for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j)
-    out.push_back({luminaire_name(j), s.product, s.type, {p.outcome.luminaires[j].position_m, s.rotation_deg}});
+    out.push_back({luminaire_name(j), s.product, s.type, {p.outcome.luminaires[j].position_m, s.rotation_deg, s.tilt_deg}});
   return out;
 }
 

@@ -108,6 +108,9 @@ struct ProductSetting {
   std::vector<double> rotations_deg;   // empty: 0 for rotationally symmetric distributions, else 0 and 90
   std::optional<double> mount_offset_m;  // its opening this far below the mounting surface (a pendant's
   FileLoc mount_offset_loc;              // suspension); default: luminaires.mount_offset_m
+  double tilt_deg = 0.0;                 // aim: [0, 90] about its C90-C270 axis, nadir toward C0 (a wall washer, a spot)
+  std::optional<double> length_axis_c_deg;  // which C-plane (0 or 90) its opening's length runs along; default: from the file
+  FileLoc length_axis_loc;
 };
 
 // luminaires: the luminaires the search places (present when mounting_surface is given).

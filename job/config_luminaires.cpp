@@ -130,7 +130,7 @@ void read_products(const Value& section, JobConfig& job) {
   std::set<std::string> names;
   for (const Value& item : section.list()) {
     const Map m(item, {"name", "photometry", "model", "size_m", "flux_lm", "power_w", "dimming", "maintenance_factor",
-                       "rotations_deg", "mount_offset_m"});
+                       "rotations_deg", "mount_offset_m", "tilt_deg", "length_axis_c_deg"});
     ProductSetting p;
     p.loc = item.loc();
     p.name = m.require("name").text();
@@ -170,6 +170,14 @@ void read_products(const Value& section, JobConfig& job) {
       p.mount_offset_m = v->number_in(0.0, 10.0, true, "(0, 10) m");
       if (*p.mount_offset_m <= 0.0) v->fail("must be in (0, 10) m");
       p.mount_offset_loc = v->loc();
+    }
+    if (auto v = m.get("tilt_deg")) p.tilt_deg = v->number_in(0.0, 90.0, false, "[0, 90] degrees");
+    if (auto v = m.get("length_axis_c_deg")) {
+      if (!photometry) v->fail("only for photometry: FILE (the panel's sides are its own)");
+      const double c = v->number();
+      if (c != 0.0 && c != 90.0) v->fail("must be 0 or 90 (the C-plane along the opening's length)");
+      p.length_axis_c_deg = c;
+      p.length_axis_loc = v->loc();
     }
     job.products.push_back(p);
   }

@@ -143,7 +143,8 @@ double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgeme
 
 void add_layout(Scene& scene, const SearchLuminaire& search, const std::vector<PlacedLuminaire>& layout) {
   for (std::size_t j = 0; j < layout.size(); ++j)
-    add_luminaire(scene, luminaire_name(j), search.type, {layout[j].position_m, search.rotation_deg}, layout[j].flux_lm);
+    add_luminaire(scene, luminaire_name(j), search.type, {layout[j].position_m, search.rotation_deg, search.tilt_deg},
+                  layout[j].flux_lm);
 }
 
 bool better_outcome(const JobOutcome& a, const JobOutcome& b) {

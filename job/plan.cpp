@@ -27,6 +27,7 @@ CandidateSpec candidate_spec(const LuminaireSearch& s, const ProductVariant& pro
   c.mounting_surface = s.mounting_surface;
   c.type = product.type;
   c.rotation_deg = product.rotation_deg;
+  c.tilt_deg = product.tilt_deg;
   c.spacing_m = s.candidate_spacing_m;
   c.wall_distance_m = s.wall_distance_m;
   c.ceiling_module_m = s.ceiling_module_m;
@@ -81,11 +82,11 @@ SearchSpec search_spec(const JobConfig& job, const VariantPlan& plan, const RunO
   const ProductVariant& p = plan.product;
   SearchSpec spec;
   if (plan.listed)  // one output for all, within the product's dimming range
-    spec.luminaire = {p.type, p.rotation_deg, p.product, true, p.dim_min * p.rated_flux_lm, p.dim_max * p.rated_flux_lm,
-                      p.rated_flux_lm / p.power_w};
+    spec.luminaire = {p.type, p.rotation_deg, p.tilt_deg, p.product, true, p.dim_min * p.rated_flux_lm,
+                      p.dim_max * p.rated_flux_lm, p.rated_flux_lm / p.power_w};
   else  // the plain panel in the flux_lm range: one output for all unless output: individual
-    spec.luminaire = {p.type, p.rotation_deg, std::string(), !s.individual_output, s.flux_min_lm, s.flux_max_lm,
-                      s.efficacy_lm_per_w};
+    spec.luminaire = {p.type, p.rotation_deg, p.tilt_deg, std::string(), !s.individual_output, s.flux_min_lm,
+                      s.flux_max_lm, s.efficacy_lm_per_w};
   LayoutSpec& layout = spec.layout;
   layout.family = s.layout;
   layout.count_min = s.count_min;

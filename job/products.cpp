@@ -32,7 +32,7 @@ ProductVariant photometric_base(const ProductSetting& p) {
   v.product = p.name;
   v.source = p.photometry_path;
   try {
-    v.type = photometric_luminaire_type(p.name, photometry);
+    v.type = photometric_luminaire_type(p.name, photometry, p.length_axis_c_deg);
   } catch (const IlpError& e) {
     throw ConfigError(located(p.photometry_loc, "luminaires.products '" + p.name + "'.photometry: " + e.what()));
   }
@@ -99,6 +99,7 @@ std::vector<ProductVariant> product_variants(const std::vector<ProductSetting>& 
     for (double r : rotations) {
       ProductVariant v = base;
       v.rotation_deg = r;
+      v.tilt_deg = p.tilt_deg;
       out.push_back(std::move(v));
     }
   }

@@ -86,7 +86,7 @@ class LayoutCoding {
       return;
     }
     // Array: per axis an offset (first centre) and a spacing, each fixed or searched.
-    const Eigen::Vector2d surface_min = lo_ - s.type.half_footprint_m(s.rotation_deg);
+    const Eigen::Vector2d surface_min = lo_ - s.type.half_footprint_m(s.rotation_deg, s.tilt_deg);
     const int counts[2] = {layout.array_columns, layout.array_rows};
     for (int axis = 0; axis < 2; ++axis) {
       Axis& a = axes_[axis];
@@ -271,7 +271,7 @@ class Evaluator {
       out.power_w += out.luminaires[j].power_w;
     }
     const double d_min = spec_.layout.min_distance_m;
-    const Eigen::Vector2d extent_m = 2.0 * s.type.half_footprint_m(s.rotation_deg);
+    const Eigen::Vector2d extent_m = 2.0 * s.type.half_footprint_m(s.rotation_deg, s.tilt_deg);
     for (std::size_t j = 0; j < n; ++j)
       for (std::size_t k = j + 1; k < n; ++k) {
         const Eigen::Vector2d delta = (out.luminaires[j].position_m - out.luminaires[k].position_m).head<2>();
@@ -606,7 +606,7 @@ CountSearch search_count(const LightingModel& model, const SearchSpec& spec, con
 ArrangementFrame arrangement_frame(const LightingModel& model, const SearchSpec& spec) {
   ArrangementFrame frame;
   frame.zone_m = model.zone_m.isEmpty() ? model.grid.surface_box_m() : model.zone_m.intersection(model.grid.surface_box_m());
-  frame.luminaire_extent_m = 2.0 * spec.luminaire.type.half_footprint_m(spec.luminaire.rotation_deg);
+  frame.luminaire_extent_m = 2.0 * spec.luminaire.type.half_footprint_m(spec.luminaire.rotation_deg, spec.luminaire.tilt_deg);
   frame.module_m = spec.layout.ceiling_module_m;
   frame.module_origin_m = model.grid.lower_m();
   return frame;

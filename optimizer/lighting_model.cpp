@@ -21,7 +21,7 @@ namespace {
 
 CandidateGridOptions grid_options(const CandidateSpec& search, const Eigen::AlignedBox2d& zone) {
   return {.spacing_m = search.spacing_m,
-          .half_footprint_m = search.type.half_footprint_m(search.rotation_deg),
+          .half_footprint_m = search.type.half_footprint_m(search.rotation_deg, search.tilt_deg),
           .wall_distance_m = search.wall_distance_m,
           .module_m = search.ceiling_module_m,
           .mount_offset_m = search.mount_offset_m,
@@ -119,7 +119,7 @@ void add_candidates(LightingModel& model, const Scene& job_scene, const Candidat
       model.fixed_flux_lm += fixed_flux[static_cast<Eigen::Index>(l)];
   for (std::size_t c = 0; c < model.grid.size(); ++c) {
     const int surface = add_luminaire(model.scene, std::string("candidate ").append(std::to_string(c + 1)), spec.type,
-                                      {model.grid.positions_m()[c], spec.rotation_deg}, 0.0);
+                                      {model.grid.positions_m()[c], spec.rotation_deg, spec.tilt_deg}, 0.0);
     model.scene.surfaces[static_cast<std::size_t>(surface)].is_virtual = true;
   }
 }

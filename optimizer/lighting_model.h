@@ -37,6 +37,7 @@ struct CandidateSpec {
   std::string mounting_surface;
   LuminaireType type = LuminaireType::square_lambertian(0.6);
   double rotation_deg = 0.0;
+  double tilt_deg = 0.0;           // aim (core/light/luminaire.h)
   double spacing_m = 0.5;          // at most this between candidates
   double wall_distance_m = 0.0;    // an outline keeps at least this from the surface's edges
   double ceiling_module_m = 0.0;   // > 0: centres at a ceiling module's cell centres

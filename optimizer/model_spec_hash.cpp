@@ -6,9 +6,10 @@
 
 namespace ilp {
 
-static_assert(field_count<CandidateSpec>() == 17, "CandidateSpec changed: hash the new field here (or say why not)");
+static_assert(field_count<CandidateSpec>() == 18, "CandidateSpec changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const CandidateSpec& c) {
   k.field("mounting_surface", c.mounting_surface).field("type", c.type).field("rotation_deg", c.rotation_deg);
+  k.field("tilt_deg", c.tilt_deg);
   k.field("spacing_m", c.spacing_m).field("wall_distance_m", c.wall_distance_m);
   k.field("ceiling_module_m", c.ceiling_module_m).field("mount_offset_m", c.mount_offset_m);
   k.field("zone_m", c.zone_m).field("zone_margin_m", c.zone_margin_m);

@@ -21,6 +21,7 @@ namespace ilp {
 struct SearchLuminaire {
   LuminaireType type = LuminaireType::square_lambertian(0.6);
   double rotation_deg = 0.0;
+  double tilt_deg = 0.0;          // aim, [0, 90]: the nadir swings toward C0 (core/light/luminaire.h)
   std::string product;            // the product's name; empty for the plain panel
   bool uniform_output = true;     // every luminaire of a layout at one output (dimmed together), else each its own
   double flux_min_lm = 0.0, flux_max_lm = 0.0;

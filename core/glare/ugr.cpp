@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/base/error.h"
+#include "core/light/luminaire_product.h"
 
 namespace ilp {
 namespace {
@@ -31,6 +32,9 @@ GlareOpening glare_opening(const LuminousOpening& o) {
       return GlareOpening{OutlineShape::disc, kPointOpeningDiameterM, kPointOpeningDiameterM, 0.0};
     case OpeningShape::rectangle:
       return GlareOpening{OutlineShape::rectangle, o.length_m, o.width_m, o.height_m};
+    case OpeningShape::line:  // a thin rectangle along its one size, as the scene meshes it
+      return GlareOpening{OutlineShape::rectangle, o.length_m > 0.0 ? o.length_m : kLineSourceWidthM,
+                          o.width_m > 0.0 ? o.width_m : kLineSourceWidthM, o.height_m};
     case OpeningShape::disc:
     case OpeningShape::cylinder:
       g.shape = OutlineShape::disc;

@@ -13,7 +13,6 @@ namespace ilp {
 namespace {
 
 constexpr double kPointSourceDiameterM = 0.1;
-constexpr double kLineSourceWidthM = 0.02;  // a line source's drawn and meshed width (a T5 tube is 16 mm)
 
 }  // namespace
 

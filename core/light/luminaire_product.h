@@ -32,6 +32,9 @@ class PhotometricDistribution final : public IntensityDistribution {
   std::vector<double> table_;  // (kCSteps + 1) x (kGammaSteps + 1), cd per lm
 };
 
+// A line source's drawn, meshed and glaring width (a T5 tube is 16 mm).
+inline constexpr double kLineSourceWidthM = 0.02;
+
 // The luminaire type of a photometric file: its distribution and its luminous opening
 // (a rectangle, or a disc for round, cylindrical and point openings; a point source
 // gets a 0.1 m disc so that it has an outline that shades and can be drawn). The
@@ -46,6 +49,7 @@ struct ProductVariant {
   std::string source;      // the photometric file, or "square_lambertian"
   LuminaireType type;
   double rotation_deg = 0.0;
+  double tilt_deg = 0.0;       // aim (core/light/luminaire.h: LuminairePlacement::tilt_deg)
   double rated_flux_lm = 0.0;  // at full output
   double power_w = 0.0;        // at full output
   double dim_min = 1.0, dim_max = 1.0;  // the output range, fractions of rated_flux_lm

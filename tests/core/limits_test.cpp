@@ -181,7 +181,7 @@ TEST(LimitsPhotometry, EveryOpeningSignCombinationHasItsShape) {
 // 4e-320 cd passed and ended as "direct light: non-finite value -nan" naming neither
 // file nor product.
 TEST(LimitsPhotometry, SubnormalCandelaIsRefusedAtItsLine) {
-  for (const std::string& value : {"4e-320", "1e-35"}) {
+  for (const std::string value : {"4e-320", "1e-35"}) {
     const std::string message =
         error_of<PhotometryError>([&] { (void)parse_ies(ies_with("0.3 0.3 0", value + " 0 0"), "tiny.ies"); });
     EXPECT_TRUE(Contains(message, "tiny.ies:9:"));

@@ -36,6 +36,7 @@ TEST(CacheKey, CandidateSpecCoversEveryField) {
       {"mounting_surface", [](CandidateSpec& s) { s.mounting_surface = "soffit"; }},
       {"type", [](CandidateSpec& s) { s.type = LuminaireType::square_lambertian(0.3); }},
       {"rotation_deg", [](CandidateSpec& s) { s.rotation_deg = 90.0; }},
+      {"tilt_deg", [](CandidateSpec& s) { s.tilt_deg = 30.0; }},
       {"spacing_m", [](CandidateSpec& s) { s.spacing_m = 0.4; }},
       {"wall_distance_m", [](CandidateSpec& s) { s.wall_distance_m = 0.3; }},
       {"ceiling_module_m", [](CandidateSpec& s) { s.ceiling_module_m = 0.6; }},

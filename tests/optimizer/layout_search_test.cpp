@@ -722,3 +722,57 @@ TEST(SuspendedLuminaires, AHeightAtOrAboveTheTopOfTheSceneIsRefused) {
 
 }  // namespace
 }  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// A product aimed 60 degrees off the nadir (a spot toward C0): the candidates of the
+// model and the luminaires the verification places both carry the tilt, so the
+// prediction and the verification agree; dropping the tilt on either side would put
+// the light elsewhere on the mat.
+TEST(TiltedProducts, CandidatesAndVerifiedLuminairesAreAimedAlike) {
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"mat", {2.8, 2.0}, 0.6}}));
+  const std::string luminaires =
+      "  products:\n    - {name: spot, model: square_lambertian, size_m: 0.2, flux_lm: 5000, power_w: 50,\n"
+      "       dimming: [0.01, 1], rotations_deg: [0], tilt_deg: 60}\n"
+      "  mounting_surface: ceiling\n  candidate_spacing_m: 0.25\n  count: 1\n";
+  const JobConfig job = load_job_config(
+      dir.write("job.yaml", room_job("0", luminaires, "  - surface: mat\n    average_lux: 100\n", kOptimizer)));
+  const PreparedJob prepared = test::prepare(job);
+  EXPECT_EQ(prepared.plan.search.luminaire.tilt_deg, 60.0);
+  const int candidate = prepared.model.scene.find_surface("candidate 1");
+  ASSERT_GE(candidate, 0);
+  for (const Patch& p : prepared.model.scene.patches)
+    if (p.surface == candidate) {
+      EXPECT_NEAR(p.normal.x(), std::sin(60.0 * std::numbers::pi / 180.0), 1e-9) << "aimed toward +x (C0)";
+      EXPECT_NEAR(p.normal.z(), -0.5, 1e-9);
+    }
+  const JobOutcome outcome = solve_prepared(prepared, job);
+  ASSERT_EQ(outcome.luminaires.size(), 1u);
+  EXPECT_LT(outcome.luminaires[0].position_m.x(), 2.8) << "a spot aimed toward +x hangs on the mat's -x side";
+  ASSERT_TRUE(outcome.goals[0].verified.has_value());
+  EXPECT_NEAR(outcome.goals[0].verified->value / outcome.goals[0].predicted.value, 1.0, 0.03);
+}
+
+TEST(TiltedProducts, TiltAndLengthAxisAreChecked) {
+  TempDir dir;
+  dir.write("room.obj", room_obj({{"mat", {2.0, 2.0}}}));
+  auto refused = [&](const std::string& product_keys, const std::string& expected) {
+    const std::string luminaires = "  products:\n    - {name: spot, model: square_lambertian, size_m: 0.2, flux_lm: 5000, "
+                                   "power_w: 50" + product_keys + "}\n  mounting_surface: ceiling\n  count: 1\n";
+    try {
+      load_job_config(dir.write("job.yaml", room_job("0", luminaires, "  - surface: mat\n    average_lux: 100\n")));
+      ADD_FAILURE() << product_keys << " accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("job.yaml:"), std::string::npos) << e.what();
+    }
+  };
+  refused(", tilt_deg: 95", "tilt_deg = 95: must be in [0, 90] degrees");
+  refused(", tilt_deg: -5", "tilt_deg = -5: must be in [0, 90] degrees");
+  refused(", length_axis_c_deg: 90", "length_axis_c_deg = 90: only for photometry");
+}
+
+}  // namespace
+}  // namespace ilp
