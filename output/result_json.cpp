@@ -220,24 +220,34 @@ ResultRecord read_result_json(const std::string& path) {
 
 namespace {
 
-// A regular layout's arrangements: those evaluated, a line each; those left out, by
-// reason, with the first of each (result.json keeps every one).
+// A regular layout's arrangements: the feasible ones, least power first (the cheapest
+// eight), then the rest summed up by why, with the first of each (result.json keeps
+// every one).
 void print_arrangements(std::ostream& os, const std::vector<AttemptRecord>& attempts) {
-  std::vector<std::pair<std::string, std::pair<int, std::string>>> left_out;  // kind, (count, first)
+  std::vector<const AttemptRecord*> feasible;
+  std::vector<std::pair<std::string, std::pair<int, std::string>>> others;  // why, (count, first)
   for (const AttemptRecord& a : attempts) {
     if (a.arrangement.empty()) continue;
-    if (a.evaluations > 0) {
-      os << "  " << a.arrangement << " (" << a.luminaires << "): "
-         << (a.feasible ? fixed(a.power_w, 1) + " W as predicted" : std::string("infeasible as predicted")) << "\n";
+    if (a.evaluations > 0 && a.feasible) {
+      feasible.push_back(&a);
       continue;
     }
-    const std::string kind = a.global_stop.substr(0, a.global_stop.find(':'));
-    auto it = std::find_if(left_out.begin(), left_out.end(), [&](const auto& k) { return k.first == kind; });
-    if (it == left_out.end()) left_out.push_back({kind, {1, a.arrangement + ": " + a.global_stop}});
+    const std::string why = a.evaluations > 0 ? "infeasible as predicted" : a.global_stop.substr(0, a.global_stop.find(':'));
+    const std::string first = a.arrangement + (a.evaluations > 0 ? "" : ": " + a.global_stop);
+    auto it = std::find_if(others.begin(), others.end(), [&](const auto& o) { return o.first == why; });
+    if (it == others.end()) others.push_back({why, {1, first}});
     else ++it->second.first;
   }
-  for (const auto& [kind, first] : left_out)
-    os << "  " << first.first << (first.first == 1 ? " arrangement " : " arrangements ") << kind << ", e.g. "
+  std::stable_sort(feasible.begin(), feasible.end(), [](const AttemptRecord* a, const AttemptRecord* b) {
+    return a->power_w < b->power_w;
+  });
+  constexpr std::size_t kShown = 8;
+  for (std::size_t i = 0; i < std::min(kShown, feasible.size()); ++i)
+    os << "  " << feasible[i]->arrangement << " (" << feasible[i]->luminaires << "): " << fixed(feasible[i]->power_w, 1)
+       << " W as predicted\n";
+  if (feasible.size() > kShown) os << "  ... and " << feasible.size() - kShown << " more meeting every goal as predicted\n";
+  for (const auto& [why, first] : others)
+    os << "  " << first.first << (first.first == 1 ? " arrangement " : " arrangements ") << why << ", e.g. "
        << first.second << "\n";
 }
 
