@@ -18,6 +18,7 @@
 #include "core/operator/cost_model.h"
 #include "core/scene/mesh.h"
 #include "job/config.h"
+#include "tests/core/config_room.h"
 #include "tests/test_support.h"
 
 namespace ilp {
@@ -28,16 +29,9 @@ using test::Contains;
 using test::error_of;
 using test::TempDir;
 
-const char* kRoomObj =
-    "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nv 0 0 2.5\nv 4 0 2.5\nv 4 4 2.5\nv 0 4 2.5\n"
-    "g floor\nf 1 2 3 4\ng ceiling\nf 5 8 7 6\ng walls\nf 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\n";
-const std::string kScene = "scene:\n  mesh: room.obj\n  default_reflectance: 0.5\n";
-
-std::string config_error(const TempDir& dir, const std::string& yaml) {
-  dir.write("room.obj", kRoomObj);
-  const std::string path = dir.write("job.yaml", yaml);
-  return error_of<ConfigError>([&] { (void)load_job_config(path); }, "load_job_config");
-}
+using test::config_error;
+using test::kRoomObj;
+const std::string kScene = test::kRoomScene;
 
 // ---------------------------------------------------------------------------------
 // Strings, nesting and the maintenance factor of a job file

@@ -12,6 +12,7 @@
 #include "job/job_scene.h"
 #include "core/scene/mesh.h"
 #include "core/scene/scene.h"
+#include "tests/core/config_room.h"
 #include "tests/test_support.h"
 
 namespace {
@@ -21,17 +22,9 @@ using ilp::test::Contains;
 using ilp::test::error_of;
 using ilp::test::TempDir;
 
-const char* kRoomObj =
-    "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nv 0 0 2.5\nv 4 0 2.5\nv 4 4 2.5\nv 0 4 2.5\n"
-    "g floor\nf 1 2 3 4\ng ceiling\nf 5 8 7 6\ng walls\nf 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\n";
-
-const std::string kScene = "scene:\n  mesh: room.obj\n  default_reflectance: 0.5\n";
-
-std::string config_error(const TempDir& dir, const std::string& yaml) {
-  dir.write("room.obj", kRoomObj);
-  const std::string path = dir.write("job.yaml", yaml);
-  return error_of<ilp::ConfigError>([&] { (void)ilp::load_job_config(path); }, "load_job_config");
-}
+using ilp::test::config_error;
+using ilp::test::kRoomObj;
+const std::string kScene = ilp::test::kRoomScene;
 
 // The message names the file, the line and the key (file:line:column: key = value: rule).
 void expect_located(const std::string& message, const TempDir& dir, int line, const std::string& key,
