@@ -98,8 +98,11 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
       const bool bays = s.layout == LayoutFamily::bays;
       constexpr int kBaysAssumed = 256;
       c.luminaires = std::min(most, bays ? kBaysAssumed * r.per_bay.max : r.rows.max * r.columns.max);
+      // Each edge ratio tried (every 0.05 of the range) on each axis.
+      const long long ratios = 1 + static_cast<long long>(std::ceil((r.edge_ratio_max - r.edge_ratio_min) / 0.05 - 1e-9));
       c.evaluations = bays ? r.per_bay.max - r.per_bay.min + 1
-                           : static_cast<long long>(r.rows.max - r.rows.min + 1) * (r.columns.max - r.columns.min + 1);
+                           : static_cast<long long>(r.rows.max - r.rows.min + 1) * (r.columns.max - r.columns.min + 1) *
+                                 ratios * ratios;
     }
     c.search_max_seconds = job.optimizer.max_seconds;
   }

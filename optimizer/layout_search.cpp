@@ -638,7 +638,12 @@ std::string unmountable_member(const LightingModel& model, const LayoutSpec& lay
 SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress,
                             const SearchBounds& bounds) {
   const auto start = Clock::now();
-  const std::vector<Arrangement> arrangements = regular_arrangements(spec.layout, arrangement_frame(model, spec));
+  std::vector<Arrangement> arrangements;
+  try {
+    arrangements = regular_arrangements(spec.layout, arrangement_frame(model, spec));
+  } catch (const std::length_error& e) {
+    throw ConfigError(located(spec.layout.loc, std::string("luminaires.layout: ") + e.what()));
+  }
   if (arrangements.empty())
     throw ConfigError(located(spec.layout.loc, "luminaires.layout: no arrangement of this layout has a luminaire count "
                                                "in [" + std::to_string(spec.layout.count_min) + ", " +

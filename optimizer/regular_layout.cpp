@@ -10,6 +10,19 @@ namespace ilp {
 namespace {
 
 constexpr int kMaxBays = 10000;
+// What one search may enumerate: arrangements, and their members in all (memory).
+constexpr std::size_t kMaxArrangements = 100000;
+constexpr std::size_t kMaxMembers = 20000000;
+
+// Adds an arrangement, refusing ranges too wide to enumerate.
+void add(std::vector<Arrangement>& out, Arrangement a, std::size_t& members) {
+  members += a.xy_m.size();
+  out.push_back(std::move(a));
+  if (out.size() > kMaxArrangements || members > kMaxMembers)
+    throw std::length_error("the layout's ranges (rows, columns, per_row, edge_ratio, count) make more than " +
+                            std::to_string(kMaxArrangements) + " arrangements or " + std::to_string(kMaxMembers) +
+                            " luminaires in all: narrow them");
+}
 
 std::string text(double v) {
   std::ostringstream out;
@@ -65,7 +78,8 @@ std::string edges_label(const RegularLayoutParams& p, double rx, double ry) {
 
 bool count_allowed(const LayoutSpec& layout, long n) { return n >= layout.count_min && n <= layout.count_max; }
 
-void add_fields(const LayoutSpec& layout, const ArrangementFrame& frame, std::vector<Arrangement>& out) {
+void add_fields(const LayoutSpec& layout, const ArrangementFrame& frame, std::vector<Arrangement>& out,
+                std::size_t& members) {
   const RegularLayoutParams& p = layout.regular;
   const Eigen::Vector2d lo = frame.zone_m.min(), hi = frame.zone_m.max(), size = hi - lo;
   const std::vector<double> ratios = edge_ratios(p);
@@ -81,13 +95,15 @@ void add_fields(const LayoutSpec& layout, const ArrangementFrame& frame, std::ve
           std::vector<double> ys = even_positions(lo.y(), hi.y(), r, ry);
           snap_to_module(xs, frame.module_m, frame.module_origin_m.x());
           snap_to_module(ys, frame.module_m, frame.module_origin_m.y());
-          out.push_back(grid_of(std::to_string(c) + " x " + std::to_string(r) + " field" + edges_label(p, rx, ry), xs, ys));
+          add(out, grid_of(std::to_string(c) + " x " + std::to_string(r) + " field" + edges_label(p, rx, ry), xs, ys),
+              members);
         }
     }
 }
 
 // Rows run along the luminaires' length (the longer side of their outline as placed).
-void add_rows(const LayoutSpec& layout, const ArrangementFrame& frame, std::vector<Arrangement>& out) {
+void add_rows(const LayoutSpec& layout, const ArrangementFrame& frame, std::vector<Arrangement>& out,
+              std::size_t& members) {
   const RegularLayoutParams& p = layout.regular;
   const int along = frame.luminaire_extent_m.x() >= frame.luminaire_extent_m.y() ? 0 : 1, across = 1 - along;
   const Eigen::Vector2d lo = frame.zone_m.min(), hi = frame.zone_m.max();
@@ -111,7 +127,7 @@ void add_rows(const LayoutSpec& layout, const ArrangementFrame& frame, std::vect
           const std::string label = std::to_string(r) + (r == 1 ? " row of " : " rows of ") + std::to_string(n) +
                                     (p.continuous ? " end to end" : "") + (along == 0 ? " along x" : " along y") +
                                     (along == 0 ? edges_label(p, r_along, r_across) : edges_label(p, r_across, r_along));
-          out.push_back(along == 0 ? grid_of(label, in_row, rows_at) : grid_of(label, rows_at, in_row));
+          add(out, along == 0 ? grid_of(label, in_row, rows_at) : grid_of(label, rows_at, in_row), members);
         }
     }
 }
@@ -125,7 +141,8 @@ Eigen::Vector2i bay_split(int n, const Eigen::Vector2d& module_m) {
   return module_m.x() >= module_m.y() ? Eigen::Vector2i(long_side, short_side) : Eigen::Vector2i(short_side, long_side);
 }
 
-void add_bays(const LayoutSpec& layout, const ArrangementFrame& frame, std::vector<Arrangement>& out) {
+void add_bays(const LayoutSpec& layout, const ArrangementFrame& frame, std::vector<Arrangement>& out,
+              std::size_t& members) {
   const RegularLayoutParams& p = layout.regular;
   const Eigen::Vector2d m = p.bay_module_m, o = p.bay_origin_m;
   if (!(m.minCoeff() > 0.0)) throw std::invalid_argument("bays: the module must be > 0 along x and y");
@@ -150,7 +167,7 @@ void add_bays(const LayoutSpec& layout, const ArrangementFrame& frame, std::vect
                                 text(m.y()) + " m",
                             xs, ys);
     a.spacing_m = Eigen::Vector2d(m.x() / split.x(), m.y() / split.y());
-    out.push_back(std::move(a));
+    add(out, std::move(a), members);
   }
 }
 
@@ -166,10 +183,11 @@ std::vector<double> even_positions(double lo, double hi, int n, double edge_rati
 std::vector<Arrangement> regular_arrangements(const LayoutSpec& layout, const ArrangementFrame& frame) {
   if (frame.zone_m.isEmpty()) throw std::invalid_argument("regular layout: the mounting zone is empty");
   std::vector<Arrangement> out;
+  std::size_t members = 0;
   switch (layout.family) {
-    case LayoutFamily::field: add_fields(layout, frame, out); break;
-    case LayoutFamily::rows: add_rows(layout, frame, out); break;
-    case LayoutFamily::bays: add_bays(layout, frame, out); break;
+    case LayoutFamily::field: add_fields(layout, frame, out, members); break;
+    case LayoutFamily::rows: add_rows(layout, frame, out, members); break;
+    case LayoutFamily::bays: add_bays(layout, frame, out, members); break;
     default: throw std::invalid_argument("regular_arrangements: not a field, rows or bays layout");
   }
   std::ranges::stable_sort(out, {}, [](const Arrangement& a) { return a.xy_m.size(); });

@@ -31,7 +31,8 @@ struct Arrangement {
 
 // Every arrangement of a field, rows or bays layout whose count lies in
 // [count_min, count_max], fewest luminaires first. Throws std::invalid_argument for
-// any other family or an empty zone.
+// any other family or an empty zone, std::length_error for ranges that make more than
+// 100,000 arrangements or 2e7 luminaires in all.
 std::vector<Arrangement> regular_arrangements(const LayoutSpec& layout, const ArrangementFrame& frame);
 
 // n positions along [lo, hi] (n >= 1), evenly spaced with the outer ones edge_ratio x

@@ -141,6 +141,15 @@ TEST(RegularLayout, BaysTakeTheirLuminairesAlongTheirLongerSide) {
   }
 }
 
+TEST(RegularLayout, RangesTooWideToEnumerateAreRefused) {
+  LayoutSpec l = regular(LayoutFamily::field, {1, 100}, {1, 100});
+  l.count_max = 10000;
+  l.regular.max_spacing_ratio = 100;
+  l.regular.edge_ratio_min = 0.05;
+  l.regular.edge_ratio_max = 1.0;
+  EXPECT_THROW(regular_arrangements(l, room_frame(60, 40)), std::length_error);
+}
+
 TEST(RegularLayout, OtherFamiliesAndEmptyZonesAreRefused) {
   EXPECT_THROW(regular_arrangements(regular(LayoutFamily::free, {1, 1}, {1, 1}), room_frame(6, 4)), std::invalid_argument);
   ArrangementFrame empty;
