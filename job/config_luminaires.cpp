@@ -201,26 +201,21 @@ void read_array(const Value& array, LuminaireSearch& search) {
 // layout: the family and its block (array:, field:, rows:, bays:), and count.
 void read_layout(const Map& luminaires, LuminaireSearch& search) {
   const auto layout = luminaires.get("layout"), count = luminaires.get("count");
-  const std::pair<const char*, LayoutFamily> families[] = {{"free", LayoutFamily::free},
-                                                           {"array", LayoutFamily::array},
-                                                           {"field", LayoutFamily::field},
-                                                           {"rows", LayoutFamily::rows},
-                                                           {"bays", LayoutFamily::bays}};
+  constexpr LayoutFamily families[] = {LayoutFamily::free, LayoutFamily::array, LayoutFamily::field, LayoutFamily::rows,
+                                       LayoutFamily::bays};
   if (layout) {
     const std::string family = layout->text();
-    bool known = false;
-    for (const auto& [key, f] : families)
-      if (family == key) {
-        search.layout = f;
-        known = true;
-      }
-    if (!known) layout->fail("must be free, array, field, rows or bays");
+    const auto known = std::ranges::find(families, family, layout_family_key);
+    if (known == std::end(families)) layout->fail("must be free, array, field, rows or bays");
+    search.layout = *known;
     search.layout_loc = layout->loc();
   }
   // Each block belongs to its family.
-  for (const auto& [key, f] : families)
+  for (const LayoutFamily f : families) {
+    const std::string key(layout_family_key(f));
     if (auto block = luminaires.get(key); block && f != search.layout)
-      block->fail(std::string("needs luminaires.layout: ") + key);
+      block->fail("needs luminaires.layout: " + key);
+  }
   const bool regular = search.layout != LayoutFamily::free && search.layout != LayoutFamily::array;
   if (search.layout == LayoutFamily::array) {
     if (!luminaires.get("array")) layout->fail("needs luminaires.array: {rows, columns}");
