@@ -196,7 +196,10 @@ enum class VerificationMethod { automatic, exact, sample, none };
 // verification: the layout found, placed as real luminaires and solved again.
 struct VerificationSettings {
   VerificationMethod method = VerificationMethod::automatic;  // auto: exact up to max_exact_patches, else sample
-  int rays_per_patch = 1024;
+  int rays_per_patch = 1024;          // rows of goal patches and each grid point's gather
+  // Rows of the other patches, whose light is read only through reflections (smooth):
+  // at most this many rays (exact method); direct light there is the cheap estimate.
+  int indirect_rays_per_patch = 128;
   // Searches at most: when a goal fails only on verification, the search runs again
   // with that goal's target scaled by predicted / verified (a defect correction).
   int rounds = 3;

@@ -113,6 +113,7 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
              : plan.method == VerificationMethod::sample ? CostCounts::Verify::sample
                                                          : CostCounts::Verify::none;
   c.verify_rays = job.verification.rays_per_patch;
+  c.verify_indirect_rays = job.verification.indirect_rays_per_patch;
   c.verify_sample_size = static_cast<std::size_t>(plan.sample_size);
   c.verify_rounds = plan.method == VerificationMethod::none ? 1 : job.verification.rounds;
   return c;

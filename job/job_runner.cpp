@@ -52,7 +52,10 @@ Verification verify_layout(const PreparedJob& prepared, const std::vector<Placed
     options.form_factors.rays_per_patch = settings.rays_per_patch;
     options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
     options.direct_light.seed = options.form_factors.seed;
-    options.precise_patches = prepared.model.goal_patches;  // elsewhere direct light is only reflected
+    // Elsewhere direct light and each row's rays are only reflected (grid points gather
+    // their own rays); with no goal patches, no patch is precise.
+    options.precise_patches = prepared.model.goal_patches;
+    options.other_rays_per_patch = settings.indirect_rays_per_patch;
     const ExactSolution solution = solve_exact(scene, options, progress);
     out.method = "exact";
     out.patches = scene.all_patches();

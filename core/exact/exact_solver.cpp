@@ -1,6 +1,7 @@
 #include "core/exact/exact_solver.h"
 
 #include <chrono>
+#include <algorithm>
 #include <iomanip>
 #include <ostream>
 
@@ -53,7 +54,13 @@ ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, 
   s.bvh_seconds = seconds_since(start);
   s.ray_offset_m = caster.ray_offset_m();
 
-  FormFactorRows rows = compute_form_factor_rows(scene, caster, scene.all_patches(), options.form_factors, progress);
+  std::vector<int> rays(scene.patches.size(), options.form_factors.rays_per_patch);
+  if (options.precise_patches && options.other_rays_per_patch > 0) {
+    std::fill(rays.begin(), rays.end(), std::min(options.other_rays_per_patch, options.form_factors.rays_per_patch));
+    for (int p : *options.precise_patches) rays.at(static_cast<std::size_t>(p)) = options.form_factors.rays_per_patch;
+  }
+  FormFactorRows rows =
+      compute_form_factor_rows(scene, caster, scene.all_patches(), rays, options.form_factors, progress);
   s.form_factor_seconds = rows.seconds;
   s.rays_cast = rows.rays_cast;
   s.rays_per_second = rows.seconds > 0.0 ? static_cast<double>(rows.rays_cast) / rows.seconds : 0.0;
@@ -69,13 +76,13 @@ ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, 
 
   start = std::chrono::steady_clock::now();
   if (progress) progress("direct light", 0, 1);
-  if (options.precise_patches.empty()) {
+  if (!options.precise_patches) {
     replace_emitter_columns(scene, caster, options.direct_light, rows);
   } else {
     CheapDirectLight cheap{std::vector<bool>(scene.patches.size(), true), options.other_direct_light};
     cheap.options.seed = options.direct_light.seed;
     cheap.options.threads = options.direct_light.threads;
-    for (int p : options.precise_patches) cheap.rows.at(static_cast<std::size_t>(p)) = false;  // rows are all patches, in order
+    for (int p : *options.precise_patches) cheap.rows.at(static_cast<std::size_t>(p)) = false;  // rows are all patches, in order
     replace_emitter_columns(scene, caster, options.direct_light, rows, &cheap);
   }
   if (progress) progress("direct light", 1, 1);

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
+#include <vector>
 
 #include "core/light/direct_light.h"
 #include "core/rays/form_factors.h"
@@ -18,11 +20,14 @@ struct ExactSolveOptions {
   FormFactorOptions form_factors;
   DirectLightOptions direct_light;
   RadiosityOptions radiosity;
-  // When not empty, only these patches get `direct_light`; the others get
-  // `other_direct_light`, a cheaper estimate that is read only through reflections
-  // (for verifying a layout, whose goals are a few of the patches).
-  std::vector<int> precise_patches;
+  // When given, only these patches (maybe none) get `direct_light` and rows of
+  // form_factors.rays_per_patch rays; the others get `other_direct_light`, a cheaper
+  // estimate, and rows of other_rays_per_patch rays (when > 0): what they receive is
+  // read only through reflections, and indirect light is smooth (for verifying a
+  // layout, whose goals are a few patches and points). Not given: every patch precise.
+  std::optional<std::vector<int>> precise_patches;
   DirectLightOptions other_direct_light = cheap_direct_light_options();
+  int other_rays_per_patch = 0;
 };
 
 struct ExactSolveSummary {

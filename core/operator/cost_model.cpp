@@ -148,12 +148,17 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                           model_bytes + 4.0 * G * L, "optimizer.max_evaluations"});
   const double Lv = c.luminaires + 1.0;
   if (c.verify == CostCounts::Verify::exact) {
-    const double per = (n + P) * c.verify_rays * m.gather_ray_s + G * Lv * c.direct_rays * m.precise_pair_ray_s +
+    // Goal patches' rows and the points' gathers at verify_rays, every other row at
+    // verify_indirect_rays (at most verify_rays): per row, the mean.
+    const double Gp = d(c.goal_patches), indirect = std::min(c.verify_indirect_rays, c.verify_rays);
+    const int row_rays = n > 0.0 ? static_cast<int>(std::ceil((Gp * c.verify_rays + (n - Gp) * indirect) / n)) : 1;
+    const double per = (n * row_rays + P * c.verify_rays) * m.gather_ray_s + G * Lv * c.direct_rays * m.precise_pair_ray_s +
                        n * Lv * m.cheap_pair_s +
-                       m.gauss_seidel_sweeps * row_nnz(n, c.verify_rays, c.patches) * m.gauss_seidel_nnz_s;
-    out.phases.push_back({"verification (exact, " + std::to_string(c.verify_rays) + " rays per patch, up to " +
+                       m.gauss_seidel_sweeps * row_nnz(n, row_rays, c.patches) * m.gauss_seidel_nnz_s;
+    out.phases.push_back({"verification (exact, " + std::to_string(c.verify_rays) + " rays per goal row, " +
+                              std::to_string(static_cast<int>(indirect)) + " elsewhere, up to " +
                               std::to_string(c.verify_rounds) + " rounds)",
-                          c.verify_rounds * per, model_bytes + exact_verification_bytes(c.patches, c.verify_rays),
+                          c.verify_rounds * per, model_bytes + exact_verification_bytes(c.patches, row_rays),
                           "verification.rays_per_patch or verification.method"});
   } else if (c.verify == CostCounts::Verify::sample) {
     const double kv = d(c.verify_sample_size);

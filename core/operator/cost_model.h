@@ -54,7 +54,8 @@ struct CostCounts {
   double search_max_seconds = 0.0;   // optimizer.max_seconds (0: no cap), per search round
   // verification
   enum class Verify { none, exact, sample } verify = Verify::none;
-  int verify_rays = 1024;
+  int verify_rays = 1024;            // goal patches' rows and grid points' gathers
+  int verify_indirect_rays = 1 << 30;  // exact: every other patch's row (capped at verify_rays)
   std::size_t verify_sample_size = 0;  // sample verification: k
   int verify_rounds = 1;
 };

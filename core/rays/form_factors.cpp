@@ -27,15 +27,16 @@ struct RowScratch {
 
 // Casts the rays of patch `patch`'s row and calls on_hit(RayHit) for each: the
 // same rays, in the same order, for full rows and for bin counts.
+// `rays` of them (at most halton.size()): the first ones of the row's sequence.
 template <class OnHit>
 void cast_row(const Scene& scene, const RayCaster& caster, int patch, const std::vector<std::array<double, 4>>& halton,
-              const FormFactorOptions& options, OnHit&& on_hit) {
+              const FormFactorOptions& options, int rays, OnHit&& on_hit) {
   const Patch& p = scene.patches[patch];
   Eigen::Vector3d t, s;
   orthonormal_basis(p.normal, t, s);
   const RotatedHalton4 sequence(options.seed, static_cast<std::uint64_t>(patch));
   const Eigen::Vector3d offset = p.normal * caster.ray_offset_m();
-  for (int r = 0; r < options.rays_per_patch; ++r) {
+  for (int r = 0; r < rays; ++r) {
     const auto u = sequence.rotate(halton[static_cast<std::size_t>(r)]);
     const Eigen::Vector3d origin = sample_triangle(p.vertices_m[0], p.vertices_m[1], p.vertices_m[2], u[0], u[1]);
     const Eigen::Vector3d direction = sample_cosine_hemisphere(p.normal, t, s, u[2], u[3]);
@@ -44,10 +45,10 @@ void cast_row(const Scene& scene, const RayCaster& caster, int patch, const std:
 }
 
 RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch,
-                    const std::vector<std::array<double, 4>>& halton, const FormFactorOptions& options,
+                    const std::vector<std::array<double, 4>>& halton, const FormFactorOptions& options, int rays,
                     RowScratch& scratch) {
   RowResult row;
-  cast_row(scene, caster, patch, halton, options, [&](const RayHit& hit) {
+  cast_row(scene, caster, patch, halton, options, rays, [&](const RayHit& hit) {
     if (hit.patch < 0) {
       ++row.escaped;
     } else if (!hit.front) {
@@ -91,8 +92,13 @@ bool FormFactorOptions::is_valid(std::string* error) const {
 }
 
 void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, int rays_per_row, FormFactorRows& out) {
+  assemble_rows(counts, patches, std::vector<int>(counts.size(), rays_per_row), out);
+}
+
+void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, std::span<const int> rays_per_row,
+                   FormFactorRows& out) {
   const std::size_t rows = counts.size();
-  const double inv_rays = 1.0 / rays_per_row;
+  out.rays_cast = 0;
   std::size_t nnz = 0;
   for (const RayCounts& r : counts) nnz += r.hits.size();
   out.F.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(patches));
@@ -100,6 +106,8 @@ void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, int r
   out.escaped_fraction.resize(static_cast<Eigen::Index>(rows));
   out.back_hit_fraction.resize(static_cast<Eigen::Index>(rows));
   for (std::size_t r = 0; r < rows; ++r) {
+    const double inv_rays = 1.0 / rays_per_row[r];
+    out.rays_cast += static_cast<std::uint64_t>(rays_per_row[r]);
     out.F.startVec(static_cast<Eigen::Index>(r));
     for (const auto& [patch, count] : counts[r].hits)
       out.F.insertBack(static_cast<Eigen::Index>(r), patch) = count * inv_rays;
@@ -107,13 +115,26 @@ void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, int r
     out.back_hit_fraction[static_cast<Eigen::Index>(r)] = counts[r].back_hits * inv_rays;
   }
   out.F.finalize();
-  out.rays_cast = static_cast<std::uint64_t>(rows) * rays_per_row;
 }
 
 FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster,
                                         std::span<const int> patches, const FormFactorOptions& options,
                                         const ProgressCallback& progress) {
+  return compute_form_factor_rows(scene, caster, patches, std::vector<int>(patches.size(), options.rays_per_patch),
+                                  options, progress);
+}
+
+FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
+                                        std::span<const int> rays_per_row, const FormFactorOptions& options,
+                                        const ProgressCallback& progress) {
   check_request(scene, patches, options, "compute_form_factor_rows");
+  if (rays_per_row.size() != patches.size())
+    throw std::invalid_argument("compute_form_factor_rows: " + std::to_string(rays_per_row.size()) + " ray counts for " +
+                                std::to_string(patches.size()) + " rows");
+  for (int n : rays_per_row)
+    if (n < 1 || n > options.rays_per_patch)
+      throw std::invalid_argument("compute_form_factor_rows: a row's rays (" + std::to_string(n) + ") must be in [1, " +
+                                  std::to_string(options.rays_per_patch) + "]");
   const auto start = std::chrono::steady_clock::now();
   FormFactorRows out;
   out.row_patches.assign(patches.begin(), patches.end());
@@ -131,14 +152,14 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
       RowScratch& scratch = scratches.local();
       if (scratch.count.empty()) scratch.count.assign(scene.patches.size(), 0);
       for (std::size_t r = range.begin(); r != range.end(); ++r)
-        results[r] = trace_row(scene, caster, out.row_patches[r], halton, options, scratch);
+        results[r] = trace_row(scene, caster, out.row_patches[r], halton, options, rays_per_row[r], scratch);
       const std::size_t now = done.fetch_add(range.size()) + range.size();
       if (progress) progress("form factors", now, rows);
     });
   });
 
   // Assemble in row order, so the result is the same whatever ran where.
-  assemble_rows(results, scene.patches.size(), options.rays_per_patch, out);
+  assemble_rows(results, scene.patches.size(), rays_per_row, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
@@ -164,7 +185,7 @@ Eigen::MatrixXd compute_row_bin_fractions(const Scene& scene, const RayCaster& c
       std::vector<int> count(static_cast<std::size_t>(bins) + 2);
       for (std::size_t r = range.begin(); r != range.end(); ++r) {
         std::fill(count.begin(), count.end(), 0);
-        cast_row(scene, caster, patches[r], halton, options, [&](const RayHit& hit) {
+        cast_row(scene, caster, patches[r], halton, options, options.rays_per_patch, [&](const RayHit& hit) {
           if (hit.patch < 0) ++count[static_cast<std::size_t>(bins)];
           else if (!hit.front) ++count[static_cast<std::size_t>(bins) + 1];
           else if (const int b = bin_of_patch[static_cast<std::size_t>(hit.patch)]; b >= 0) ++count[static_cast<std::size_t>(b)];

@@ -55,6 +55,9 @@ struct RayCounts {
 // Sets out's F (rows in `counts` order, `patches` columns), escaped and back-hit
 // fractions and rays_cast from each row's counts of `rays_per_row` rays.
 void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, int rays_per_row, FormFactorRows& out);
+// The same with each row's own ray count.
+void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, std::span<const int> rays_per_row,
+                   FormFactorRows& out);
 
 // Rows for the given patches, in that order (scene.all_patches() for all of them).
 // A ray that hits the back of a one-sided patch is absorbed: counted in
@@ -62,6 +65,11 @@ void assemble_rows(std::span<const RayCounts> counts, std::size_t patches, int r
 // patch index outside the scene.
 FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster,
                                         std::span<const int> patches, const FormFactorOptions& options,
+                                        const ProgressCallback& progress = {});
+// The same with each row's own ray count, in [1, options.rays_per_patch]: the first
+// rays of the row's sequence (a row of n rays is the n-ray row of the overload above).
+FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
+                                        std::span<const int> rays_per_row, const FormFactorOptions& options,
                                         const ProgressCallback& progress = {});
 
 // The same rays as compute_form_factor_rows, counted instead of stored: for each

@@ -251,7 +251,7 @@ TEST(Radiosity, PreciseDirectLightOnlyWhereAsked) {
   split.precise_patches = scene.patches_of({"desk_1", "desk_2"});
   const ExactSolution a = solve_exact(scene, full), b = solve_exact(scene, split);
   double sum_a = 0.0, sum_b = 0.0, area = 0.0;
-  for (int p : split.precise_patches) {
+  for (int p : *split.precise_patches) {
     const auto i = static_cast<Eigen::Index>(p);
     ASSERT_EQ(a.radiosity.direct_lux[i], b.radiosity.direct_lux[i]) << "patch " << p;
     sum_a += scene.patches[static_cast<std::size_t>(p)].area_m2 * a.radiosity.total_lux[i];
@@ -267,6 +267,50 @@ TEST(Radiosity, PreciseDirectLightOnlyWhereAsked) {
   all.precise_patches = scene.all_patches();
   const ExactSolution c = solve_exact(scene, all);
   EXPECT_TRUE((c.radiosity.total_lux.array() == a.radiosity.total_lux.array()).all());
+}
+
+// An empty list of precise patches (a job whose goals are all on grids) makes every
+// patch cheap; the old code took an empty list for "every patch precise".
+TEST(Radiosity, NoPrecisePatchesMakesEveryPatchCheap) {
+  const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
+  const Scene scene = load_job_scene(job).scene;
+  ExactSolveOptions cheap_everywhere;
+  cheap_everywhere.form_factors.rays_per_patch = 32;
+  cheap_everywhere.precise_patches = std::vector<int>{};
+  ExactSolveOptions one_wall_precise = cheap_everywhere;
+  const int wall = scene.patches_of({"walls"}).front();
+  one_wall_precise.precise_patches = std::vector<int>{wall};
+  const ExactSolution a = solve_exact(scene, cheap_everywhere), b = solve_exact(scene, one_wall_precise);
+  EXPECT_NE(a.radiosity.direct_lux[wall], b.radiosity.direct_lux[wall]);
+  const int other = scene.patches_of({"walls"}).back();
+  EXPECT_EQ(a.radiosity.direct_lux[other], b.radiosity.direct_lux[other]);
+}
+
+// Rows of patches that are not precise cast other_rays_per_patch rays: the rays
+// counted drop to that, the precise rows keep every ray (bit for bit the rows of a
+// full solve), and the desks' average moves only by the noise of the indirect light.
+TEST(Radiosity, FewerRaysWhereOnlyReflectionsAreRead) {
+  const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
+  const Scene scene = load_job_scene(job).scene;
+  ExactSolveOptions full;
+  full.form_factors.rays_per_patch = 256;
+  const std::vector<int> desks = scene.patches_of({"desk_1", "desk_2"});
+  full.precise_patches = desks;
+  ExactSolveOptions fewer = full;
+  fewer.other_rays_per_patch = 32;
+  const ExactSolution a = solve_exact(scene, full), b = solve_exact(scene, fewer);
+  const std::uint64_t n = scene.patches.size(), d = desks.size();
+  EXPECT_EQ(a.summary.rays_cast, n * 256);
+  EXPECT_EQ(b.summary.rays_cast, d * 256 + (n - d) * 32);
+  double sum_a = 0.0, sum_b = 0.0;
+  for (int p : desks) {
+    const auto i = static_cast<Eigen::Index>(p);
+    EXPECT_EQ(a.radiosity.direct_lux[i], b.radiosity.direct_lux[i]) << "patch " << p;
+    sum_a += scene.patches[static_cast<std::size_t>(p)].area_m2 * a.radiosity.total_lux[i];
+    sum_b += scene.patches[static_cast<std::size_t>(p)].area_m2 * b.radiosity.total_lux[i];
+  }
+  EXPECT_NEAR(sum_b / sum_a, 1.0, 0.005) << "the desks' average";
+  EXPECT_NE(sum_b, sum_a) << "the other rows did change";
 }
 
 }  // namespace
