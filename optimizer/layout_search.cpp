@@ -633,6 +633,31 @@ std::string unmountable_member(const LightingModel& model, const LayoutSpec& lay
   return {};
 }
 
+// Why an arrangement cannot be built as it stands: two members closer than
+// layout.min_distance_m, or whose outlines (the luminaire's footprint in plan at its
+// rotation and tilt) overlap by more than 1 mm; empty when none are.
+std::string crowded_members(const SearchSpec& spec, const Arrangement& a) {
+  const Eigen::Vector2d half = spec.luminaire.type.half_footprint_m(spec.luminaire.rotation_deg, spec.luminaire.tilt_deg);
+  constexpr double kTouchM = 1e-3;  // outlines end to end (continuous rows) touch, they do not overlap
+  for (std::size_t i = 0; i < a.xy_m.size(); ++i)
+    for (std::size_t j = i + 1; j < a.xy_m.size(); ++j) {
+      const Eigen::Vector2d d = (a.xy_m[i] - a.xy_m[j]).cwiseAbs();
+      std::ostringstream out;
+      out << std::fixed << std::setprecision(2);
+      if (d.norm() < spec.layout.min_distance_m - kTouchM) {
+        out << "infeasible: the members at " << metres(a.xy_m[i]) << " and " << metres(a.xy_m[j]) << " are " << d.norm()
+            << " m apart, closer than constraints.min_distance_m = " << spec.layout.min_distance_m << " m";
+        return out.str();
+      }
+      if (d.x() < 2.0 * half.x() - kTouchM && d.y() < 2.0 * half.y() - kTouchM) {
+        out << "infeasible: the members at " << metres(a.xy_m[i]) << " and " << metres(a.xy_m[j])
+            << " overlap (outlines " << 2.0 * half.x() << " x " << 2.0 * half.y() << " m in plan)";
+        return out.str();
+      }
+    }
+  return {};
+}
+
 // Field, rows and bays: every arrangement judged at its one output (no NLopt: nothing
 // moves). Min_power skips an arrangement that cannot draw less than a layout already found.
 SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress,
@@ -664,6 +689,7 @@ SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, 
     const double to_beat = std::min(bounds.power_to_beat_w, best && best->feasible ? best->power_w : kNoPowerToBeat);
     const double least_w = count_bound(spec.luminaire, n, least_flux_lm).least_power_w;
     std::string stop = unmountable_member(model, spec.layout, a);
+    if (stop.empty()) stop = crowded_members(spec, a);
     if (stop.empty() && min_power && least_w >= to_beat) {
       stop = "not searched: needs at least " + watts(least_w) + ", no less than the " + watts(to_beat) +
              " of a layout already found";
@@ -687,7 +713,7 @@ SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, 
     result.attempts.push_back(attempt);
     if (progress) progress("search " + a.label, i + 1, arrangements.size());
   }
-  if (!best && !skipped_for_power) result.refused = "no arrangement can be mounted; " + first_refusal;
+  if (!best && !skipped_for_power) result.refused = "no arrangement can be mounted or built; " + first_refusal;
   result.beaten = !best;
   if (best) result.best = std::move(*best);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();

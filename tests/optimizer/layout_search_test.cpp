@@ -615,7 +615,66 @@ TEST(RegularLayoutSearch, NoMountableArrangementIsRefusedWithThePosition) {
     solve_variants(prepared, job, {}, {});
     FAIL() << "a job whose only layout cannot be mounted is refused";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("luminaires.layout: no arrangement can be mounted"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("luminaires.layout: no arrangement can be mounted or built"), std::string::npos) << e.what();
+  }
+}
+
+// A one-row field of `size_m` panels in the 4 x 4 m room, no wall distance, the
+// given columns and minimum distance between centres.
+JobConfig crowded_job(const TempDir& dir, const std::string& size_m, const std::string& columns, double min_distance_m,
+                      const std::string& edge_ratio = "0.5") {
+  dir.write("room.obj", room_obj({}));
+  const std::string luminaires = "  size_m: " + size_m +
+                                 "\n  flux_lm: [100, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+                                 "  candidate_spacing_m: 0.5\n  count: [1, 6]\n  layout: field\n  field: {rows: 1, columns: " + columns + ", max_spacing_ratio: 10, edge_ratio: " + edge_ratio + "}\n";
+  JobConfig job = load_job_config(
+      dir.write("job.yaml", room_job("0.3", luminaires, "  - surface: floor\n    average_lux: 200\n", kOptimizer)));
+  job.constraints.min_distance_m = min_distance_m;
+  return job;
+}
+
+// Members closer than constraints.min_distance_m, or whose outlines overlap, make
+// their arrangement infeasible with both positions named (they are never moved); when
+// no arrangement can be built the job is refused at the layout.
+TEST(RegularLayoutSearch, CrowdedMembersMakeTheirArrangementInfeasible) {
+  TempDir dir;
+  {  // 3 columns are 1.33 m apart, 2 columns 2 m: a 1.5 m minimum leaves 2.
+    const PreparedJob prepared = test::prepare(crowded_job(dir, "0.3", "[2, 3]", 1.5));
+    const SearchResult r = search_layout(prepared.model, prepared.plan.search);
+    const CountAttempt* three = attempt_named(r, "3 x 1 field");
+    ASSERT_NE(three, nullptr);
+    EXPECT_FALSE(three->feasible);
+    EXPECT_EQ(three->evaluations, 0);
+    EXPECT_NE(three->global_stop.find("the members at (0.67, 2.00) m and (2.00, 2.00) m are 1.33 m apart, closer than "
+                                      "constraints.min_distance_m = 1.50 m"),
+              std::string::npos)
+        << three->global_stop;
+    EXPECT_EQ(r.best.luminaires.size(), 2u);
+  }
+  {  // 1 m panels, the outer ones a whole spacing from the walls: 4 columns (0.8 m apart)
+     // overlap, 3 (1 m apart) touch and can be built.
+    const PreparedJob prepared = test::prepare(crowded_job(dir, "1.0", "[3, 4]", 0.0, "1.0"));
+    const SearchResult r = search_layout(prepared.model, prepared.plan.search);
+    const CountAttempt* four = attempt_named(r, "4 x 1 field");
+    ASSERT_NE(four, nullptr);
+    EXPECT_FALSE(four->feasible);
+    EXPECT_NE(four->global_stop.find("the members at (0.80, 2.00) m and (1.60, 2.00) m overlap (outlines 1.00 x 1.00 m"),
+              std::string::npos)
+        << four->global_stop;
+    EXPECT_EQ(r.best.luminaires.size(), 3u);
+  }
+  {  // Only 4 columns: nothing can be built.
+    std::vector<PreparedJob> prepared;
+    const JobConfig job = crowded_job(dir, "1.0", "4", 0.0, "1.0");
+    prepared.push_back(test::prepare(job));
+    try {
+      solve_variants(prepared, job, {}, {});
+      FAIL() << "a layout whose every arrangement overlaps is refused";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("no arrangement can be mounted or built; 4 x 1 field"), std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("job.yaml:"), std::string::npos) << e.what();
+    }
   }
 }
 
