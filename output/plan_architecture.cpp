@@ -136,6 +136,18 @@ Ring2 simplify_ring(const Ring2& ring, double tolerance) {
   return out;
 }
 
+// Even-odd point in polygon.
+bool inside(const V2& p, const std::vector<V2>& polygon) {
+  bool in = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const V2& a = polygon[i];
+    const V2& b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+
 bool mesh_patch(const Scene& scene, const Patch& p) {
   const Surface& s = scene.surfaces[static_cast<std::size_t>(p.surface)];
   return !s.is_luminaire() && !s.is_virtual;
@@ -214,6 +226,15 @@ std::vector<SectionLine> section_cut(const std::vector<Triangle3>& triangles, do
     lines.push_back(std::move(line));
   }
   return lines;
+}
+
+bool section_material(const SectionLine& line, const std::vector<SectionLine>& section) {
+  constexpr double kLeastArea_m2 = 1e-6;
+  if (!line.closed || std::abs(line.signed_area_m2) < kLeastArea_m2 || line.points_m.empty()) return false;
+  if (line.signed_area_m2 > 0.0) return true;
+  for (const SectionLine& outer : section)
+    if (outer.closed && outer.signed_area_m2 > kLeastArea_m2 && inside(line.points_m.front(), outer.points_m)) return true;
+  return false;
 }
 
 std::vector<Ring2> union_outline(const std::vector<Triangle2>& triangles, int cells) {

@@ -39,6 +39,11 @@ struct SectionLine {
 // not > 0 or a non-finite cut height.
 std::vector<SectionLine> section_cut(const std::vector<Triangle3>& triangles, double cut_z_m, double weld_m);
 
+// True when a plan fills the line as material: closed with the material inside
+// (signed_area_m2 > 1e-6 m²), or closed with it outside but lying inside such a line
+// (the inner face of a thick wall). A room's inward walls alone are not filled.
+bool section_material(const SectionLine& line, const std::vector<SectionLine>& section);
+
 // The boundary rings of the union of the triangles (either winding): a 0/1 raster of
 // their cover with about `cells` (>= 8) cells across the larger side of their bounds,
 // traced at 0.5 by marching squares and simplified to half a cell (so T-junctions and

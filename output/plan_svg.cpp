@@ -27,7 +27,7 @@ constexpr double kCharWidth_px = 6.6;       // a generous estimate of one DejaVu
 constexpr double kBoldCharWidth_px = 7.4;   // ... in bold
 constexpr double kLeft_px = 64.0;           // y label and tick labels
 constexpr double kGap_px = 28.0;            // plan (or its y chain) to the column
-constexpr double kColumn_px = 300.0;        // legend, schedule and title block, including the right margin
+constexpr double kColumn_px = 330.0;        // legend, schedule and title block, including the right margin
 constexpr double kMaxPlanWidth_px = 620.0;
 constexpr double kMaxPlanHeight_px = 640.0;
 constexpr double kBottom_px = 72.0;         // tick labels, x label, scale bar
@@ -151,12 +151,11 @@ struct Geometry {
 
 int schedule_rows(const PlanView& view) { return std::min<int>(static_cast<int>(view.luminaires.size()), kMaxScheduleRows); }
 
-// Rows of text under the colour bar (min/max, grids, schedule, title block).
-double column_text_px(const PlanView& view) {
-  double rows = 3.0 + static_cast<double>(view.grids.size());
-  if (!view.luminaires.empty()) rows += 2.0 + schedule_rows(view) + (view.luminaires.size() > kMaxScheduleRows ? 1 : 0);
-  rows += 2.0 + static_cast<double>(view.title_block.size()) + 3.0;  // title block: lines, cut, heights
-  return rows * kRow_px + 70.0;                                        // + the axes glyph
+double column_svg(const PlanView& view, double x, double y, std::string* svg_out);
+
+// Where the column's text starts: under the colour bar.
+double column_top(const PlanView& view, const Geometry& g) {
+  return g.bar_top + g.bar_px + (view.maintenance_factor < 1.0 ? 16.0 : 0.0) + 24.0;
 }
 
 Geometry geometry(const Scene& scene, const PlanView& view) {
@@ -173,6 +172,11 @@ Geometry geometry(const Scene& scene, const PlanView& view) {
     }
   const double chains = has_chains(view) ? kChainZone_px : 0.0;
   g.f.extent_m = padded(extent);
+  if (view.architecture.cut_height_m > 0.0) {  // room for the walls' thick lines at the frame
+    const double pad = 0.02 * g.f.extent_m.sizes().maxCoeff();
+    g.f.extent_m.min() -= V2::Constant(pad);
+    g.f.extent_m.max() += V2::Constant(pad);
+  }
   g.f.scale_px_per_m = std::min(kMaxPlanWidth_px / g.f.extent_m.sizes().x(), kMaxPlanHeight_px / g.f.extent_m.sizes().y());
   g.f.left_px = kLeft_px;
   g.f.top_px = (view.title.empty() ? 24.0 : 52.0) + chains;
@@ -180,7 +184,7 @@ Geometry geometry(const Scene& scene, const PlanView& view) {
   g.bar_top = (view.title.empty() ? 24.0 : 52.0) + 22.0;
   g.bar_px = 200.0;
   g.width_px = g.legend_x + kColumn_px;
-  const double column_bottom = g.bar_top + g.bar_px + column_text_px(view);
+  const double column_bottom = column_svg(view, g.legend_x, column_top(view, g), nullptr) + 16.0;
   g.height_px = std::max(g.f.top_px + g.f.height_px() + kBottom_px, column_bottom);
   return g;
 }
@@ -243,17 +247,6 @@ std::vector<V2> to_px(const Frame& f, const std::vector<V2>& points_m) {
   return out;
 }
 
-bool inside(const V2& p, const std::vector<V2>& polygon) {
-  bool in = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const V2& a = polygon[i];
-    const V2& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 // The architecture, clipped to the plan's frame: furniture outlines thin, the section's
 // material filled dark (loops with the material inside, and holes in them) and every
 // section line thick.
@@ -266,15 +259,9 @@ std::string architecture_svg(const Frame& f, const PlanArchitecture& a) {
     svg += cat("<path class=\"furniture\" d=\"", furniture,
                "\" fill=\"#ffffff\" fill-opacity=\"0.25\" stroke=\"#4d4d4d\" stroke-width=\"1\"/>\n");
   std::string material, lines;
-  constexpr double kLeastArea_m2 = 1e-6;
   for (const SectionLine& l : a.section) {
     lines += polygon_d(to_px(f, l.points_m), l.closed);
-    if (!l.closed || std::abs(l.signed_area_m2) < kLeastArea_m2) continue;
-    bool fill = l.signed_area_m2 > 0.0;
-    for (const SectionLine& outer : a.section)
-      if (!fill && outer.closed && outer.signed_area_m2 > kLeastArea_m2 && inside(l.points_m.front(), outer.points_m))
-        fill = true;
-    if (fill) material += polygon_d(to_px(f, l.points_m), true);
+    if (section_material(l, a.section)) material += polygon_d(to_px(f, l.points_m), true);
   }
   if (!material.empty()) svg += cat("<path class=\"section-fill\" d=\"", material, "\" fill=\"#595959\" stroke=\"none\"/>\n");
   if (!lines.empty())
@@ -425,20 +412,46 @@ std::string heights_text(const std::vector<PlanLuminaire>& luminaires) {
   return metres_2(lo) == metres_2(hi) ? cat(metres_2(lo), " m (all)") : cat(metres_2(lo), " - ", metres_2(hi), " m");
 }
 
-// The column under the legend: grids, the luminaire schedule, the title block with the axes.
-std::string column_svg(const PlanView& view, double x, double y) {
+// Lines of at most max_chars characters, broken at spaces (a longer word stays whole);
+// continuation lines start with two spaces.
+std::vector<std::string> wrapped(const std::string& text, std::size_t max_chars) {
+  std::vector<std::string> out;
+  std::string line;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    if (!line.empty() && char_count(line) + 1 + char_count(word) > max_chars) {
+      out.push_back(line);
+      line = "  " + word;
+    } else {
+      line += (line.empty() ? "" : " ") + word;
+    }
+    start = end + 1;
+  }
+  if (!line.empty() || out.empty()) out.push_back(line);
+  return out;
+}
+
+// The column under the legend: grids, the luminaire schedule, the title block with the
+// axes. Returns the y (px) under it; `svg` may be null to measure only.
+double column_svg(const PlanView& view, double x, double y, std::string* svg_out) {
   std::string svg;
+  const std::size_t max_chars = static_cast<std::size_t>((kColumn_px - 24.0) / kCharWidth_px);
   const auto row = [&](const std::string& text, std::string_view extra = "") {
-    svg += text_element(x, y, "start", text, extra);
-    y += kRow_px;
+    for (const std::string& line : wrapped(text, max_chars)) {
+      svg += text_element(x, y, "start", line, extra);
+      y += kRow_px;
+    }
   };
   for (const PlanGrid& g : view.grids) {
     double sum = 0.0;
     for (double lux : g.lux) sum += lux * view.maintenance_factor;
     std::string line = cat("grid ", g.name, ": Em ", fixed(g.lux.empty() ? 0.0 : sum / static_cast<double>(g.lux.size()), 0),
                            " lx");
-    if (!g.see.empty()) line += cat(", values: ", g.see);
     row(line);
+    if (!g.see.empty()) row(cat("values: ", g.see));
   }
   if (!view.luminaires.empty()) {
     y += 6.0;
@@ -471,7 +484,7 @@ std::string column_svg(const PlanView& view, double x, double y) {
   if (const std::string h = heights_text(view.luminaires); !h.empty()) row(cat("luminaires above the floor: ", h));
   if (has_chains(view)) row("dimensions in m, to luminaire centres");
   // Axes: x to the right, y up (the model's axes; north is not known).
-  const double ax = x + 14.0, ay = y + 30.0;
+  const double ax = x + 14.0, ay = y + 44.0;
   svg += cat("<path class=\"axes\" d=\"M", xy(ax, ay), "h34M", xy(ax + 34.0, ay), "l-6,-4M", xy(ax + 34.0, ay), "l-6,4M",
              xy(ax, ay), "v-34M", xy(ax, ay - 34.0), "l-4,6M", xy(ax, ay - 34.0), "l4,6", "\" stroke=\"#222222\" fill=\"none\" stroke-width=\"1.3\"/>\n",
              text_element(ax + 40.0, ay + 4.0, "start", "x"), text_element(ax, ay - 38.0, "middle", "y"),
@@ -479,7 +492,8 @@ std::string column_svg(const PlanView& view, double x, double y) {
   y = ay + 12.0;
   svg += cat("<rect class=\"title-block\" x=\"", px(x - 8.0), "\" y=\"", px(top), "\" width=\"", px(kColumn_px - 16.0),
              "\" height=\"", px(y - top), "\" fill=\"none\" stroke=\"#333333\"/>\n");
-  return svg;
+  if (svg_out) *svg_out += svg;
+  return y;
 }
 
 }  // namespace
@@ -554,14 +568,18 @@ std::string render_plan_svg(const Scene& scene, const PlanView& view) {
   }
   svg += "</g>\n";
   svg += grid_cells(f, view, scale);
-  svg += architecture_svg(f, view.architecture);
-
+  // The outline's frame; with the architecture drawn, the walls are the room's edge and
+  // the frame is the plan's border.
   const bool drawn_walls = view.architecture.cut_height_m > 0.0;
-  if (!g.frame_m.isEmpty())
+  if (drawn_walls)
+    svg += cat("<rect x=\"", px(layout.plan_px.min().x()), "\" y=\"", px(layout.plan_px.min().y()), "\" width=\"",
+               px(layout.plan_px.sizes().x()), "\" height=\"", px(layout.plan_px.sizes().y()),
+               "\" fill=\"none\" stroke=\"#9a9a9a\" stroke-width=\"0.8\"/>\n");
+  else if (!g.frame_m.isEmpty())
     svg += cat("<rect x=\"", px(f.x_px(g.frame_m.min().x())), "\" y=\"", px(f.y_px(g.frame_m.max().y())), "\" width=\"",
                px(g.frame_m.sizes().x() * f.scale_px_per_m), "\" height=\"", px(g.frame_m.sizes().y() * f.scale_px_per_m),
-               "\" fill=\"none\" stroke=\"", drawn_walls ? "#9a9a9a" : "#333333", "\" stroke-width=\"",
-               drawn_walls ? "0.8" : "1.5", "\"/>\n");
+               "\" fill=\"none\" stroke=\"#333333\" stroke-width=\"1.5\"/>\n");
+  svg += architecture_svg(f, view.architecture);
   svg += svg::plan_axes(f);
   svg += svg::plan_scale_bar(f);
   svg += chain_svg(f, layout.along_x, layout.along_x_text);
@@ -577,7 +595,7 @@ std::string render_plan_svg(const Scene& scene, const PlanView& view) {
   for (double v : all)
     if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
   svg += legend(scale, lo, hi, view.maintenance_factor, g.legend_x, g.bar_top, g.bar_px);
-  svg += column_svg(view, g.legend_x, g.bar_top + g.bar_px + (view.maintenance_factor < 1.0 ? 16.0 : 0.0) + 24.0);
+  column_svg(view, g.legend_x, column_top(view, g), &svg);
   svg += "</svg>\n";
   return svg;
 }

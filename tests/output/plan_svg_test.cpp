@@ -283,7 +283,7 @@ TEST(PlanSvg, DrawsTheArchitectureGridsTiltAndTitleBlock) {
                            "class=\"grid\"", "class=\"title-block\""})
     EXPECT_TRUE(Contains(svg, part, "svg")) << part;
   for (const char* text : {"office", "1 x spot 800 lm", "section cut at 0.80 m above the floor",
-                           "maintained illuminance (lx)", "grid work plane: Em 400 lx, values: isolux_work_plane.png",
+                           "maintained illuminance (lx)", "grid work plane: Em 400 lx", "values: isolux_work_plane.png",
                            "max 480 lx", "min 320 lx"})
     EXPECT_TRUE(has_text(svg, text)) << text;
   // The aim arrow points up the page (+y): its tip above the centre.
