@@ -70,11 +70,12 @@ void stage_grid_csv(OutputSet& set, const std::vector<GridResult>& grids) {
 }
 
 void stage_isolux(OutputSet& set, const std::vector<GridResult>& grids, const std::vector<DrawnLuminaire>& luminaires,
-                  const std::string& extension) {
+                  const std::string& extension, const PlanArchitecture& architecture) {
   const std::vector<std::string> stems = stems_of(grids);
   for (std::size_t g = 0; g < grids.size(); ++g) {
     const std::string name = stems[g] + extension;
-    const IsoluxGridView view = isolux_grid_view(*grids[g].grid, grids[g].light, luminaires);
+    IsoluxGridView view = isolux_grid_view(*grids[g].grid, grids[g].light, luminaires);
+    if (grids[g].grid->kind == GridKind::horizontal) view.architecture = architecture;
     const std::string path = set.staging_path(name);
     write_isolux_plan(extension == ".svg" ? path : "", extension == ".png" ? path : "", view);
     set.staged(name);

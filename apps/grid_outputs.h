@@ -38,7 +38,8 @@ std::vector<std::string> isolux_names(const JobConfig& job, const std::string& e
 
 // The writers, one per format; each stages its files in `set`.
 void stage_grid_csv(OutputSet& set, const std::vector<GridResult>& grids);
+// `architecture`: drawn on the horizontal grids' plans (cut_height_m 0: none).
 void stage_isolux(OutputSet& set, const std::vector<GridResult>& grids, const std::vector<DrawnLuminaire>& luminaires,
-                  const std::string& extension);
+                  const std::string& extension, const PlanArchitecture& architecture = {});
 
 }  // namespace ilp::cli

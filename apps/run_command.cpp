@@ -14,6 +14,7 @@
 #include "apps/cli_support.h"
 #include "apps/commands.h"
 #include "apps/grid_outputs.h"
+#include "apps/plan_outputs.h"
 #include "job/config.h"
 #include "core/operator/cost_model.h"
 #include "optimizer/goal_metrics.h"
@@ -148,34 +149,20 @@ void stage_illuminance_csv(OutputSet& set, const RunProducts& p) {
   set.staged("illuminance.csv");
 }
 
-void stage_plan_svg(OutputSet& set, const RunProducts& p) {
-  const bool verified = p.outcome.verification.method != "none";
-  PlanView view;
-  std::ostringstream title;
-  title << std::fixed << std::setprecision(1) << std::filesystem::path(p.job.path).stem().string() << ": ";
-  if (!p.record.no_layout.empty()) {  // the room and the reason, no light to show
-    view.title = title.str() + "no layout (" + p.record.no_layout + ")";
-    view.outline_patches = p.prepared.model.grid.mounting_patches();
-    const std::string svg = render_plan_svg(p.prepared.loaded.scene, view);
-    set.write("plan.svg", [&](std::ostream& out) { out << svg; });
-    return;
+// The plan (plan.svg, plan.png): apps/plan_outputs builds its view.
+void stage_plan_file(OutputSet& set, const RunProducts& p, const std::string& name) {
+  std::vector<std::string> names, grid_files;
+  for (const GridResult& g : p.grids) names.push_back(g.grid->name);
+  for (const std::string& stem : isolux_file_stems(names)) {
+    grid_files.push_back(p.job.output.isolux_png ? stem + ".png" : p.job.output.isolux_svg ? stem + ".svg"
+                         : p.job.output.grid_csv ? std::string(kGridCsvName) : std::string());
   }
-  title << p.outcome.luminaires.size() << " luminaires, " << p.outcome.power_w << " W, "
-        << (verified ? "verified" : "predicted") << " illuminance";
-  view.title = title.str();
-  view.goal_patches = p.prepared.model.goal_patches;
-  view.goal_lux = picture_goal_lux(p.prepared, p.outcome);
-  view.outline_patches = p.prepared.model.grid.mounting_patches();
-  const SearchLuminaire& s = p.prepared.plan.search.luminaire;
-  for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j) {
-    PlanLuminaire l{luminaire_name(j), p.outcome.luminaires[j].position_m, s.type.length_m, p.outcome.luminaires[j].flux_lm,
-                    {}, s.product};
-    for (const Eigen::Vector3d& v : luminaire_outline_m(s.type, {l.position_m, s.rotation_deg, s.tilt_deg})) l.outline_m.push_back(v.head<2>());
-    view.luminaires.push_back(std::move(l));
-  }
-  const std::string svg = render_plan_svg(p.prepared.loaded.scene, view);
-  set.write("plan.svg", [&](std::ostream& out) { out << svg; });
+  const PlanView view = run_plan_view(
+      {p.prepared, p.job, p.outcome, p.record, p.grids, picture_goal_lux(p.prepared, p.outcome), grid_files});
+  stage_plan(set, p.prepared.loaded.scene, view, name);
 }
+void stage_plan_svg(OutputSet& set, const RunProducts& p) { stage_plan_file(set, p, "plan.svg"); }
+void stage_plan_png(OutputSet& set, const RunProducts& p) { stage_plan_file(set, p, "plan.png"); }
 
 // The PLY's colour scale is the plan's (colour_scale_for over the same values), so both read the same.
 void stage_scene_ply(OutputSet& set, const RunProducts& p) {
@@ -198,8 +185,12 @@ std::vector<DrawnLuminaire> run_luminaires(const RunProducts& p) {
 }
 
 void stage_run_grid_csv(OutputSet& set, const RunProducts& p) { stage_grid_csv(set, p.grids); }
-void stage_isolux_svg(OutputSet& set, const RunProducts& p) { stage_isolux(set, p.grids, run_luminaires(p), ".svg"); }
-void stage_isolux_png(OutputSet& set, const RunProducts& p) { stage_isolux(set, p.grids, run_luminaires(p), ".png"); }
+void stage_isolux_file(OutputSet& set, const RunProducts& p, const std::string& extension) {
+  const std::vector<DrawnLuminaire> luminaires = run_luminaires(p);
+  stage_isolux(set, p.grids, luminaires, extension, run_architecture(p.prepared, p.job, luminaires));
+}
+void stage_isolux_svg(OutputSet& set, const RunProducts& p) { stage_isolux_file(set, p, ".svg"); }
+void stage_isolux_png(OutputSet& set, const RunProducts& p) { stage_isolux_file(set, p, ".png"); }
 
 std::vector<std::string> named(const char* name) { return {name}; }
 
@@ -221,6 +212,7 @@ const std::vector<RunOutput>& run_outputs() {
       {&OutputSettings::grid_csv, grid_csv_names, stage_run_grid_csv},
       {&OutputSettings::isolux_svg, [](const JobConfig& j) { return isolux_names(j, ".svg"); }, stage_isolux_svg},
       {&OutputSettings::isolux_png, [](const JobConfig& j) { return isolux_names(j, ".png"); }, stage_isolux_png},
+      {&OutputSettings::plan_png, [](const JobConfig&) { return named("plan.png"); }, stage_plan_png},
   };
   return outputs;
 }
@@ -240,7 +232,7 @@ std::vector<std::string> write_outputs(OutputSet& set, const RunProducts& produc
   for (const RunOutput& o : run_outputs()) {
     if (!(products.job.output.*o.flag)) continue;
     // Without a layout there is no light: result.json and the plan say why.
-    const bool light_needed = o.write != stage_result_json && o.write != stage_plan_svg;
+    const bool light_needed = o.write != stage_result_json && o.write != stage_plan_svg && o.write != stage_plan_png;
     if (!products.record.no_layout.empty() && light_needed) continue;
     try {
       o.write(set, products);
@@ -259,7 +251,8 @@ void record_no_layout(ResultRecord& record) {
   if (!record.attempts.empty())
     record.no_layout += "; " + std::to_string(record.attempts.back().luminaires) + " luminaires: " +
                         record.attempts.back().global_stop;
-  std::erase_if(record.files, [](const std::string& f) { return f != "result.json" && f != "plan.svg"; });
+  std::erase_if(record.files,
+                [](const std::string& f) { return f != "result.json" && f != "plan.svg" && f != "plan.png"; });
 }
 
 // Parses "KEY=V1,V2,..." into a sweep.

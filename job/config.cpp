@@ -487,7 +487,7 @@ void read_output(const Map& output, JobConfig& job) {
         {"json", &OutputSettings::json, false},          {"csv", &OutputSettings::csv, false},
         {"svg", &OutputSettings::svg, false},            {"ply", &OutputSettings::ply, false},
         {"grid_csv", &OutputSettings::grid_csv, true},   {"isolux_svg", &OutputSettings::isolux_svg, true},
-        {"isolux_png", &OutputSettings::isolux_png, true}};
+        {"isolux_png", &OutputSettings::isolux_png, true}, {"plan_png", &OutputSettings::plan_png, false}};
     std::string names;
     for (const Format& f : kFormats) names += (names.empty() ? "" : ", ") + std::string(f.name);
     const std::vector<Value> formats = v->list();
@@ -503,6 +503,7 @@ void read_output(const Map& output, JobConfig& job) {
       o.*f->flag = true;
     }
   }
+  if (auto v = output.get("plan_cut_height_m")) o.plan_cut_height_m = v->bounded(0.001, 1000.0, " m");
 }
 
 // `at`: where the sweep key itself is (the section's value starts a line later).
@@ -682,7 +683,7 @@ JobConfig load_job_config(const std::string& path) {
                      job);
     if (auto v = top.get("verification"))
       read_verification(Map(*v, {"method", "rays_per_patch", "indirect_rays_per_patch", "rounds", "max_exact_patches", "sample_fraction"}), job);
-    if (auto v = top.get("output")) read_output(Map(*v, {"directory", "formats"}), job);
+    if (auto v = top.get("output")) read_output(Map(*v, {"directory", "formats", "plan_cut_height_m"}), job);
     if (auto v = top.get("sweep")) read_sweep(*v, top.key_loc("sweep"), job);
     if (auto v = top.get("report")) {
       const Map report(*v, {"surfaces"});

@@ -209,11 +209,16 @@ struct VerificationSettings {
 
 struct OutputSettings {
   std::string directory;  // as written in the file (relative to the working directory); empty: "results/<config stem>"
-  // formats: [json, csv, svg, ply, grid_csv, isolux_svg, isolux_png]; the grid formats
-  // write one file per job (grid.csv) or per grid (isolux_<grid>.svg, .png) and nothing
-  // for a job without grids (listing one there is an error).
+  // formats: [json, csv, svg, ply, grid_csv, isolux_svg, isolux_png, plan_png]; the grid
+  // formats write one file per job (grid.csv) or per grid (isolux_<grid>.svg, .png) and
+  // nothing for a job without grids (listing one there is an error); plan_png is
+  // plan.svg rendered (plan.png).
   bool json = true, csv = true, svg = true, ply = true;
   bool grid_csv = true, isolux_svg = true, isolux_png = true;
+  bool plan_png = true;
+  // plan_cut_height_m: the plan's section plane over the floor (> 0); 0: the first
+  // horizontal grid's height, else 0.8 m (EN 12464-1's work plane).
+  double plan_cut_height_m = 0.0;
 };
 
 // sweep: run the job once per value of one goal parameter, e.g.

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "output/contours.h"
+#include "output/plan_architecture.h"
 
 namespace ilp {
 namespace {
@@ -24,86 +24,6 @@ void check_light(const CalcGrid& grid, const GridLight& light) {
     throw std::invalid_argument("grid '" + grid.name + "': need one value per point");
   if (!(light.maintenance_factor > 0.0 && light.maintenance_factor <= 1.0))
     throw std::invalid_argument("grid '" + grid.name + "': the maintenance factor must be in (0, 1]");
-}
-
-// Distance of p from the segment a..b.
-double segment_distance(const V2& p, const V2& a, const V2& b) {
-  const V2 d = b - a;
-  const double len2 = d.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).norm();
-}
-
-// Douglas-Peucker on points[first .. last] (both kept), appending the kept points after first.
-void simplify(const std::vector<V2>& pts, std::size_t first, std::size_t last, double tolerance, std::vector<V2>& out) {
-  double worst = -1.0;
-  std::size_t at = first;
-  for (std::size_t k = first + 1; k < last; ++k)
-    if (const double d = segment_distance(pts[k], pts[first], pts[last]); d > worst) {
-      worst = d;
-      at = k;
-    }
-  if (worst > tolerance) {
-    simplify(pts, first, at, tolerance, out);
-    simplify(pts, at, last, tolerance, out);
-  } else {
-    out.push_back(pts[last]);
-  }
-}
-
-// A closed ring simplified: split at the point farthest from the first, each half by Douglas-Peucker.
-std::vector<V2> simplify_ring(const std::vector<V2>& ring, double tolerance) {
-  if (ring.size() < 4) return ring;
-  std::size_t far = 0;
-  for (std::size_t k = 1; k < ring.size(); ++k)
-    if ((ring[k] - ring[0]).squaredNorm() > (ring[far] - ring[0]).squaredNorm()) far = k;
-  std::vector<V2> closed = ring;
-  closed.push_back(ring[0]);
-  std::vector<V2> out{ring[0]};
-  simplify(closed, 0, far, tolerance, out);
-  simplify(closed, far, closed.size() - 1, tolerance, out);
-  out.pop_back();  // the first point again
-  return out;
-}
-
-// The boundary of a union of triangles: a 0/1 raster of their cover (a ring of empty
-// nodes around it), traced at 0.5 by marching squares, each ring simplified.
-std::vector<std::vector<V2>> triangles_outline_m(const std::vector<std::array<V2, 3>>& triangles) {
-  Eigen::AlignedBox2d box;
-  for (const auto& t : triangles)
-    for (const V2& v : t) box.extend(v);
-  if (box.isEmpty() || !(box.sizes().maxCoeff() > 0.0)) return {};
-  const double cell = box.sizes().maxCoeff() / kOutlineRasterCells;
-  LatticeField field;
-  field.nx = static_cast<int>(std::ceil(box.sizes().x() / cell)) + 3;
-  field.ny = static_cast<int>(std::ceil(box.sizes().y() / cell)) + 3;
-  field.origin_m = box.min() - V2::Constant(cell);
-  field.spacing_m = V2::Constant(cell);
-  field.values.assign(static_cast<std::size_t>(field.nx) * static_cast<std::size_t>(field.ny), 0.0);
-  const double eps = 1e-9 * cell * cell;
-  auto cross = [](const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); };
-  for (const auto& t : triangles) {
-    const double area = cross(t[1] - t[0], t[2] - t[0]);
-    if (area == 0.0) continue;
-    const double sign = area > 0.0 ? 1.0 : -1.0;
-    Eigen::AlignedBox2d tb;
-    for (const V2& v : t) tb.extend(v);
-    const int i0 = std::max(0, static_cast<int>(std::floor((tb.min().x() - field.origin_m.x()) / cell)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((tb.min().y() - field.origin_m.y()) / cell)));
-    const int i1 = std::min(field.nx - 1, static_cast<int>(std::ceil((tb.max().x() - field.origin_m.x()) / cell)));
-    const int j1 = std::min(field.ny - 1, static_cast<int>(std::ceil((tb.max().y() - field.origin_m.y()) / cell)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const V2 p = field.node_m(i, j);
-        bool inside = true;
-        for (int e = 0; e < 3 && inside; ++e) inside = sign * cross(t[(e + 1) % 3] - t[e], p - t[e]) >= -eps;
-        if (inside) field.values[static_cast<std::size_t>(j) * field.nx + i] = 1.0;
-      }
-  }
-  std::vector<std::vector<V2>> out;
-  for (const ContourLine& line : contour_lines(field, 0.5))
-    out.push_back(line.closed ? simplify_ring(line.points_m, 0.5 * cell) : line.points_m);
-  return out;
 }
 
 std::string fixed(double v, int digits) {
@@ -139,7 +59,7 @@ std::vector<std::vector<Eigen::Vector2d>> grid_room_outline_m(const CalcGrid& gr
     return {{V2(0.0, bottom), V2(length, bottom), V2(length, top), V2(0.0, top)}};
   }
   if (!grid.outline_polygon_m.empty()) return {grid.outline_polygon_m};
-  return triangles_outline_m(grid.outline_triangles_m);
+  return union_outline(grid.outline_triangles_m, kOutlineRasterCells);
 }
 
 std::vector<IsoluxLuminaire> isolux_luminaires(const CalcGrid& grid, const std::vector<DrawnLuminaire>& luminaires) {

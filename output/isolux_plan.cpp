@@ -393,6 +393,30 @@ std::string cells(const IsoluxGridView& v, const svg::PlanFrame& f, const Colour
   return svg + "</g>\n";
 }
 
+// The architecture clipped to the plan's frame: furniture thin, the section's material
+// (loops with it inside, and their holes) filled, every section line thick.
+std::string architecture_svg(const PlanArchitecture& a, const svg::PlanFrame& f) {
+  if (a.cut_height_m <= 0.0) return {};
+  const Box frame = frame_box_px(f);
+  std::string svg = cat("<clipPath id=\"ilp-isolux-frame\"><rect x=\"", px(frame.min().x()), "\" y=\"", px(frame.min().y()),
+                        "\" width=\"", px(frame.sizes().x()), "\" height=\"", px(frame.sizes().y()),
+                        "\"/></clipPath>\n<g class=\"architecture\" clip-path=\"url(#ilp-isolux-frame)\">\n");
+  std::string furniture, material, lines;
+  for (const Ring2& ring : a.furniture) furniture += polygon_path(ring, f);
+  for (const SectionLine& l : a.section) {
+    std::string d = polygon_path(l.points_m, f);
+    if (!l.closed && !d.empty()) d.pop_back();  // an open line: no Z
+    lines += d;
+    if (section_material(l, a.section)) material += polygon_path(l.points_m, f);
+  }
+  if (!furniture.empty())
+    svg += cat("<path class=\"furniture\" d=\"", furniture, "\" fill=\"none\" stroke=\"#333333\" stroke-width=\"1\"/>\n");
+  if (!material.empty()) svg += cat("<path class=\"section-fill\" d=\"", material, "\" fill=\"#595959\"/>\n");
+  if (!lines.empty())
+    svg += cat("<path class=\"section\" d=\"", lines, "\" fill=\"none\" stroke=\"#111111\" stroke-width=\"2\"/>\n");
+  return svg + "</g>\n";
+}
+
 std::string isolines(const std::vector<PxLine>& lines, double reference_lux) {
   std::string svg = "<g fill=\"none\" stroke=\"#1a1a1a\" stroke-linejoin=\"round\" stroke-linecap=\"round\">\n";
   for (const PxLine& l : lines) {
@@ -642,6 +666,7 @@ std::string isolux_plan_svg(const IsoluxGridView& v) {
              "\" height=\"", px(frame.sizes().y()), "\" fill=\"none\" stroke=\"#999999\" stroke-width=\"0.8\"/>\n");
   if (!room.empty()) svg += cat("<path d=\"", room, "\" fill=\"#d9d9d9\" fill-rule=\"evenodd\"/>\n");
   svg += cells(v, f, layout.scale, !room.empty());
+  svg += architecture_svg(v.architecture, f);
   if (!room.empty())
     svg += cat("<path d=\"", room, "\" fill=\"none\" stroke=\"#222222\" stroke-width=\"2\" stroke-linejoin=\"round\"/>\n");
   std::vector<PxLine> lines;

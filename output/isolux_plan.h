@@ -13,6 +13,7 @@
 
 #include "output/colour_map.h"
 #include "output/contours.h"
+#include "output/plan_architecture.h"
 
 namespace ilp {
 
@@ -49,6 +50,9 @@ struct IsoluxGridView {
   std::string x_label = "x (m)", y_label = "y (m)";  // axis names (e.g. "along the wall (m)")
   // Direction of north as degrees clockwise from the plan's +y; NaN: no north arrow.
   double north_deg = std::numeric_limits<double>::quiet_NaN();
+  // A horizontal grid's architecture in its plan coordinates (output/plan_architecture.h),
+  // drawn over the cells and under the isolines, clipped to the plan; cut_height_m 0: none.
+  PlanArchitecture architecture = {};
 };
 
 // The isoline levels for a reference (target) illuminance: 0.5, 0.6, 0.7, 0.8, 1, 1.2,
@@ -101,6 +105,8 @@ IsoluxLayout isolux_plan_layout(const IsoluxGridView& view);
 //  - each point's cell filled by colour_map over 0 .. 2 x target (values above in the
 //    top colour, as the legend says); no point: the grey shows through;
 //  - the isolines (the target's line thicker), each labelled with its lux value;
+//  - the architecture (furniture outlines thin, the section's material filled and its
+//    lines thick) over the cells;
 //  - point values, luminaire outlines (rotated rectangles, discs) with their ids;
 //  - the minimum's point marked with an open triangle pointing down, the maximum's
 //    with a filled one pointing up (no label covers them);

@@ -186,7 +186,7 @@ TEST(IlpRunGrids, BadOutputFormatIsAnErrorAtItsLine) {
   EXPECT_EQ(r.out, "");
   EXPECT_TRUE(OutputContains(r.err, "error: " + job + ":" + std::to_string(line) + ":")) << r.err;
   EXPECT_TRUE(OutputContains(r.err, "output.formats"));
-  EXPECT_TRUE(OutputContains(r.err, "isolux: must be one of json, csv, svg, ply, grid_csv, isolux_svg, isolux_png"));
+  EXPECT_TRUE(OutputContains(r.err, "isolux: must be one of json, csv, svg, ply, grid_csv, isolux_svg, isolux_png, plan_png"));
   EXPECT_FALSE(fs::exists(dir.file("out")));
 
   // A grid format in a job without grids.

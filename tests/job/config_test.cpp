@@ -1179,11 +1179,17 @@ INSTANTIATE_TEST_SUITE_P(
                  "must list at least one of json, csv, svg, ply"},
         BadValue{"FormatsNotAList", SCENE "output:\n  formats: json\n", "output.formats = json", "must be a list"},
         BadValue{"FormatOther", SCENE "output:\n  formats: [json, pdf]\n", "output.formats[1] = pdf",
-                 "must be one of json, csv, svg, ply, grid_csv, isolux_svg, isolux_png"},
+                 "must be one of json, csv, svg, ply, grid_csv, isolux_svg, isolux_png, plan_png"},
         BadValue{"GridFormatWithoutGrids", SCENE "output:\n  formats: [json, isolux_png]\n", "output.formats[1] = isolux_png",
                  "needs calculation grids (the job has no grids section)"},
         BadValue{"FormatTwice", SCENE "output:\n  formats:\n    - json\n    - csv\n    - json\n",
                  "output.formats[2] = json", "is listed twice"},
+        BadValue{"PlanCutHeightZero", SCENE "output:\n  plan_cut_height_m: 0\n", "output.plan_cut_height_m = 0",
+                 "must be > 0"},
+        BadValue{"PlanCutHeightTooHigh", SCENE "output:\n  plan_cut_height_m: 5000\n",
+                 "output.plan_cut_height_m = 5000", "must be at most 1000 m"},
+        BadValue{"PlanCutHeightText", SCENE "output:\n  plan_cut_height_m: high\n", "output.plan_cut_height_m = high",
+                 "must be a number"},
         // sweep: checked by applying each value as `ilp sweep` will
         BadValue{"SweepWithoutGoals", SCENE "sweep:\n  key: goals.desks.average_lux\n  values: [300]\n",
                  "sweep: needs goals", "goal parameter", 3, 1},  // at the sweep key itself

@@ -17,6 +17,7 @@
 
 #include "core/scene/reference_scenes.h"
 #include "output/colour_map.h"
+#include "output/plan_architecture.h"
 #include "tests/output/svg_checks.h"
 #include "tests/test_support.h"
 
@@ -185,19 +186,115 @@ TEST(PlanSvg, YIsUpAtOneScaleOnBothAxes) {
   EXPECT_NEAR(l3_y, l1_y, 0.01);
 }
 
-TEST(PlanSvg, LuminairesAreLabelledWithIdAndFlux) {
-  const std::string svg = render_plan_svg(office(), office_view());
-  for (const char* text : {"L1", "L2", "L3", "1500 lm", "800 lm"}) EXPECT_TRUE(has_text(svg, text)) << text;
-  EXPECT_EQ(count(svg, ">1500 lm</text>"), 2u);
-  EXPECT_TRUE(Contains(svg, "<title>L3: 800 lm, 0.6 m square at (2, 0.5, 2.8) m</title>", "svg"));
+TEST(PlanSvg, LuminairesAreLabelledWithTheirIdsAndListedInTheSchedule) {
+  PlanView view = office_view();
+  for (PlanLuminaire& l : view.luminaires) l.above_floor_m = 2.8;
+  const std::string svg = render_plan_svg(office(), view);
+  for (const char* text : {"L1", "L2", "L3", "luminaire schedule", "1500", "800", "0.80", "0.50", "2.80"})
+    EXPECT_TRUE(has_text(svg, text)) << text;
+  EXPECT_EQ(count(svg, ">1500</text>"), 2u);  // the schedule's flux column
+  EXPECT_TRUE(has_text(svg, "luminaires above the floor: 2.80 m (all)"));
+  EXPECT_TRUE(Contains(svg, "<title>L3: 800 lm, 0.6 m square at (2, 0.5, 2.8) m, 2.80 m above the floor</title>", "svg"));
 }
 
-TEST(PlanSvg, LabelsNearTheRightWallGoLeftOfTheSquare) {
+TEST(PlanSvg, ALabelAtTheRightWallGoesLeftOfItsOutline) {
   PlanView view = office_view();
   view.luminaires = {square("east", V(3.8, 1.5, 2.8), 0.3, 1200.0)};
+  const PlanLayout layout = plan_svg_layout(office(), view);
+  ASSERT_EQ(layout.label_px.size(), 1u);
+  EXPECT_LT(layout.label_px[0].max().x(), layout.outline_px[0].min().x());
+  EXPECT_TRUE(layout.plan_px.contains(layout.label_px[0]));
+}
+
+TEST(PlanSvg, LabelsOfADenseLayoutCoverNoOtherLabelOrOutline) {
+  // 8 x 6 luminaires of 0.3 m, 0.45 m apart over the 4 x 3 m room: ids such as "L48"
+  // do not fit between two outlines, so most go above, below or farther out.
+  PlanView view = office_view();
+  view.luminaires.clear();
+  for (int j = 0; j < 6; ++j)
+    for (int i = 0; i < 8; ++i) {
+      std::string id = "L";
+      id += std::to_string(view.luminaires.size() + 1);  // (GCC 12 warns wrongly on "L" + string&&)
+      view.luminaires.push_back(square(id, V(0.425 + 0.45 * i, 0.375 + 0.45 * j, 2.8), 0.3, 500.0));
+    }
+  const PlanLayout layout = plan_svg_layout(office(), view);
+  ASSERT_EQ(layout.label_px.size(), 48u);
+  for (std::size_t a = 0; a < 48; ++a) {
+    ASSERT_FALSE(layout.label_px[a].isEmpty()) << "label " << a + 1 << " not placed";
+    EXPECT_TRUE(layout.plan_px.contains(layout.label_px[a]));
+    for (std::size_t b = 0; b < 48; ++b) {
+      if (b != a) {
+        EXPECT_TRUE(layout.label_px[a].intersection(layout.label_px[b]).isEmpty()) << a + 1 << " and " << b + 1;
+      }
+      EXPECT_TRUE(layout.label_px[a].intersection(layout.outline_px[b]).isEmpty()) << "label " << a + 1 << " on " << b + 1;
+    }
+  }
   const std::string svg = render_plan_svg(office(), view);
-  EXPECT_EQ(attribute(text_tag(svg, "east"), "text-anchor"), "end");
-  EXPECT_EQ(attribute(text_tag(svg, "1200 lm"), "text-anchor"), "end");
+  EXPECT_TRUE(WellFormed(svg));
+  EXPECT_TRUE(has_text(svg, "L48"));
+}
+
+TEST(PlanSvg, DimensionChainsGiveTheSpacingsAndTheDistancesToTheWalls) {
+  // A 2 x 2 field in the 4 x 3 m room: columns at 1 and 3 m, rows at 0.75 and 2.25 m.
+  PlanView view = office_view();
+  view.luminaires = {square("L1", V(1, 0.75, 2.8), 0.6, 1000.0), square("L2", V(3, 0.75, 2.8), 0.6, 1000.0),
+                     square("L3", V(1, 2.25, 2.8), 0.6, 1000.0), square("L4", V(3, 2.25, 2.8), 0.6, 1000.0)};
+  const PlanLayout layout = plan_svg_layout(office(), view);
+  EXPECT_EQ(layout.along_x_text, (std::vector<std::string>{"1.00", "2.00", "1.00"}));
+  EXPECT_EQ(layout.along_y_text, (std::vector<std::string>{"0.75", "1.50", "0.75"}));
+  const std::string svg = render_plan_svg(office(), view);
+  EXPECT_TRUE(Contains(svg, "class=\"dimensions-x\"", "svg"));
+  EXPECT_TRUE(Contains(svg, "class=\"dimensions-y\"", "svg"));
+  EXPECT_EQ(count(svg, ">2.00</text>"), 1u);
+  EXPECT_EQ(count(svg, ">0.75</text>"), 4u);  // twice on the y chain, twice in the schedule (L1, L2)
+  view.dimensions = false;
+  EXPECT_TRUE(plan_svg_layout(office(), view).along_x.stops_m.empty());
+  EXPECT_EQ(metres_2(2.0), "2.00");
+  EXPECT_EQ(metres_2(0.745), "0.74");  // round half to even on the binary value 0.74499..
+  EXPECT_EQ(metres_2(-0.001), "0.00");
+}
+
+TEST(PlanSvg, DrawsTheArchitectureGridsTiltAndTitleBlock) {
+  // A partition (a box 0.1 x 1 m, 1.5 m high) cut at 0.8 m, the desk below the cut seen from above.
+  std::vector<reference::QuadSpec> quads = {
+      {"floor", V(0, 0, 0), V(4, 0, 0), V(4, 3, 0), V(0, 3, 0), V::Constant(0.5)},
+      {"desk", V(1, 1, 0.75), V(2, 1, 0.75), V(2, 2, 0.75), V(1, 2, 0.75), V::Constant(0.5)},
+      {"part", V(3, 1, 0), V(3.1, 1, 0), V(3.1, 1, 1.5), V(3, 1, 1.5), V::Constant(0.5)},
+      {"part", V(3.1, 2, 0), V(3, 2, 0), V(3, 2, 1.5), V(3.1, 2, 1.5), V::Constant(0.5)},
+      {"part", V(3, 2, 0), V(3, 1, 0), V(3, 1, 1.5), V(3, 2, 1.5), V::Constant(0.5)},
+      {"part", V(3.1, 1, 0), V(3.1, 2, 0), V(3.1, 2, 1.5), V(3.1, 1, 1.5), V::Constant(0.5)}};
+  const Scene scene = reference::make_quad_scene(quads, 0.0);
+  PlanView view;
+  view.outline_patches = {0, 1};
+  view.architecture = plan_architecture(scene, {.floor_z_m = 0.0, .cut_height_m = 0.8});
+  ASSERT_EQ(view.architecture.section.size(), 1u);
+  ASSERT_EQ(view.architecture.furniture.size(), 1u);
+  PlanLuminaire spot = square("S1", V(2, 1.5, 2.5), 0.2, 800.0);
+  spot.rotation_deg = 90.0;  // aimed toward +y
+  spot.tilt_deg = 30.0;
+  view.luminaires = {spot};
+  view.grids = {{"work plane", {Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d(1.5, 0.5)}, Eigen::Vector2d(1, 1), {400, 600},
+                 "isolux_work_plane.png"}};
+  view.maintenance_factor = 0.8;
+  view.title_block = {"office", "1 x spot 800 lm"};
+  const std::string svg = render_plan_svg(scene, view);
+  EXPECT_TRUE(WellFormed(svg));
+  for (const char* part : {"class=\"section-fill\"", "class=\"section\"", "class=\"furniture\"", "class=\"aim\"",
+                           "class=\"grid\"", "class=\"title-block\""})
+    EXPECT_TRUE(Contains(svg, part, "svg")) << part;
+  for (const char* text : {"office", "1 x spot 800 lm", "section cut at 0.80 m above the floor",
+                           "maintained illuminance (lx)", "grid work plane: Em 400 lx", "values: isolux_work_plane.png",
+                           "max 480 lx", "min 320 lx"})
+    EXPECT_TRUE(has_text(svg, text)) << text;
+  // The aim arrow points up the page (+y): its tip above the centre.
+  const std::size_t aim = svg.find("class=\"aim\" d=\"M");
+  ASSERT_NE(aim, std::string::npos);
+  std::istringstream d(svg.substr(svg.find('M', aim) + 1));
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  char c = 0;
+  d >> x0 >> c >> y0 >> c >> x1 >> c >> y1;
+  EXPECT_NEAR(x1, x0, 0.01);
+  EXPECT_LT(y1, y0 - 10.0);
 }
 
 TEST(PlanSvg, EscapesText) {
