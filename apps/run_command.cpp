@@ -15,6 +15,7 @@
 #include "apps/commands.h"
 #include "apps/grid_outputs.h"
 #include "job/config.h"
+#include "core/light/luminaire_product.h"
 #include "core/operator/cost_model.h"
 #include "optimizer/goal_metrics.h"
 #include "job/job_runner.h"
@@ -24,6 +25,7 @@
 #include "output/colour_map.h"
 #include "output/plan_svg.h"
 #include "output/ply_writer.h"
+#include "output/report_pdf.h"
 #include "output/result_record.h"
 #include "output/svg_plot.h"
 
@@ -148,7 +150,8 @@ void stage_illuminance_csv(OutputSet& set, const RunProducts& p) {
   set.staged("illuminance.csv");
 }
 
-void stage_plan_svg(OutputSet& set, const RunProducts& p) {
+// plan.svg's text (the plan page of report.pdf too).
+std::string plan_svg(const RunProducts& p) {
   const bool verified = p.outcome.verification.method != "none";
   PlanView view;
   std::ostringstream title;
@@ -156,9 +159,7 @@ void stage_plan_svg(OutputSet& set, const RunProducts& p) {
   if (!p.record.no_layout.empty()) {  // the room and the reason, no light to show
     view.title = title.str() + "no layout (" + p.record.no_layout + ")";
     view.outline_patches = p.prepared.model.grid.mounting_patches();
-    const std::string svg = render_plan_svg(p.prepared.loaded.scene, view);
-    set.write("plan.svg", [&](std::ostream& out) { out << svg; });
-    return;
+    return render_plan_svg(p.prepared.loaded.scene, view);
   }
   title << p.outcome.luminaires.size() << " luminaires, " << p.outcome.power_w << " W, "
         << (verified ? "verified" : "predicted") << " illuminance";
@@ -173,7 +174,11 @@ void stage_plan_svg(OutputSet& set, const RunProducts& p) {
     for (const Eigen::Vector3d& v : luminaire_outline_m(s.type, {l.position_m, s.rotation_deg, s.tilt_deg})) l.outline_m.push_back(v.head<2>());
     view.luminaires.push_back(std::move(l));
   }
-  const std::string svg = render_plan_svg(p.prepared.loaded.scene, view);
+  return render_plan_svg(p.prepared.loaded.scene, view);
+}
+
+void stage_plan_svg(OutputSet& set, const RunProducts& p) {
+  const std::string svg = plan_svg(p);
   set.write("plan.svg", [&](std::ostream& out) { out << svg; });
 }
 
@@ -201,6 +206,36 @@ void stage_run_grid_csv(OutputSet& set, const RunProducts& p) { stage_grid_csv(s
 void stage_isolux_svg(OutputSet& set, const RunProducts& p) { stage_isolux(set, p.grids, run_luminaires(p), ".svg"); }
 void stage_isolux_png(OutputSet& set, const RunProducts& p) { stage_isolux(set, p.grids, run_luminaires(p), ".png"); }
 
+// The chosen variant's product as its data sheet shows it.
+ReportProduct report_product(const VariantPlan& plan) {
+  const ProductVariant& v = plan.product;
+  ReportProduct p;
+  p.name = v.product;
+  const auto* photometric = dynamic_cast<const PhotometricDistribution*>(v.type.distribution.get());
+  p.file = photometric ? std::filesystem::path(v.source).filename().string() : std::string();
+  p.photometry = photometric ? &photometric->photometry() : nullptr;
+  p.rated_flux_lm = v.rated_flux_lm;
+  p.power_w = v.power_w;
+  p.dim_min = v.dim_min;
+  p.dim_max = v.dim_max;
+  p.length_m = v.type.length_m;
+  p.width_m = v.type.width_m;
+  return p;
+}
+
+// report.pdf: the record, the plan, each grid's isolux view and the product's data sheet.
+void stage_report_pdf(OutputSet& set, const RunProducts& p) {
+  ReportInput in;
+  in.job = std::filesystem::path(p.job.path).filename().string();
+  in.record = &p.record;
+  in.plan_svg = plan_svg(p);
+  const std::vector<DrawnLuminaire> luminaires = run_luminaires(p);
+  for (const GridResult& g : p.grids) in.grids.push_back(isolux_grid_view(*g.grid, g.light, luminaires));
+  in.products.push_back(report_product(p.prepared.plan));
+  write_report_pdf(set.staging_path("report.pdf"), in);
+  set.staged("report.pdf");
+}
+
 std::vector<std::string> named(const char* name) { return {name}; }
 
 // One output format of `ilp run`: its flag in output.formats, every file it may write
@@ -221,6 +256,7 @@ const std::vector<RunOutput>& run_outputs() {
       {&OutputSettings::grid_csv, grid_csv_names, stage_run_grid_csv},
       {&OutputSettings::isolux_svg, [](const JobConfig& j) { return isolux_names(j, ".svg"); }, stage_isolux_svg},
       {&OutputSettings::isolux_png, [](const JobConfig& j) { return isolux_names(j, ".png"); }, stage_isolux_png},
+      {&OutputSettings::pdf, [](const JobConfig&) { return named("report.pdf"); }, stage_report_pdf},
   };
   return outputs;
 }
