@@ -399,6 +399,9 @@ void grid_pages(PdfPages& pdf, const ReportInput& in) {
   }
 }
 
+// A text field a file fills (EULUMDAT writes "0" where it has nothing to say).
+bool stated(const std::string& field) { return !field.empty() && field != "0"; }
+
 std::string percent_or_dash(double v) { return std::isfinite(v) ? fixed(v, 1) + " %" : "not stated in the file"; }
 
 void product_page(PdfPages& pdf, const ReportProduct& p) {
@@ -419,16 +422,16 @@ void product_page(PdfPages& pdf, const ReportProduct& p) {
   t.rows.push_back({"Efficacy", p.power_w > 0.0 ? fixed(p.rated_flux_lm / p.power_w, 1) + " lm/W" : "–"});
   t.rows.push_back({"Output range", p.dim_min < p.dim_max ? fixed(100.0 * p.dim_min, 0) + " % to " + fixed(100.0 * p.dim_max, 0) + " % (dimmable)"
                                                           : fixed(100.0 * p.dim_max, 0) + " % (fixed output)"});
-  t.rows.push_back({"Luminous opening", fixed(1000.0 * p.length_m, 0) + " mm × " + fixed(1000.0 * p.width_m, 0) +
-                                            " mm (length along C0–C180 as placed × width)"});
+  t.rows.push_back({"Luminous opening", fixed(1000.0 * p.length_m, 0) + " mm along C0–C180 × " + fixed(1000.0 * p.width_m, 0) +
+                                            " mm along C90–C270"});
   if (f) {
     t.rows.push_back({"Light output ratio (LOR)", percent_or_dash(f->stated_lor_percent)});
     t.rows.push_back({"Downward flux fraction", percent_or_dash(f->stated_dff_percent)});
     t.rows.push_back({"Upward share (from the curves)", fixed(100.0 * f->upward_fraction, 1) + " %"});
     for (const LampSet& l : f->lamp_sets) {
       std::string lamp = std::to_string(std::abs(l.count)) + " × " + (l.type.empty() ? "lamp" : l.type);
-      if (!l.colour.empty()) lamp += ", colour " + l.colour;
-      if (!l.colour_rendering.empty()) lamp += ", CRI " + l.colour_rendering;
+      if (stated(l.colour)) lamp += ", colour " + l.colour;
+      if (stated(l.colour_rendering)) lamp += ", CRI " + l.colour_rendering;
       if (l.power_w > 0.0) lamp += ", " + fixed(l.power_w, 1) + " W";
       t.rows.push_back({"Lamps", lamp});
     }
@@ -437,14 +440,29 @@ void product_page(PdfPages& pdf, const ReportProduct& p) {
   if (!f) return;
   const PolarCurve curve = polar_curve(*f);
   pdf.heading("Polar curve (cd/klm)", 2);
-  pdf.svg(polar_curve_svg(curve), 300.0, 250.0);
-  Table values({"gamma", "C0", "C90", "C180", "C270"}, {0.2, 0.2, 0.2, 0.2, 0.2}, std::vector<bool>(5, true));
+  pdf.svg(polar_curve_svg(curve), 230.0, 200.0);
+  // Planes down, gamma across every 15 degrees: the four planes in one block.
+  std::vector<std::size_t> at;
+  for (std::size_t k = 0; k < curve.c0_c180.gamma_deg.size(); ++k)
+    if (std::abs(std::remainder(curve.c0_c180.gamma_deg[k], 15.0)) < 1e-6) at.push_back(k);
+  Table values;
   values.size_pt = kSmallPt;
-  for (std::size_t k = 0; k < curve.c0_c180.gamma_deg.size(); ++k) {
-    const double g = curve.c0_c180.gamma_deg[k];
-    if (std::fmod(g + 1e-9, 15.0) > 1e-6) continue;
-    values.rows.push_back({fixed(g, 0) + "°", fixed(curve.c0_c180.cd_per_klm[k], 1), fixed(curve.c90_c270.cd_per_klm[k], 1),
-                           fixed(curve.c0_c180.cd_per_klm_opposite[k], 1), fixed(curve.c90_c270.cd_per_klm_opposite[k], 1)});
+  values.header.push_back("plane \\ gamma");
+  values.widths.push_back(0.1);
+  values.right.push_back(false);
+  for (std::size_t k : at) {
+    values.header.push_back(fixed(curve.c0_c180.gamma_deg[k], 0) + "°");
+    values.widths.push_back(0.9 / static_cast<double>(at.size()));
+    values.right.push_back(true);
+  }
+  const std::pair<const char*, const std::vector<double>*> planes[] = {{"C0", &curve.c0_c180.cd_per_klm},
+                                                                       {"C90", &curve.c90_c270.cd_per_klm},
+                                                                       {"C180", &curve.c0_c180.cd_per_klm_opposite},
+                                                                       {"C270", &curve.c90_c270.cd_per_klm_opposite}};
+  for (const auto& [name, v] : planes) {
+    std::vector<std::string> row{name};
+    for (std::size_t k : at) row.push_back(fixed((*v)[k], 1));
+    values.rows.push_back(std::move(row));
   }
   pdf.heading("Intensity (cd/klm)", 3);
   pdf.table(values);
@@ -491,6 +509,10 @@ void verification_page(PdfPages& pdf, const ResultRecord& r) {
     goals.rows.push_back({g.name, g.metric, value_text(g, g.predicted), g.verified ? value_text(g, *g.verified) : "–",
                           g.verified && g.predicted != 0.0 ? fixed(100.0 * (*g.verified - g.predicted) / g.predicted, 2) + " %" : "–"});
   pdf.heading("Predicted against verified", 2);
+  if (r.flux_correction != 1.0)
+    pdf.paragraph("Predicted: the search's model at the fluxes it chose. Verified: the exact check after every flux was "
+                  "scaled by " + fixed(r.flux_correction, 4) + " so that the binding goal is just met; the difference "
+                  "includes that scaling.", kSmallPt);
   pdf.table(goals);
   for (const std::string& line : r.calibration) pdf.paragraph(line, kSmallPt);
   if (!r.variants.empty()) {

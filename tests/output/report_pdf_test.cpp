@@ -132,7 +132,7 @@ TEST(ReportPdf, TextHoldsTheRecordsNumbersWithUnits) {
   EXPECT_TRUE(Contains(text, "600 mm × 600 mm"));
   EXPECT_TRUE(Contains(text, "C0–C180"));
   std::ostringstream nadir;
-  nadir << "0° " << std::fixed;
+  nadir << "C0 " << std::fixed;  // the C0 row starts at gamma 0
   nadir.precision(1);
   nadir << 950.0 * 1000.0 / photometry.luminaire_flux_lm;
   EXPECT_TRUE(Contains(text, nadir.str())) << nadir.str();
