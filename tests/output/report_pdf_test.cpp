@@ -129,7 +129,7 @@ TEST(ReportPdf, TextHoldsTheRecordsNumbersWithUnits) {
   EXPECT_TRUE(Contains(text, "Data sheet: panel 3000 lm"));
   EXPECT_TRUE(Contains(text, "Testwerk"));
   EXPECT_TRUE(Contains(text, "Efficacy 98.0 lm/W"));
-  EXPECT_TRUE(Contains(text, "600 mm × 600 mm"));
+  EXPECT_TRUE(Contains(text, "600 mm along C0–C180 × 600 mm along C90–C270"));
   EXPECT_TRUE(Contains(text, "C0–C180"));
   std::ostringstream nadir;
   nadir << "C0 " << std::fixed;  // the C0 row starts at gamma 0
