@@ -337,7 +337,8 @@ void room_page(PdfPages& pdf, const ResultRecord& r) {
   pdf.table(room);
   if (r.room && !r.room->surfaces.empty()) {
     pdf.heading("Surfaces", 2);
-    Table surfaces({"surface", "area", "reflectance", "bottom above floor", "top above floor"}, {0.32, 0.16, 0.16, 0.18, 0.18}, {false, true, true, true, true});
+    const bool floor = r.room->floor_z_m.has_value();
+    Table surfaces({"surface", "area", "reflectance", floor ? "bottom above floor" : "bottom (z)", floor ? "top above floor" : "top (z)"}, {0.32, 0.16, 0.16, 0.18, 0.18}, {false, true, true, true, true});
     for (const SurfaceRecord& s : r.room->surfaces)
       surfaces.rows.push_back({s.name, fixed(s.area_m2, 2) + " m²", fixed(s.reflectance, 2), fixed(s.bottom_m, 2) + " m",
                                fixed(s.top_m, 2) + " m"});

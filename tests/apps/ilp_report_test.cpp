@@ -126,7 +126,10 @@ TEST(IlpReport, OfficeProductsPdfHoldsTheVerifiedNumbers) {
   EXPECT_TRUE(OutputContains(text, "Bill of materials"));
   EXPECT_TRUE(OutputContains(text, "exact radiosity solve"));
   EXPECT_TRUE(OutputContains(text, "Rays per patch " + std::to_string(rec.verification_rays_per_patch)));
-  // No folder of this machine anywhere in the report.
+  // No folder of this machine anywhere in the report, the printout or the bill of
+  // materials of result.json (it used to hold the photometric file's absolute path).
+  EXPECT_EQ(bill.source, fs::path(bill.source).filename().string());
+  EXPECT_EQ(r.out.find(ILP_SOURCE_DIR "/data"), std::string::npos) << r.out;
   EXPECT_EQ(text.find(ILP_SOURCE_DIR), std::string::npos);
   EXPECT_EQ(read_file(dir.file("out/report.pdf")).find(ILP_SOURCE_DIR), std::string::npos);
 
