@@ -16,6 +16,7 @@
 #include "apps/grid_outputs.h"
 #include "apps/plan_outputs.h"
 #include "job/config.h"
+#include "core/light/luminaire_product.h"
 #include "core/operator/cost_model.h"
 #include "optimizer/goal_metrics.h"
 #include "job/job_runner.h"
@@ -25,6 +26,7 @@
 #include "output/colour_map.h"
 #include "output/plan_svg.h"
 #include "output/ply_writer.h"
+#include "output/report_pdf.h"
 #include "output/result_record.h"
 #include "output/svg_plot.h"
 
@@ -149,17 +151,23 @@ void stage_illuminance_csv(OutputSet& set, const RunProducts& p) {
   set.staged("illuminance.csv");
 }
 
-// The plan (plan.svg, plan.png): apps/plan_outputs builds its view.
-void stage_plan_file(OutputSet& set, const RunProducts& p, const std::string& name) {
+// The plan's view (plan.svg, plan.png and the plan page of report.pdf): apps/plan_outputs
+// builds it.
+PlanView plan_view(const RunProducts& p) {
   std::vector<std::string> names, grid_files;
   for (const GridResult& g : p.grids) names.push_back(g.grid->name);
   for (const std::string& stem : isolux_file_stems(names)) {
     grid_files.push_back(p.job.output.isolux_png ? stem + ".png" : p.job.output.isolux_svg ? stem + ".svg"
                          : p.job.output.grid_csv ? std::string(kGridCsvName) : std::string());
   }
-  const PlanView view = run_plan_view(
+  return run_plan_view(
       {p.prepared, p.job, p.outcome, p.record, p.grids, picture_goal_lux(p.prepared, p.outcome), grid_files});
-  stage_plan(set, p.prepared.loaded.scene, view, name);
+}
+
+std::string plan_svg(const RunProducts& p) { return render_plan_svg(p.prepared.loaded.scene, plan_view(p)); }
+
+void stage_plan_file(OutputSet& set, const RunProducts& p, const std::string& name) {
+  stage_plan(set, p.prepared.loaded.scene, plan_view(p), name);
 }
 void stage_plan_svg(OutputSet& set, const RunProducts& p) { stage_plan_file(set, p, "plan.svg"); }
 void stage_plan_png(OutputSet& set, const RunProducts& p) { stage_plan_file(set, p, "plan.png"); }
@@ -192,6 +200,36 @@ void stage_isolux_file(OutputSet& set, const RunProducts& p, const std::string& 
 void stage_isolux_svg(OutputSet& set, const RunProducts& p) { stage_isolux_file(set, p, ".svg"); }
 void stage_isolux_png(OutputSet& set, const RunProducts& p) { stage_isolux_file(set, p, ".png"); }
 
+// The chosen variant's product as its data sheet shows it.
+ReportProduct report_product(const VariantPlan& plan) {
+  const ProductVariant& v = plan.product;
+  ReportProduct p;
+  p.name = v.product;
+  const auto* photometric = dynamic_cast<const PhotometricDistribution*>(v.type.distribution.get());
+  p.file = photometric ? std::filesystem::path(v.source).filename().string() : std::string();
+  p.photometry = photometric ? &photometric->photometry() : nullptr;
+  p.rated_flux_lm = v.rated_flux_lm;
+  p.power_w = v.power_w;
+  p.dim_min = v.dim_min;
+  p.dim_max = v.dim_max;
+  p.length_m = v.type.length_m;
+  p.width_m = v.type.width_m;
+  return p;
+}
+
+// report.pdf: the record, the plan, each grid's isolux view and the product's data sheet.
+void stage_report_pdf(OutputSet& set, const RunProducts& p) {
+  ReportInput in;
+  in.job = std::filesystem::path(p.job.path).filename().string();
+  in.record = &p.record;
+  in.plan_svg = plan_svg(p);
+  const std::vector<DrawnLuminaire> luminaires = run_luminaires(p);
+  for (const GridResult& g : p.grids) in.grids.push_back(isolux_grid_view(*g.grid, g.light, luminaires));
+  in.products.push_back(report_product(p.prepared.plan));
+  write_report_pdf(set.staging_path("report.pdf"), in);
+  set.staged("report.pdf");
+}
+
 std::vector<std::string> named(const char* name) { return {name}; }
 
 // One output format of `ilp run`: its flag in output.formats, every file it may write
@@ -213,6 +251,7 @@ const std::vector<RunOutput>& run_outputs() {
       {&OutputSettings::isolux_svg, [](const JobConfig& j) { return isolux_names(j, ".svg"); }, stage_isolux_svg},
       {&OutputSettings::isolux_png, [](const JobConfig& j) { return isolux_names(j, ".png"); }, stage_isolux_png},
       {&OutputSettings::plan_png, [](const JobConfig&) { return named("plan.png"); }, stage_plan_png},
+      {&OutputSettings::pdf, [](const JobConfig&) { return named("report.pdf"); }, stage_report_pdf},
   };
   return outputs;
 }

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/energy/leni.h"
 #include "job/config_yaml.h"
 #include "job/products.h"
 
@@ -487,7 +488,8 @@ void read_output(const Map& output, JobConfig& job) {
         {"json", &OutputSettings::json, false},          {"csv", &OutputSettings::csv, false},
         {"svg", &OutputSettings::svg, false},            {"ply", &OutputSettings::ply, false},
         {"grid_csv", &OutputSettings::grid_csv, true},   {"isolux_svg", &OutputSettings::isolux_svg, true},
-        {"isolux_png", &OutputSettings::isolux_png, true}, {"plan_png", &OutputSettings::plan_png, false}};
+        {"isolux_png", &OutputSettings::isolux_png, true}, {"plan_png", &OutputSettings::plan_png, false},
+        {"pdf", &OutputSettings::pdf, false}};
     std::string names;
     for (const Format& f : kFormats) names += (names.empty() ? "" : ", ") + std::string(f.name);
     const std::vector<Value> formats = v->list();
@@ -504,6 +506,43 @@ void read_output(const Map& output, JobConfig& job) {
     }
   }
   if (auto v = output.get("plan_cut_height_m")) o.plan_cut_height_m = v->bounded(0.001, 1000.0, " m");
+}
+
+// energy: {building_type, hours_day, hours_night, occupancy_factor, daylight_factor,
+// constant_illuminance, parasitic_kwh_per_m2}.
+void read_energy(const Value& section, JobConfig& job) {
+  const Map energy(section, {"building_type", "hours_day", "hours_night", "occupancy_factor", "daylight_factor",
+                             "constant_illuminance", "parasitic_kwh_per_m2"});
+  EnergySettings& e = job.energy;
+  e.given = true;
+  e.loc = section.loc();
+  if (auto v = energy.get("building_type")) {
+    e.building_type = v->text();
+    if (!find_building_type(e.building_type)) {
+      std::string names;
+      for (const BuildingHours& b : building_types()) names += (names.empty() ? "" : ", ") + std::string(b.key);
+      v->fail("must be one of " + names);
+    }
+  }
+  constexpr double kHoursPerYear = 8760.0;
+  if (auto v = energy.get("hours_day")) e.hours_day = v->number_in(0.0, kHoursPerYear, false, "[0, 8760] h");
+  if (auto v = energy.get("hours_night")) e.hours_night = v->number_in(0.0, kHoursPerYear, false, "[0, 8760] h");
+  const BuildingHours row = *find_building_type(e.building_type);
+  if (e.hours_day.value_or(row.day_h) + e.hours_night.value_or(row.night_h) > kHoursPerYear)
+    (energy.get("hours_night") ? *energy.get("hours_night") : *energy.get("hours_day"))
+        .fail("hours_day + hours_night must be at most 8760 h (a year)");
+  if (auto v = energy.get("occupancy_factor")) {
+    e.occupancy_factor = v->number_in(0.0, 1.0, false, "(0, 1]");
+    if (e.occupancy_factor <= 0.0) v->fail("must be in (0, 1]");
+  }
+  if (auto v = energy.get("daylight_factor")) e.daylight_factor = v->number_in(0.0, 1.0, false, "[0, 1]");
+  if (auto v = energy.get("constant_illuminance")) {
+    const std::string flag = Value::lower(v->text());
+    if (flag == "true") e.constant_illuminance = true;
+    else if (flag == "false") e.constant_illuminance = false;
+    else v->fail("must be true or false");
+  }
+  if (auto v = energy.get("parasitic_kwh_per_m2")) e.parasitic_kwh_per_m2 = v->number_in(0.0, 1000.0, false, "[0, 1000] kWh/(m²·a)");
 }
 
 // `at`: where the sweep key itself is (the section's value starts a line later).
@@ -648,11 +687,11 @@ JobConfig load_job_config(const std::string& path) {
   if (!root.IsMap())
     throw ConfigError(path +
                       ": the config must be a YAML map of sections (scene, luminaires, goals, constraints, objective, "
-                      "solver, optimizer, verification, output, sweep, report)");
+                      "solver, optimizer, verification, output, energy, sweep, report)");
   try {
     const Map top(Value(root, "", job.path), {"scene", "luminaires", "grids", "maintenance_factor", "goals",
                                               "constraints", "objective", "solver", "optimizer", "verification",
-                                              "output", "sweep", "report"});
+                                              "output", "energy", "sweep", "report"});
     read_scene(Map(top.require("scene"), {"mesh", "up_axis", "scale_to_m", "max_patch_edge_m", "surfaces_from",
                                           "reflectance", "default_reflectance", "emitting_surfaces",
                                           "exclude_surfaces", "two_sided", "weld_tolerance_m", "regions", "add_floor"}),
@@ -684,6 +723,7 @@ JobConfig load_job_config(const std::string& path) {
     if (auto v = top.get("verification"))
       read_verification(Map(*v, {"method", "rays_per_patch", "indirect_rays_per_patch", "rounds", "max_exact_patches", "sample_fraction"}), job);
     if (auto v = top.get("output")) read_output(Map(*v, {"directory", "formats", "plan_cut_height_m"}), job);
+    if (auto v = top.get("energy")) read_energy(*v, job);
     if (auto v = top.get("sweep")) read_sweep(*v, top.key_loc("sweep"), job);
     if (auto v = top.get("report")) {
       const Map report(*v, {"surfaces"});

@@ -209,16 +209,31 @@ struct VerificationSettings {
 
 struct OutputSettings {
   std::string directory;  // as written in the file (relative to the working directory); empty: "results/<config stem>"
-  // formats: [json, csv, svg, ply, grid_csv, isolux_svg, isolux_png, plan_png]; the grid
-  // formats write one file per job (grid.csv) or per grid (isolux_<grid>.svg, .png) and
-  // nothing for a job without grids (listing one there is an error); plan_png is
-  // plan.svg rendered (plan.png).
+  // formats: [json, csv, svg, ply, grid_csv, isolux_svg, isolux_png, plan_png, pdf]; the
+  // grid formats write one file per job (grid.csv) or per grid (isolux_<grid>.svg, .png)
+  // and nothing for a job without grids (listing one there is an error); plan_png is
+  // plan.svg rendered (plan.png); pdf: report.pdf (not by default).
   bool json = true, csv = true, svg = true, ply = true;
   bool grid_csv = true, isolux_svg = true, isolux_png = true;
   bool plan_png = true;
+  bool pdf = false;
   // plan_cut_height_m: the plan's section plane over the floor (> 0); 0: the first
   // horizontal grid's height, else 0.8 m (EN 12464-1's work plane).
   double plan_cut_height_m = 0.0;
+};
+
+// energy: the operating profile behind the annual energy and LENI (EN 15193-1,
+// core/energy/leni.h). Without the section: an office's hours, no controls.
+struct EnergySettings {
+  std::string building_type = "office";      // a row of building_types(): its t_D, t_N by default
+  std::optional<double> hours_day;           // t_D, h per year; default: the building type's
+  std::optional<double> hours_night;         // t_N, h per year; default: the building type's
+  double occupancy_factor = 1.0;             // F_O in (0, 1]
+  double daylight_factor = 1.0;              // F_D in [0, 1]
+  bool constant_illuminance = false;         // F_C = (1 + MF) / 2 when true, else 1
+  double parasitic_kwh_per_m2 = 6.0;         // emergency lighting + controls standby, kWh/(m²·a)
+  bool given = false;                        // the job has an energy section
+  FileLoc loc;
 };
 
 // sweep: run the job once per value of one goal parameter, e.g.
@@ -279,6 +294,7 @@ struct JobConfig {
   SearchOptions optimizer;              // optimizer: NLopt names (e.g. GN_CRS2_LM, LN_SBPLX) or "none"; threads set at run time
   VerificationSettings verification;
   OutputSettings output;
+  EnergySettings energy;
   std::optional<SweepSetting> sweep;
   // Not from the file: every triangle takes default_reflectance, whatever its MTL Kd
   // (`ilp inspect MESH`, where reflectances do not matter).

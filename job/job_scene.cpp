@@ -350,7 +350,7 @@ void hash_fields(KeyWriter& k, const LuminaireSetting& l) {
 }
 
 // Each JobConfig field is a scene input below or named in the comment at the end.
-static_assert(field_count<JobConfig>() == 38,
+static_assert(field_count<JobConfig>() == 39,
               "JobConfig changed: if load_job_scene reads the new field, hash it in hash_scene_inputs; "
               "if the operator depends on it otherwise, it must reach it through plan_job's ModelSpec");
 void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
@@ -381,7 +381,7 @@ void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
   // scene), max_memory_bytes (lowers scene.max_patches, a limit that refuses a scene);
   // form_factors, direct_light, sample, search, goals, grids (the operator's, through
   // plan_job's ModelSpec); radiosity, method, maintenance_factor, maintenance_loc,
-  // constraints, objective, optimizer, verification, output, sweep (not the operator's).
+  // constraints, objective, optimizer, verification, output, energy, sweep (not the operator's).
 }
 
 }  // namespace ilp

@@ -1,8 +1,70 @@
 #include "job/result_mapping.h"
 
+#include <algorithm>
+#include <filesystem>
+#include <limits>
+#include <map>
+
+#include "core/energy/leni.h"
 #include "optimizer/goal_metrics.h"
 
 namespace ilp {
+
+RoomRecord room_record(const Scene& scene, std::optional<double> floor_z_m, const std::string& mesh_path) {
+  RoomRecord room;
+  room.mesh = std::filesystem::path(mesh_path).filename().string();
+  room.floor_z_m = floor_z_m;
+  const double base_z = floor_z_m.value_or(0.0);
+  Eigen::AlignedBox3d bounds;
+  struct Sums {
+    double area = 0.0, weighted = 0.0;
+    double bottom = std::numeric_limits<double>::infinity(), top = -std::numeric_limits<double>::infinity();
+  };
+  std::vector<Sums> sums(scene.surfaces.size());
+  for (const Patch& p : scene.patches) {
+    const Surface& surface = scene.surfaces[static_cast<std::size_t>(p.surface)];
+    if (surface.is_luminaire() || surface.is_virtual) continue;
+    Sums& s = sums[static_cast<std::size_t>(p.surface)];
+    s.area += p.area_m2;
+    s.weighted += p.area_m2 * p.reflectance.dot(kLuminanceWeights);
+    for (const Eigen::Vector3d& v : p.vertices_m) {
+      bounds.extend(v);
+      s.bottom = std::min(s.bottom, v.z() - base_z);
+      s.top = std::max(s.top, v.z() - base_z);
+    }
+  }
+  if (!bounds.isEmpty()) {
+    const Eigen::Vector3d size = bounds.sizes();
+    room.length_x_m = size.x();
+    room.width_y_m = size.y();
+    room.height_z_m = size.z();
+  }
+  for (std::size_t k = 0; k < scene.surfaces.size(); ++k)
+    if (sums[k].area > 0.0)
+      room.surfaces.push_back({scene.surfaces[k].name, sums[k].area, sums[k].weighted / sums[k].area, sums[k].bottom,
+                               sums[k].top});
+  return room;
+}
+
+std::optional<EnergyRecord> energy_record(const EnergySettings& settings, double power_w, double area_m2,
+                                          double maintenance_factor) {
+  if (!(area_m2 > 0.0)) return std::nullopt;
+  const std::optional<BuildingHours> row = find_building_type(settings.building_type);
+  if (!row) throw std::invalid_argument("energy.building_type " + settings.building_type + ": unknown");
+  LeniInputs in;
+  in.installed_power_w = power_w;
+  in.floor_area_m2 = area_m2;
+  in.day_h = settings.hours_day.value_or(row->day_h);
+  in.night_h = settings.hours_night.value_or(row->night_h);
+  in.occupancy_factor = settings.occupancy_factor;
+  in.daylight_factor = settings.daylight_factor;
+  in.constant_illuminance = settings.constant_illuminance ? constant_illuminance_factor(maintenance_factor) : 1.0;
+  in.parasitic_kwh_per_m2 = settings.parasitic_kwh_per_m2;
+  const LeniResult r = compute_leni(in);
+  return EnergyRecord{settings.building_type, !settings.given, in.day_h, in.night_h, in.occupancy_factor,
+                      in.daylight_factor, in.constant_illuminance, in.parasitic_kwh_per_m2, power_w, area_m2,
+                      r.lighting_kwh, r.parasitic_kwh, r.total_kwh, r.leni_kwh_per_m2};
+}
 
 // Product x count, watts each and in all.
 std::vector<BillLine> bill_of_materials(const VariantPlan& plan, const JobOutcome& outcome) {
@@ -13,7 +75,8 @@ std::vector<BillLine> bill_of_materials(const VariantPlan& plan, const JobOutcom
   line.count = static_cast<int>(outcome.luminaires.size());
   line.total_power_w = outcome.power_w;
   line.product = p.product;
-  line.source = p.source;
+  // The file's name only: a report never shows the folders of the machine it ran on.
+  line.source = std::filesystem::path(p.source).filename().string();
   line.rated_flux_lm = p.rated_flux_lm;
   line.unit_power_w = p.power_w;
   line.output_fraction = s.uniform_output ? outcome.luminaires.front().flux_lm / p.rated_flux_lm : 1.0;
@@ -64,6 +127,9 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.floor_area_source = outcome.floor_area_source;
   r.power_density_w_per_m2_per_100_lx = outcome.power_density_w_per_m2_per_100_lx;
   r.maintenance_factor = outcome.maintenance_factor;
+  r.room = room_record(prepared.loaded.scene, prepared.model.floor_z_m, job.mesh_path);
+  if (!outcome.luminaires.empty())
+    r.energy = energy_record(job.energy, outcome.power_w, outcome.floor_area_m2, outcome.maintenance_factor);
   r.grids = grids;
   r.fixed_flux_lm = outcome.fixed_flux_lm;
   r.feasible = outcome.feasible;

@@ -15,6 +15,17 @@ namespace ilp {
 // Product x count, watts each and in all (empty when the outcome has no layout).
 std::vector<BillLine> bill_of_materials(const VariantPlan& plan, const JobOutcome& outcome);
 
+// The room of the scene: the extent of its surfaces (luminaires left out), each
+// surface's area, mean reflectance and height range above floor_z_m (the scene's z
+// when unknown); `mesh_path` is recorded by its file name only.
+RoomRecord room_record(const Scene& scene, std::optional<double> floor_z_m, const std::string& mesh_path);
+
+// Annual energy and LENI (core/energy/leni.h) of `power_w` over `area_m2` with the
+// job's energy settings; F_C from the maintenance factor when constant_illuminance is
+// set. Nothing when the area is not > 0.
+std::optional<EnergyRecord> energy_record(const EnergySettings& settings, double power_w, double area_m2,
+                                          double maintenance_factor);
+
 // The record of the chosen variant's outcome, goals judged against `job`'s targets,
 // with the grids' records and the run's phase timings.
 ResultRecord make_record(const std::string& program_version, const PreparedJob& prepared, const JobConfig& job,

@@ -70,6 +70,33 @@ json to_json(const ResultRecord& r) {
     j["grids"].push_back({{"name", g.name}, {"points", g.points}, {"area_m2", g.area_m2}, {"spacing_m", g.spacing_m},
                           {"inside_solid", g.inside_solid}, {"verified", g.verified}, {"initial", values(g.initial)},
                           {"maintained", values(g.maintained)}});
+  if (r.energy) {
+    const EnergyRecord& e = *r.energy;
+    j["energy"] = {{"building_type", e.building_type},
+                   {"assumed", e.assumed},
+                   {"hours_day_h", e.hours_day_h},
+                   {"hours_night_h", e.hours_night_h},
+                   {"occupancy_factor", e.occupancy_factor},
+                   {"daylight_factor", e.daylight_factor},
+                   {"constant_illuminance_factor", e.constant_illuminance_factor},
+                   {"parasitic_kwh_per_m2", e.parasitic_kwh_per_m2},
+                   {"installed_power_w", e.installed_power_w},
+                   {"area_m2", e.area_m2},
+                   {"lighting_kwh", e.lighting_kwh},
+                   {"parasitic_kwh", e.parasitic_kwh},
+                   {"total_kwh", e.total_kwh},
+                   {"leni_kwh_per_m2", e.leni_kwh_per_m2}};
+  }
+  if (r.room) {
+    json surfaces = json::array();
+    for (const SurfaceRecord& s : r.room->surfaces)
+      surfaces.push_back({{"name", s.name}, {"area_m2", s.area_m2}, {"reflectance", s.reflectance},
+                          {"bottom_m", s.bottom_m}, {"top_m", s.top_m}});
+    j["room"] = {{"mesh", r.room->mesh},
+                 {"size_m", {r.room->length_x_m, r.room->width_y_m, r.room->height_z_m}},
+                 {"floor_z_m", r.room->floor_z_m ? json(*r.room->floor_z_m) : json(nullptr)},
+                 {"surfaces", surfaces}};
+  }
   j["fixed_flux_lm"] = r.fixed_flux_lm;
   j["feasible"] = r.feasible;
   j["all_met"] = r.all_met;
@@ -159,6 +186,30 @@ ResultRecord from_json(const json& j) {
       r.grids.push_back({g.at("name").get<std::string>(), g.at("points").get<int>(), g.at("area_m2").get<double>(),
                          g.at("spacing_m").get<double>(), g.at("inside_solid").get<int>(), g.at("verified").get<bool>(),
                          values(g.at("initial")), values(g.at("maintained"))});
+  if (j.contains("energy")) {
+    const json& e = j.at("energy");
+    r.energy = EnergyRecord{e.at("building_type").get<std::string>(), e.at("assumed").get<bool>(),
+                            e.at("hours_day_h").get<double>(), e.at("hours_night_h").get<double>(),
+                            e.at("occupancy_factor").get<double>(), e.at("daylight_factor").get<double>(),
+                            e.at("constant_illuminance_factor").get<double>(), e.at("parasitic_kwh_per_m2").get<double>(),
+                            e.at("installed_power_w").get<double>(), e.at("area_m2").get<double>(),
+                            e.at("lighting_kwh").get<double>(), e.at("parasitic_kwh").get<double>(),
+                            e.at("total_kwh").get<double>(), e.at("leni_kwh_per_m2").get<double>()};
+  }
+  if (j.contains("room")) {
+    const json& room = j.at("room");
+    RoomRecord rr;
+    rr.mesh = room.at("mesh").get<std::string>();
+    rr.length_x_m = room.at("size_m").at(0).get<double>();
+    rr.width_y_m = room.at("size_m").at(1).get<double>();
+    rr.height_z_m = room.at("size_m").at(2).get<double>();
+    if (room.at("floor_z_m").is_number()) rr.floor_z_m = room.at("floor_z_m").get<double>();
+    for (const json& s : room.at("surfaces"))
+      rr.surfaces.push_back({s.at("name").get<std::string>(), s.at("area_m2").get<double>(),
+                             s.at("reflectance").get<double>(), s.at("bottom_m").get<double>(),
+                             s.at("top_m").get<double>()});
+    r.room = rr;
+  }
   r.fixed_flux_lm = j.at("fixed_flux_lm").get<double>();
   r.feasible = j.at("feasible").get<bool>();
   r.all_met = j.at("all_met").get<bool>();
@@ -306,6 +357,14 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
   if (r.power_density_w_per_m2_per_100_lx > 0.0)
     os << ", " << fixed(r.power_density_w_per_m2_per_100_lx, 2) << " W/m² per 100 lx";
   os << "\n";
+  if (r.energy) {
+    const EnergyRecord& e = *r.energy;
+    os << "LENI " << fixed(e.leni_kwh_per_m2, 2) << " kWh/(m²·a) (EN 15193-1: " << fixed(e.total_kwh, 0)
+       << " kWh/a over " << fixed(e.area_m2, 2) << " m²; " << e.building_type << (e.assumed ? " assumed" : "") << ", t_D "
+       << fixed(e.hours_day_h, 0) << " h, t_N " << fixed(e.hours_night_h, 0) << " h, F_O " << fixed(e.occupancy_factor, 2)
+       << ", F_D " << fixed(e.daylight_factor, 2) << ", F_C " << fixed(e.constant_illuminance_factor, 2) << ", parasitic "
+       << fixed(e.parasitic_kwh_per_m2, 1) << " kWh/(m²·a))\n";
+  }
   if (r.maintenance_factor != 1.0)
     os << "maintenance factor " << fixed(r.maintenance_factor, 2)
        << ": targets are maintained values; the luminaires are designed for initial = target / MF\n";

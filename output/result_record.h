@@ -62,6 +62,37 @@ struct GridRecord {
   GridValues initial, maintained;
 };
 
+// One surface of the room as the report lists it: its area, its reflectance (the
+// luminance-weighted mean over its patches, area-weighted) and its height above the floor.
+struct SurfaceRecord {
+  std::string name;
+  double area_m2 = 0.0;
+  double reflectance = 0.0;         // in [0, 1)
+  double bottom_m = 0.0, top_m = 0.0;  // lowest and highest point above the floor (or the scene's z without a floor)
+};
+
+// The room the job lit: the extent of the model's surfaces (luminaires left out), the
+// floor's height in the scene and every surface.
+struct RoomRecord {
+  std::string mesh;                  // the model's file name (never its folder)
+  double length_x_m = 0.0, width_y_m = 0.0, height_z_m = 0.0;
+  std::optional<double> floor_z_m = std::nullopt;  // the finished floor, when known
+  std::vector<SurfaceRecord> surfaces;
+};
+
+// Annual lighting energy and LENI by EN 15193-1's simplified method (core/energy/leni.h)
+// for the layout's power over floor_area_m2.
+struct EnergyRecord {
+  std::string building_type;         // the row whose hours were taken (energy.building_type)
+  bool assumed = false;              // the job has no energy section: an office without controls
+  double hours_day_h = 0.0, hours_night_h = 0.0;
+  double occupancy_factor = 1.0, daylight_factor = 1.0, constant_illuminance_factor = 1.0;
+  double parasitic_kwh_per_m2 = 0.0;
+  double installed_power_w = 0.0, area_m2 = 0.0;
+  double lighting_kwh = 0.0, parasitic_kwh = 0.0, total_kwh = 0.0;  // per year
+  double leni_kwh_per_m2 = 0.0;      // kWh/(m²·a)
+};
+
 struct AttemptRecord {
   int luminaires = 0;
   int evaluations = 0;
@@ -112,6 +143,8 @@ struct ResultRecord {
   std::vector<BillLine> bill_of_materials;
   std::vector<std::string> variants;        // each product and rotation tried, with its outcome
   std::vector<std::string> files;           // the files the run writes into its output folder (names), result.json included
+  std::optional<RoomRecord> room = std::nullopt;      // absent in results written before the report
+  std::optional<EnergyRecord> energy = std::nullopt;  // absent without a layout
 };
 
 // Throws std::runtime_error naming the file on unreadable or malformed input.

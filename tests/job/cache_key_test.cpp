@@ -215,6 +215,7 @@ TEST(CacheKey, SceneInputsCoverEveryJobConfigField) {
       not_scene("optimizer", [](JobConfig& j) { j.optimizer.seed = 99; }),
       not_scene("verification", [](JobConfig& j) { j.verification.rays_per_patch = 64; }),
       not_scene("output", [](JobConfig& j) { j.output.directory = "elsewhere"; }),
+      not_scene("energy", [](JobConfig& j) { j.energy.occupancy_factor = 0.5; }),
       not_scene("sweep", [](JobConfig& j) { j.sweep = SweepSetting{"goals.mat.average_lux", {300, 500}, {}}; }),
       // products reach the scene only through the placed luminaires' resolved types.
       not_scene("products", [](JobConfig& j) { j.products.push_back(ProductSetting{}); }),

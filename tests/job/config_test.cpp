@@ -938,7 +938,7 @@ TEST(ConfigInverse, EmptyConfigNamesEverySection) {
   const std::string yaml = dir.write("job.yaml", "# nothing\n");
   expect_error_at(config_error(yaml), yaml, 0,
                   {"(scene, luminaires, goals, constraints, objective, solver, optimizer, verification, output, "
-                   "sweep, report)"});
+                   "energy, sweep, report)"});
 }
 
 // Every rule of the inverse sections: the message names the key (and value) and the
@@ -1178,8 +1178,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{"FormatsEmpty", SCENE "output:\n  formats: []\n", "output.formats",
                  "must list at least one of json, csv, svg, ply"},
         BadValue{"FormatsNotAList", SCENE "output:\n  formats: json\n", "output.formats = json", "must be a list"},
-        BadValue{"FormatOther", SCENE "output:\n  formats: [json, pdf]\n", "output.formats[1] = pdf",
-                 "must be one of json, csv, svg, ply, grid_csv, isolux_svg, isolux_png, plan_png"},
+        BadValue{"FormatOther", SCENE "output:\n  formats: [json, docx]\n", "output.formats[1] = docx",
+                 "must be one of json, csv, svg, ply, grid_csv, isolux_svg, isolux_png, plan_png, pdf"},
         BadValue{"GridFormatWithoutGrids", SCENE "output:\n  formats: [json, isolux_png]\n", "output.formats[1] = isolux_png",
                  "needs calculation grids (the job has no grids section)"},
         BadValue{"FormatTwice", SCENE "output:\n  formats:\n    - json\n    - csv\n    - json\n",

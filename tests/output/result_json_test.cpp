@@ -92,6 +92,36 @@ TEST(ResultJson, RoundTripsGridsMaintenanceAndFloorArea) {
   EXPECT_NE(out.str().find("500.0    300.4    712.2"), std::string::npos) << out.str();
 }
 
+// The room and the energy (LENI) go into result.json and come back; the printout has
+// the LENI line; a result written before them reads back without either.
+TEST(ResultJson, RoundTripsRoomAndEnergy) {
+  test::TempDir dir;
+  ResultRecord r = sample_record();
+  r.room = RoomRecord{"office.obj", 6.0, 4.0, 3.0, 0.0, {{"floor", 24.0, 0.2, 0.0, 0.0}, {"partition", 6.86, 0.5, 0.0, 1.5}}};
+  r.energy = EnergyRecord{"office", true, 2250.0, 250.0, 1.0, 1.0, 0.9, 6.0, 212.5, 24.0, 478.125, 144.0, 622.125, 25.921875};
+  write_result_json(dir.file("result.json"), r);
+  const ResultRecord back = read_result_json(dir.file("result.json"));
+  ASSERT_TRUE(back.room.has_value());
+  EXPECT_EQ(back.room->mesh, "office.obj");
+  EXPECT_EQ(back.room->width_y_m, 4.0);
+  EXPECT_EQ(back.room->floor_z_m, 0.0);
+  ASSERT_EQ(back.room->surfaces.size(), 2u);
+  EXPECT_EQ(back.room->surfaces[1].top_m, 1.5);
+  ASSERT_TRUE(back.energy.has_value());
+  EXPECT_EQ(back.energy->leni_kwh_per_m2, 25.921875);
+  EXPECT_TRUE(back.energy->assumed);
+  EXPECT_EQ(back.energy->constant_illuminance_factor, 0.9);
+  std::ostringstream out;
+  print_result(out, back);
+  EXPECT_NE(out.str().find("LENI 25.92 kWh/(m²·a) (EN 15193-1: 622 kWh/a over 24.00 m²; office assumed, t_D 2250 h, t_N 250 h"),
+            std::string::npos) << out.str();
+  const ResultRecord old = sample_record();
+  write_result_json(dir.file("old.json"), old);
+  const ResultRecord old_back = read_result_json(dir.file("old.json"));
+  EXPECT_FALSE(old_back.room.has_value());
+  EXPECT_FALSE(old_back.energy.has_value());
+}
+
 TEST(ResultJson, PrintShowsLayoutGoalsAndMisses) {
   std::ostringstream os;
   print_result(os, sample_record());
