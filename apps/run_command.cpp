@@ -144,6 +144,8 @@ Eigen::VectorXd picture_goal_lux(const PreparedJob& prepared, const JobOutcome& 
 void stage_result_json(OutputSet& set, const RunProducts& p) {
   write_result_json(set.staging_path("result.json"), p.record);
   set.staged("result.json");
+  write_timings_json(set.staging_path("timings.json"), p.record);
+  set.staged("timings.json");
 }
 
 void stage_illuminance_csv(OutputSet& set, const RunProducts& p) {
@@ -243,7 +245,8 @@ struct RunOutput {
 
 const std::vector<RunOutput>& run_outputs() {
   static const std::vector<RunOutput> outputs{
-      {&OutputSettings::json, [](const JobConfig&) { return named("result.json"); }, stage_result_json},
+      {&OutputSettings::json, [](const JobConfig&) { return std::vector<std::string>{"result.json", "timings.json"}; },
+       stage_result_json},
       {&OutputSettings::csv, [](const JobConfig&) { return named("illuminance.csv"); }, stage_illuminance_csv},
       {&OutputSettings::svg, [](const JobConfig&) { return named("plan.svg"); }, stage_plan_svg},
       {&OutputSettings::ply, [](const JobConfig&) { return named("scene.ply"); }, stage_scene_ply},
@@ -291,7 +294,9 @@ void record_no_layout(ResultRecord& record) {
     record.no_layout += "; " + std::to_string(record.attempts.back().luminaires) + " luminaires: " +
                         record.attempts.back().global_stop;
   std::erase_if(record.files,
-                [](const std::string& f) { return f != "result.json" && f != "plan.svg" && f != "plan.png"; });
+                [](const std::string& f) {
+                  return f != "result.json" && f != "timings.json" && f != "plan.svg" && f != "plan.png";
+                });
 }
 
 // Parses "KEY=V1,V2,..." into a sweep.

@@ -148,6 +148,7 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.searches = outcome.searches;
   r.calibration = outcome.calibration;
   r.time_limited = outcome.search.time_limited;
+  r.search_max_seconds = job.optimizer.max_seconds;
   r.timings_s = timings;
   for (const CountAttempt& a : outcome.search.attempts)
     r.attempts.push_back(

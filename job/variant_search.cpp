@@ -16,7 +16,8 @@ double least_power_w(const PreparedJob& prepared, const JobConfig& goals_job) {
   return least_layout_power_w(prepared.model, spec);
 }
 
-// "PRODUCT at R deg: ..." for the run log and result.json's variants.
+// "PRODUCT at R deg: ..." for the run log and result.json's variants: no timings, so
+// that result.json is the same on any machine (the run log adds them: timing_note).
 std::string tried_line(const VariantPlan& plan, const JobOutcome& outcome, double least_w, double to_beat) {
   std::ostringstream line;
   line << std::fixed << std::setprecision(1) << plan.product.product << " at " << plan.product.rotation_deg << " deg: ";
@@ -28,9 +29,17 @@ std::string tried_line(const VariantPlan& plan, const JobOutcome& outcome, doubl
     line << "not searched: at least " << least_w << " W, no less than the " << to_beat << " W already found";
   else
     line << outcome.luminaires.size() << " luminaires, " << outcome.power_w << " W, "
-         << (outcome.all_met ? "every goal met" : "goals missed") << std::setprecision(2) << " (search "
-         << outcome.search.seconds << " s, verification " << outcome.verify_seconds << " s)";
+         << (outcome.all_met ? "every goal met" : "goals missed");
   return line.str();
+}
+
+// " (search S s, verification V s)" after a searched variant's line in the run log.
+std::string timing_note(const JobOutcome& outcome) {
+  if (!outcome.search.refused.empty() || outcome.search.beaten) return {};
+  std::ostringstream note;
+  note << std::fixed << std::setprecision(2) << " (search " << outcome.search.seconds << " s, verification "
+       << outcome.verify_seconds << " s)";
+  return note.str();
 }
 
 }  // namespace
@@ -71,7 +80,7 @@ VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const Job
     JobOutcome outcome = solve_prepared(prepared[v], goals_job, progress, to_beat);
     if (prepared[v].plan.listed) {
       best.tried[v] = tried_line(prepared[v].plan, outcome, least_w[v], to_beat);
-      if (log) log("variant " + std::to_string(v + 1) + ": " + best.tried[v]);
+      if (log) log("variant " + std::to_string(v + 1) + ": " + best.tried[v] + timing_note(outcome));
     }
     best.search_seconds += outcome.search.seconds;
     best.verify_seconds += outcome.verify_seconds;

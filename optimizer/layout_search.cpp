@@ -519,7 +519,7 @@ struct CountSearch {
 // n luminaires; every evaluation counts, so the best point is kept even when NLopt
 // stops on an exception or returns a point it did not evaluate last.
 CountSearch search_count(const LightingModel& model, const SearchSpec& spec, const Evaluator& evaluate, int n,
-                         Clock::time_point deadline, const ProgressCallback& progress) {
+                         std::optional<Clock::time_point> deadline, const ProgressCallback& progress) {
   const SearchOptions& opt = spec.options;
   const LayoutCoding coding(model, spec, n);
   const auto start = Clock::now();
@@ -549,8 +549,10 @@ CountSearch search_count(const LightingModel& model, const SearchSpec& spec, con
   } else {
     auto run_stage = [&](const std::string& algorithm, int budget, bool local) -> Stage {
       if (algorithm == "none") return {"skipped", false};
-      const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
-      if (remaining <= 0.0) return {"no time left", true};
+      // Without a deadline (the default) only the evaluation budget ends a stage.
+      const double remaining =
+          deadline ? std::chrono::duration<double>(*deadline - Clock::now()).count() : 0.0;
+      if (deadline && remaining <= 0.0) return {"no time left", true};
       nlopt::opt stage(algorithm.c_str(), static_cast<unsigned>(coding.dimension()));
       stage.set_lower_bounds(coding.lower());
       stage.set_upper_bounds(coding.upper());
@@ -559,7 +561,7 @@ CountSearch search_count(const LightingModel& model, const SearchSpec& spec, con
       };
       stage.set_min_objective(trampoline, &objective);
       stage.set_maxeval(budget);
-      stage.set_maxtime(remaining);
+      if (deadline) stage.set_maxtime(remaining);
       if (local) {
         stage.set_xtol_rel(1e-7);
         stage.set_ftol_rel(1e-10);
@@ -727,8 +729,11 @@ SearchResult search_layout(const LightingModel& model, const SearchSpec& spec, c
   if (spec.layout.family != LayoutFamily::free && spec.layout.family != LayoutFamily::array)
     return search_regular(model, spec, progress, bounds);
   const auto start = Clock::now();
-  const auto deadline =
-      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(spec.options.max_seconds));
+  const std::optional<Clock::time_point> deadline =
+      spec.options.max_seconds > 0.0
+          ? std::optional(start + std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(spec.options.max_seconds)))
+          : std::nullopt;
   const std::vector<int> counts = searched_counts(spec.layout);
   const Evaluator evaluate(model, spec);
   const double least_flux_lm = least_total_flux_lm(model, spec);

@@ -103,8 +103,8 @@ struct SearchBounds {
 // model's mounting zone: every arrangement is judged at its one output, and one with
 // a member farther than layout.position_tolerance_m from a legal mounting point is
 // infeasible (its attempt names the member's position), never moved. Deterministic
-// for spec.options.seed as long as the evaluation budget, not max_seconds, ends each
-// stage.
+// for spec.options.seed: the evaluation budgets end each stage unless
+// spec.options.max_seconds sets a wall-clock budget (0, the default, sets none).
 //
 // min_power: a count is not searched when it cannot draw less than
 // bounds.power_to_beat_w (e.g. a layout of another product already found) nor less

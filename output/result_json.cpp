@@ -114,14 +114,35 @@ json to_json(const ResultRecord& r) {
   j["searches"] = r.searches;
   j["calibration"] = r.calibration;
   j["time_limited"] = r.time_limited;
-  j["timings_s"] = json::object();
-  for (const auto& [phase, seconds] : r.timings_s) j["timings_s"][phase] = seconds;
+  j["search_max_seconds"] = r.search_max_seconds > 0.0 ? json(r.search_max_seconds) : json(nullptr);
+  j["depends_on_machine"] = r.search_max_seconds > 0.0;
   j["attempts"] = json::array();
   for (const AttemptRecord& a : r.attempts)
-    j["attempts"].push_back({{"luminaires", a.luminaires}, {"evaluations", a.evaluations}, {"seconds", a.seconds},
-                             {"feasible", a.feasible}, {"power_w", a.power_w}, {"global_stop", a.global_stop},
-                             {"local_stop", a.local_stop}, {"arrangement", a.arrangement}});
+    j["attempts"].push_back({{"luminaires", a.luminaires}, {"evaluations", a.evaluations}, {"feasible", a.feasible},
+                             {"power_w", a.power_w}, {"global_stop", a.global_stop}, {"local_stop", a.local_stop},
+                             {"arrangement", a.arrangement}});
   return j;
+}
+
+json timings_to_json(const ResultRecord& r) {
+  json j;
+  j["timings_s"] = json::object();
+  for (const auto& [phase, seconds] : r.timings_s) j["timings_s"][phase] = seconds;
+  j["attempts_s"] = json::array();
+  for (const AttemptRecord& a : r.attempts) j["attempts_s"].push_back(a.seconds);
+  return j;
+}
+
+// Times from `j` (timings.json, or an older result.json that held them) into r.
+void read_timings(const json& j, ResultRecord& r) {
+  if (j.contains("timings_s")) {
+    r.timings_s.clear();
+    for (const auto& [phase, seconds] : j.at("timings_s").items()) r.timings_s.emplace_back(phase, seconds.get<double>());
+  }
+  if (j.contains("attempts_s")) {
+    const json& seconds = j.at("attempts_s");
+    for (std::size_t a = 0; a < std::min(seconds.size(), r.attempts.size()); ++a) r.attempts[a].seconds = seconds[a].get<double>();
+  }
 }
 
 ResultRecord from_json(const json& j) {
@@ -228,12 +249,14 @@ ResultRecord from_json(const json& j) {
   r.searches = j.at("searches").get<int>();
   r.calibration = j.at("calibration").get<std::vector<std::string>>();
   r.time_limited = j.at("time_limited").get<bool>();
-  for (const auto& [phase, seconds] : j.at("timings_s").items()) r.timings_s.emplace_back(phase, seconds.get<double>());
+  if (j.contains("search_max_seconds") && j.at("search_max_seconds").is_number())
+    r.search_max_seconds = j.at("search_max_seconds").get<double>();
   for (const json& a : j.at("attempts"))
-    r.attempts.push_back({a.at("luminaires").get<int>(), a.at("evaluations").get<int>(), a.at("seconds").get<double>(),
+    r.attempts.push_back({a.at("luminaires").get<int>(), a.at("evaluations").get<int>(), a.value("seconds", 0.0),
                           a.at("feasible").get<bool>(), a.at("power_w").get<double>(),
                           a.at("global_stop").get<std::string>(), a.at("local_stop").get<std::string>(),
                           a.value("arrangement", std::string())});
+  read_timings(j, r);  // a result.json written before timings.json
   return r;
 }
 
@@ -254,19 +277,40 @@ void write_result_json(const std::string& path, const ResultRecord& result) {
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2, ' ', false, json::error_handler_t::replace) << "\n"; });
 }
 
-ResultRecord read_result_json(const std::string& path) {
+void write_timings_json(const std::string& path, const ResultRecord& result) {
+  const json j = timings_to_json(result);
+  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+}
+
+namespace {
+
+// The JSON document at `path` (`what`: "result" or "timings", for messages) given to `use`.
+template <class Use>
+void read_json_file(const std::string& path, const char* what, const Use& use) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(path + ": is a folder, not a result file");
-  if (const std::string why = not_a_regular_file(path, "result"); !why.empty()) throw std::runtime_error(why);
+  if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(path + ": is a folder, not a " + what + " file");
+  if (const std::string why = not_a_regular_file(path, what); !why.empty()) throw std::runtime_error(why);
   std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open the result file");
+  if (!in) throw std::runtime_error(path + ": cannot open the " + std::string(what) + " file");
   try {
-    return from_json(json::parse(in));
+    use(json::parse(in));
   } catch (const json::parse_error& e) {
     throw std::runtime_error(path + ": not valid JSON (byte " + std::to_string(e.byte) + "): " + e.what());
   } catch (const json::exception& e) {
-    throw std::runtime_error(path + ": not an ilp result (" + std::string(e.what()) + ")");
+    throw std::runtime_error(path + ": not an ilp " + std::string(what) + " file (" + std::string(e.what()) + ")");
   }
+}
+
+}  // namespace
+
+ResultRecord read_result_json(const std::string& path) {
+  ResultRecord r;
+  read_json_file(path, "result", [&](const json& j) { r = from_json(j); });
+  const std::filesystem::path timings = std::filesystem::path(path).parent_path() / "timings.json";
+  std::error_code ec;
+  if (std::filesystem::exists(timings, ec))
+    read_json_file(timings.string(), "timings", [&](const json& j) { read_timings(j, r); });
+  return r;
 }
 
 namespace {
@@ -396,7 +440,9 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
      << " patches), " << r.candidates << " candidate positions, seed " << r.seed << "\n";
   os << "search: " << r.evaluations << " evaluations in " << r.searches << (r.searches == 1 ? " round" : " rounds")
      << ", optimizer seed " << r.optimizer_seed;
-  if (r.time_limited) os << " (the time budget ended a stage: the layout may depend on machine speed)";
+  if (r.search_max_seconds > 0.0)
+    os << "; wall-clock limit " << fixed(r.search_max_seconds, 1) << " s (optimizer.max_seconds): the layout may depend on "
+       << "the machine's speed and load" << (r.time_limited ? ", and the limit ended a stage" : "");
   os << "\n";
   for (const std::string& line : r.calibration) os << "  " << line << "\n";
   print_arrangements(os, r.attempts);
@@ -408,9 +454,11 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
     }
     os << "  " << a.luminaires << " luminaires: "
        << (a.feasible ? fixed(a.power_w, 1) + " W as searched" : std::string("infeasible as searched"))
-       << ", " << a.evaluations << " evaluations in " << fixed(a.seconds, 2) << " s (global: " << a.global_stop
+       << ", " << a.evaluations << " evaluations" << (a.seconds > 0.0 ? " in " + fixed(a.seconds, 2) + " s" : "")
+       << " (global: " << a.global_stop
        << "; local: " << a.local_stop << ")\n";
   }
+  if (r.timings_s.empty()) return;  // a result.json without its timings.json
   os << "timings:";
   for (std::size_t k = 0; k < r.timings_s.size(); ++k)
     os << (k ? ", " : " ") << r.timings_s[k].first << " " << fixed(r.timings_s[k].second, 2) << " s";

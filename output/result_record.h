@@ -137,7 +137,10 @@ struct ResultRecord {
   int evaluations = 0;
   int searches = 1;                         // search rounds (verification-driven re-searches + 1)
   std::vector<std::string> calibration;     // what each extra round changed
-  bool time_limited = false;
+  bool time_limited = false;                // the wall-clock budget ended a search stage
+  double search_max_seconds = 0.0;          // optimizer.max_seconds; 0: none (the layout is the machine's own when set)
+  // Wall-clock times: in timings.json, not result.json, which is the same for a job and
+  // seed on any machine under any load (the attempts' seconds go there too).
   std::vector<std::pair<std::string, double>> timings_s;  // phase, seconds, in order
   std::vector<AttemptRecord> attempts;
   std::vector<BillLine> bill_of_materials;
@@ -147,8 +150,13 @@ struct ResultRecord {
   std::optional<EnergyRecord> energy = std::nullopt;  // absent without a layout
 };
 
+// result.json holds everything but wall-clock times, so that the same job and seed
+// give the same bytes on any machine; timings.json holds the times (timings_s and each
+// attempt's seconds). read_result_json reads timings.json beside the result file when
+// there is one (a result.json of an older version may hold its times itself).
 // Throws std::runtime_error naming the file on unreadable or malformed input.
 void write_result_json(const std::string& path, const ResultRecord& result);
+void write_timings_json(const std::string& path, const ResultRecord& result);
 ResultRecord read_result_json(const std::string& path);
 
 // The report `ilp run` and `ilp print` show: layout table, goals (target, predicted,

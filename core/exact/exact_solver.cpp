@@ -77,13 +77,13 @@ ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, 
   start = std::chrono::steady_clock::now();
   if (progress) progress("direct light", 0, 1);
   if (!options.precise_patches) {
-    replace_emitter_columns(scene, caster, options.direct_light, rows);
+    s.shadow_rays = replace_emitter_columns(scene, caster, options.direct_light, rows);
   } else {
     CheapDirectLight cheap{std::vector<bool>(scene.patches.size(), true), options.other_direct_light};
     cheap.options.seed = options.direct_light.seed;
     cheap.options.threads = options.direct_light.threads;
     for (int p : *options.precise_patches) cheap.rows.at(static_cast<std::size_t>(p)) = false;  // rows are all patches, in order
-    replace_emitter_columns(scene, caster, options.direct_light, rows, &cheap);
+    s.shadow_rays = replace_emitter_columns(scene, caster, options.direct_light, rows, &cheap);
   }
   if (progress) progress("direct light", 1, 1);
   s.direct_light_seconds = seconds_since(start);
@@ -107,7 +107,8 @@ std::ostream& operator<<(std::ostream& os, const ExactSolveSummary& s) {
      << std::setprecision(3)
      << "form factors: " << s.rays_cast << " rays in " << s.form_factor_seconds << " s ("
      << std::setprecision(2) << s.rays_per_second / 1e6 << " M rays/s)\n"
-     << std::setprecision(3) << "direct light (luminaires): " << s.direct_light_seconds << " s\n"
+     << std::setprecision(3) << "direct light (luminaires): " << s.direct_light_seconds << " s, " << s.shadow_rays
+     << " shadow rays\n"
      << "Gauss-Seidel: " << s.iterations << " sweeps in " << s.solve_seconds << " s, relative residual "
      << std::scientific << std::setprecision(1) << s.relative_residual << "\n"
      << std::fixed << std::setprecision(4) << "light escaping the scene: " << 100.0 * s.mean_escaped_fraction

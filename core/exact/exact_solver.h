@@ -36,6 +36,7 @@ struct ExactSolveSummary {
   double ray_offset_m = 0.0;             // how far ray origins are pushed off their patch
   double form_factor_seconds = 0.0;
   double direct_light_seconds = 0.0;
+  std::uint64_t shadow_rays = 0;         // cast for the luminaires' direct light
   double solve_seconds = 0.0;
   std::uint64_t rays_cast = 0;           // form-factor rays (not counting shadow rays)
   double rays_per_second = 0.0;          // form-factor rays / form_factor_seconds

@@ -39,17 +39,12 @@ std::vector<Eigen::Vector3d> clip_to_hemisphere(const std::vector<Eigen::Vector3
   return out;
 }
 
-}  // namespace
-
-double point_to_triangle_form_factor(const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
-                                     const Patch& emitter) {
-  // Behind the emitting side, or in its plane (a coplanar point, the emitter's own
-  // patches included, exchanges no light; round-off must not make it see a hemisphere).
-  const Eigen::Vector3d from_centroid = point - emitter.centroid_m;
-  if (from_centroid.dot(emitter.normal) <= kCoplanarRelTolerance * (from_centroid.norm() + std::sqrt(emitter.area_m2)))
-    return 0.0;
-  const std::vector<Eigen::Vector3d> polygon = clip_to_hemisphere(
-      {emitter.vertices_m[0], emitter.vertices_m[1], emitter.vertices_m[2]}, point, normal);
+// Lambert's form factor from a differential area at `point` (unit `normal`) to the
+// planar polygon `in` (any winding), clipped to the point's hemisphere; the caller
+// knows the polygon's emitting side faces the point.
+double polygon_form_factor(const std::vector<Eigen::Vector3d>& in, const Eigen::Vector3d& point,
+                           const Eigen::Vector3d& normal) {
+  const std::vector<Eigen::Vector3d> polygon = clip_to_hemisphere(in, point, normal);
   if (polygon.size() < 3) return 0.0;
   // Lambert: F = 1/(2 pi) sum_k angle_k (n . unit(a_k x a_k+1)), a_k = v_k - point.
   double sum = 0.0;
@@ -65,13 +60,33 @@ double point_to_triangle_form_factor(const Eigen::Vector3d& point, const Eigen::
   return std::abs(sum) / (2.0 * std::numbers::pi);
 }
 
+}  // namespace
+
+double point_to_triangle_form_factor(const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
+                                     const Patch& emitter) {
+  // Behind the emitting side, or in its plane (a coplanar point, the emitter's own
+  // patches included, exchanges no light; round-off must not make it see a hemisphere).
+  const Eigen::Vector3d from_centroid = point - emitter.centroid_m;
+  if (from_centroid.dot(emitter.normal) <= kCoplanarRelTolerance * (from_centroid.norm() + std::sqrt(emitter.area_m2)))
+    return 0.0;
+  return polygon_form_factor({emitter.vertices_m[0], emitter.vertices_m[1], emitter.vertices_m[2]}, point, normal);
+}
+
 namespace {
 
 // Unoccluded light below this share of the brightest luminaire's at a point gets one
 // shadow ray: it changes that point's light by less than 0.1 % per luminaire.
 constexpr double kNegligibleShare = 1e-3;
-// Shadow rays cast first; the rest of options.shadow_rays only where these disagree.
-constexpr int kProbeRays = 4;
+// Below this many shadow rays per point (the cheap estimate of cheap_direct_light_options)
+// the rays go to stratified points of the opening, all of them cast; from it on, to
+// the vertices of a grid over the opening, refined where they disagree (OpeningVisibility).
+constexpr int kMinGridRays = 4;
+// Levels a cell of that grid whose corners disagree is cut in four before the shadow's
+// edge is found on its cells' edges by bisection.
+constexpr int kRefineLevels = 1;
+// Bisection steps on a leaf cell's edge whose ends disagree: the crossing to 2^-10 of
+// the edge, 1/8192 of the opening's side on the default grid (2 cells, 1 level).
+constexpr int kCrossingSteps = 9;
 // Point sources of a non-Lambertian opening are at most this fraction of the
 // distance apart: the midpoint rule's error is then below 1 % (tested against the
 // closed form for a Lambertian distribution).
@@ -169,37 +184,176 @@ Unoccluded unoccluded_light(const Scene& scene, const LuminaireGeometry& g, cons
   return out;
 }
 
-// The visible share of the luminaire's light at x, each shadow ray weighted by the
-// light its point on the opening sends to x. `rays` at most; kProbeRays first.
-double visible_share(const RayCaster& caster, const LuminaireGeometry& g, const Eigen::Vector3d& x,
+// The visible share of the luminaire's light at x from `rays` shadow rays to
+// stratified points of the opening (the cheap estimate; one ray for a negligible
+// luminaire), each weighted by the light its point on the opening sends to x.
+double sampled_share(const RayCaster& caster, const LuminaireGeometry& g, const Eigen::Vector3d& x,
                      const Eigen::Vector3d& n, const RotatedHalton4& targets, const std::array<double, 4>* target_points,
-                     int rays) {
+                     int rays, std::uint64_t& cast) {
   const Eigen::Vector3d from = x + n * caster.ray_offset_m();
   double weight = 0.0, visible_weight = 0.0;
-  int cast = 0, visible = 0, weighted_seen = 0, weighted_visible = 0;
-  auto cast_ray = [&](int k) {
+  int visible = 0;
+  for (int k = 0; k < rays; ++k) {
     const auto v = targets.rotate(target_points[k]);
     const Eigen::Vector3d y = opening_point(g, v[0], v[1]);
     const double w = point_source_lux_per_lm(g, y, x, n);
     const bool seen = !caster.occluded(from, y);
-    ++cast;
     visible += seen;
     weight += w;
     if (seen) visible_weight += w;
-    if (w > 0.0) {
-      ++weighted_seen;
-      weighted_visible += seen;
-    }
-  };
-  const int probe = std::min(kProbeRays, rays);
-  for (int k = 0; k < probe; ++k) cast_ray(k);
-  const bool unanimous = weighted_seen > 0 && (weighted_visible == 0 || weighted_visible == weighted_seen);
-  if (!unanimous)
-    for (int k = probe; k < rays; ++k) cast_ray(k);
+  }
+  cast += static_cast<std::uint64_t>(rays);
   // No ray reached a part of the opening that lights x (a sliver in front of x's
   // plane): the plain visible fraction.
-  if (!(weight > 0.0)) return static_cast<double>(visible) / cast;
+  if (!(weight > 0.0)) return static_cast<double>(visible) / rays;
   return visible_weight / weight;
+}
+
+// The visible share of the luminaire's light at x by a grid over the opening (u along
+// its length, v across, in the unit square): shadow rays to the grid's vertices, its
+// corners and rim included, so a part seen or hidden at the rim is always found. A
+// cell whose corners disagree is cut in four, kRefineLevels times; a leaf cell whose
+// corners still disagree gets the shadow's crossing on each edge whose ends disagree
+// by bisection, and its visible part is the polygon of its seen corners and those
+// crossings (two diagonal corners seen: the centre's ray says whether they join). An
+// occluder's straight edge casts a straight shadow edge on the flat opening, so the
+// polygon is exact to the bisection's tolerance. Every part is weighed by the light
+// it sends to x: Lambert's closed form for a Lambertian rectangle, else its area
+// times the light of its centroid as a point source. All of one pair's rays are
+// cast in one fixed order, so the share does not depend on the thread running it.
+class OpeningVisibility {
+ public:
+  OpeningVisibility(const RayCaster& caster, const LuminaireGeometry& g, const Eigen::Vector3d& x,
+                    const Eigen::Vector3d& n, int base_cells)
+      : caster_(caster), g_(g), x_(x), n_(n), from_(x + n * caster.ray_offset_m()), base_(base_cells),
+        lattice_(base_cells << kRefineLevels),
+        known_(static_cast<std::size_t>((lattice_ + 1) * (lattice_ + 1)), kUnknown) {}
+
+  double share() {
+    const int step = 1 << kRefineLevels;
+    bool any_seen = false, any_hidden = false;
+    for (int j = 0; j <= base_; ++j)
+      for (int i = 0; i <= base_; ++i) (seen(i * step, j * step) ? any_seen : any_hidden) = true;
+    if (!any_hidden) return 1.0;
+    if (!any_seen) return 0.0;
+    for (int j = 0; j < base_; ++j)
+      for (int i = 0; i < base_; ++i) cell(i * step, j * step, step);
+    // No part of the opening in front of x's plane carries weight (a sliver): the
+    // plain fraction of the vertices seen.
+    if (!(total_ > 0.0)) return vertex_fraction_seen();
+    return std::clamp(visible_ / total_, 0.0, 1.0);
+  }
+  std::uint64_t rays() const { return rays_; }
+
+ private:
+  struct UV {
+    double u = 0.0, v = 0.0;
+  };
+  static constexpr signed char kUnknown = -1;
+
+  UV at(int i, int j) const { return {static_cast<double>(i) / lattice_, static_cast<double>(j) / lattice_}; }
+  static UV mid(UV a, UV b) { return {0.5 * (a.u + b.u), 0.5 * (a.v + b.v)}; }
+  bool cast(UV p) {
+    ++rays_;
+    return !caster_.occluded(from_, opening_point(g_, p.u, p.v));
+  }
+  bool seen(int i, int j) {
+    signed char& k = known_[static_cast<std::size_t>(j * (lattice_ + 1) + i)];
+    if (k == kUnknown) k = cast(at(i, j)) ? 1 : 0;
+    return k == 1;
+  }
+  // The cell [i, i + size] x [j, j + size] of the lattice.
+  void cell(int i, int j, int size) {
+    const std::array<bool, 4> c{seen(i, j), seen(i + size, j), seen(i + size, j + size), seen(i, j + size)};
+    const std::array<UV, 4> corner{at(i, j), at(i + size, j), at(i + size, j + size), at(i, j + size)};
+    const int seen_corners = c[0] + c[1] + c[2] + c[3];
+    if (seen_corners == 0 || seen_corners == 4) {
+      const double w = weight({corner.begin(), corner.end()});
+      total_ += w;
+      if (seen_corners == 4) visible_ += w;
+      return;
+    }
+    if (size > 1) {
+      const int h = size / 2;
+      cell(i, j, h);
+      cell(i + h, j, h);
+      cell(i + h, j + h, h);
+      cell(i, j + h, h);
+      return;
+    }
+    std::array<UV, 4> crossing{};
+    int crossings = 0;
+    for (int k = 0; k < 4; ++k)
+      if (c[k] != c[(k + 1) % 4]) {
+        crossing[k] = bisect(corner[k], c[k], corner[(k + 1) % 4]);
+        ++crossings;
+      }
+    total_ += weight({corner.begin(), corner.end()});
+    if (crossings == 4 && !cast(mid(corner[0], corner[2]))) {  // two seen corners, apart
+      for (int k = 0; k < 4; ++k)
+        if (c[k]) visible_ += weight({corner[k], crossing[k], crossing[(k + 3) % 4]});
+      return;
+    }
+    std::vector<UV> part;
+    for (int k = 0; k < 4; ++k) {
+      if (c[k]) part.push_back(corner[k]);
+      if (c[k] != c[(k + 1) % 4]) part.push_back(crossing[k]);
+    }
+    visible_ += weight(part);
+  }
+  // Where visibility changes between a (seen: a_seen) and b.
+  UV bisect(UV a, bool a_seen, UV b) {
+    for (int s = 0; s < kCrossingSteps; ++s) {
+      const UV m = mid(a, b);
+      (cast(m) == a_seen ? a : b) = m;
+    }
+    return mid(a, b);
+  }
+  // The light a part of the opening (a polygon in u, v) sends to x, up to a factor
+  // common to all parts.
+  double weight(const std::vector<UV>& polygon) const {
+    if (polygon.size() < 3) return 0.0;
+    if (g_.lambertian && g_.type->shape == OutlineShape::rectangle) {
+      std::vector<Eigen::Vector3d> corners;
+      for (const UV& p : polygon) corners.push_back(opening_point(g_, p.u, p.v));
+      return polygon_form_factor(corners, x_, n_);
+    }
+    double area = 0.0, cu = 0.0, cv = 0.0;  // the shoelace formula and its centroid
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+      const UV& a = polygon[k];
+      const UV& b = polygon[(k + 1) % polygon.size()];
+      const double cross = a.u * b.v - b.u * a.v;
+      area += cross;
+      cu += (a.u + b.u) * cross;
+      cv += (a.v + b.v) * cross;
+    }
+    if (area == 0.0) return 0.0;
+    const UV centroid{cu / (3.0 * area), cv / (3.0 * area)};
+    return 0.5 * std::abs(area) * point_source_lux_per_lm(g_, opening_point(g_, centroid.u, centroid.v), x_, n_);
+  }
+  double vertex_fraction_seen() const {
+    int seen = 0, known = 0;
+    for (const signed char k : known_)
+      if (k != kUnknown) {
+        ++known;
+        seen += k;
+      }
+    return known ? static_cast<double>(seen) / known : 0.0;
+  }
+
+  const RayCaster& caster_;
+  const LuminaireGeometry& g_;
+  Eigen::Vector3d x_, n_, from_;
+  int base_, lattice_;
+  std::vector<signed char> known_;  // per lattice vertex: kUnknown, 0 hidden, 1 seen
+  double visible_ = 0.0, total_ = 0.0;
+  std::uint64_t rays_ = 0;
+};
+
+// Cells per side of the opening's grid for `shadow_rays` per point: (cells + 1)^2 rays
+// at its vertices, about shadow_rays and at least 9.
+int grid_cells(int shadow_rays) {
+  return std::max(2, static_cast<int>(std::lround(std::sqrt(static_cast<double>(shadow_rays)))) - 1);
 }
 
 // The shared loop: receiver r has `points_per_receiver` points (point_of(r, s) gives
@@ -211,17 +365,21 @@ LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std:
                                const DirectLightOptions& options, const StreamOf& stream_of, const PointOf& point_of) {
   const auto R = static_cast<Eigen::Index>(receivers);
   const auto L = static_cast<Eigen::Index>(luminaire_surfaces.size());
-  LuminaireLight out{Eigen::MatrixXd::Zero(R, L), Eigen::MatrixXd::Zero(R, L)};
+  LuminaireLight out{Eigen::MatrixXd::Zero(R, L), Eigen::MatrixXd::Zero(R, L), 0};
   if (R == 0 || L == 0) return out;
   const std::vector<LuminaireGeometry> geometry = luminaire_geometry(scene, luminaire_surfaces);
   const int rays = std::max(1, options.shadow_rays);
+  const bool grid = rays >= kMinGridRays;
+  const int cells = grid_cells(rays);
   const auto target_points = halton4_points(static_cast<std::uint32_t>(points_per_receiver * rays));
+  std::atomic<std::uint64_t> rays_cast{0};
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   std::atomic<std::size_t> done{0};
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, receivers, 16), [&](const auto& range) {
       RayCaster::prepare_thread();
       std::vector<Unoccluded> unoccluded(geometry.size());
+      std::uint64_t cast = 0;
       for (std::size_t r = range.begin(); r != range.end(); ++r) {
         const auto row = static_cast<Eigen::Index>(r);
         for (int s = 0; s < points_per_receiver; ++s) {
@@ -239,18 +397,27 @@ LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std:
             const bool negligible = unoccluded[l].lux_per_lm < kNegligibleShare * brightest;
             // This point's slice of the target set.
             const std::array<double, 4>* slice = target_points.data() + static_cast<std::ptrdiff_t>(s) * rays;
-            const double share = visible_share(caster, geometry[l], point.position_m, point.normal, targets, slice,
-                                               negligible ? 1 : rays);
+            double share = 0.0;
+            if (grid && !negligible) {
+              OpeningVisibility visibility(caster, geometry[l], point.position_m, point.normal, cells);
+              share = visibility.share();
+              cast += visibility.rays();
+            } else {
+              share = sampled_share(caster, geometry[l], point.position_m, point.normal, targets, slice,
+                                    negligible ? 1 : rays, cast);
+            }
             const auto col = static_cast<Eigen::Index>(l);
             out.lux_per_lm(row, col) += unoccluded[l].lux_per_lm * share / points_per_receiver;
             out.form_factor(row, col) += unoccluded[l].form_factor * share / points_per_receiver;
           }
         }
       }
+      rays_cast += cast;
       const std::size_t now = done.fetch_add(range.size()) + range.size();
       if (options.progress) options.progress(options.progress_label, now, receivers);
     });
   });
+  out.shadow_rays_cast = rays_cast.load();
   return out;
 }
 
@@ -274,11 +441,9 @@ LuminaireLight compute_luminaire_light_at_points(const Scene& scene, const RayCa
                                                  std::span<const ReceiverPoint> points,
                                                  std::span<const int> luminaire_surfaces,
                                                  const DirectLightOptions& options) {
-  // A point has no area to average its visibility over: it gets the shadow rays a
-  // patch spends on all its receiver points (in a penumbra; 4 decide elsewhere).
-  DirectLightOptions point_options = options;
-  point_options.shadow_rays = options.shadow_rays * std::max(1, options.receiver_points);
-  return luminaire_light(scene, caster, points.size(), 1, luminaire_surfaces, point_options,
+  // A point's visibility is found as each of a patch's receiver points' is: the
+  // opening's grid refined where it disagrees finds the shadow's edge on it.
+  return luminaire_light(scene, caster, points.size(), 1, luminaire_surfaces, options,
                          [](std::size_t r) { return static_cast<std::uint64_t>(r) ^ 0x5851F42D4C957F2Dull; },
                          [&](std::size_t r, int) { return points[r]; });
 }
@@ -306,9 +471,9 @@ LuminaireLight row_light(const Scene& scene, const RayCaster& caster, std::span<
     (cheap_rows->rows[r] ? cheap_at : precise_at).push_back(static_cast<Eigen::Index>(r));
   }
   const auto R = static_cast<Eigen::Index>(rows.row_patches.size()), L = static_cast<Eigen::Index>(surfaces.size());
-  LuminaireLight out{Eigen::MatrixXd(R, L), Eigen::MatrixXd(R, L)};
   const LuminaireLight a = compute_luminaire_light(scene, caster, precise, surfaces, options);
   const LuminaireLight b = compute_luminaire_light(scene, caster, cheap, surfaces, cheap_rows->options);
+  LuminaireLight out{Eigen::MatrixXd(R, L), Eigen::MatrixXd(R, L), a.shadow_rays_cast + b.shadow_rays_cast};
   for (std::size_t k = 0; k < precise_at.size(); ++k) {
     out.lux_per_lm.row(precise_at[k]) = a.lux_per_lm.row(static_cast<Eigen::Index>(k));
     out.form_factor.row(precise_at[k]) = a.form_factor.row(static_cast<Eigen::Index>(k));
@@ -322,10 +487,10 @@ LuminaireLight row_light(const Scene& scene, const RayCaster& caster, std::span<
 
 }  // namespace
 
-void replace_emitter_columns(const Scene& scene, const RayCaster& caster, const DirectLightOptions& options,
-                             FormFactorRows& rows, const CheapDirectLight* cheap_rows) {
+std::uint64_t replace_emitter_columns(const Scene& scene, const RayCaster& caster, const DirectLightOptions& options,
+                                      FormFactorRows& rows, const CheapDirectLight* cheap_rows) {
   const std::vector<int> surfaces = luminaire_surfaces(scene);
-  if (surfaces.empty()) return;
+  if (surfaces.empty()) return 0;
   const LuminaireLight light = row_light(scene, caster, surfaces, options, rows, cheap_rows);
   // One column per opening patch: lux per lm x the patch's area, so F B = illuminance.
   std::vector<int> emitters, emitter_luminaire;
@@ -384,6 +549,7 @@ void replace_emitter_columns(const Scene& scene, const RayCaster& caster, const 
       if (emitter_slot[it.col()] < 0) it.valueRef() *= scale;
   }
   rows.F = std::move(F);
+  return light.shadow_rays_cast;
 }
 
 static_assert(field_count<DirectLightOptions>() == 6, "DirectLightOptions changed: hash the new field here (or say why not)");

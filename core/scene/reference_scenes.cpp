@@ -7,6 +7,12 @@
 namespace ilp::reference {
 
 Scene make_quad_scene(const std::vector<QuadSpec>& quads, double max_patch_edge_m) {
+  SceneOptions options;
+  options.max_patch_edge_m = max_patch_edge_m;
+  return make_quad_scene(quads, options);
+}
+
+Scene make_quad_scene(const std::vector<QuadSpec>& quads, const SceneOptions& options) {
   TriangleMesh mesh;
   mesh.path = "<test>";
   TriangleReflectance rho;
@@ -24,8 +30,6 @@ Scene make_quad_scene(const std::vector<QuadSpec>& quads, double max_patch_edge_
     }
     ++mesh.faces_read;
   }
-  SceneOptions options;
-  options.max_patch_edge_m = max_patch_edge_m;
   return make_scene(mesh, rho, options);
 }
 

@@ -21,6 +21,7 @@ struct QuadSpec {
 
 // One surface per distinct name; each quad becomes two triangles, then meshing.
 Scene make_quad_scene(const std::vector<QuadSpec>& quads, double max_patch_edge_m);
+Scene make_quad_scene(const std::vector<QuadSpec>& quads, const SceneOptions& options);
 
 // Closed axis-aligned box [origin, origin + size], faces pointing inwards, named
 // floor, ceiling, wall_x0, wall_x1, wall_y0, wall_y1, all with reflectance rho.

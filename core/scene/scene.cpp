@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/base/key_hash.h"
+#include "core/scene/contact_cuts.h"
 
 namespace ilp {
 namespace {
@@ -147,9 +148,24 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
     throw SceneError(mesh.path + ": no usable faces (" + std::to_string(scene.stats.degenerate_dropped) +
                      " degenerate faces dropped)");
 
+  // Where other faces touch or cross each kept triangle (contact_cuts.h).
+  std::vector<std::vector<ContactSegment>> contacts;
+  if (options.cut_at_contacts) {
+    std::vector<Triangle3> triangles;
+    triangles.reserve(kept.size());
+    for (const std::size_t t : kept) {
+      const auto& tri = mesh.triangles[t];
+      triangles.push_back({positions[tri[0]], positions[tri[1]], positions[tri[2]]});
+    }
+    contacts = contact_segments(triangles);
+    for (const auto& c : contacts) scene.stats.contact_segments += c.size();
+  }
+
   // Uniform subdivision: every edge of triangle t is cut into m equal pieces, so each
   // sub-triangle's edges are parallel to the parent's and 1/m as long; areas are equal.
+  // A sub-triangle a contact line passes through is cut along it.
   scene.patches.reserve(patch_count);
+  std::vector<Triangle3> pieces;
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const std::size_t t = kept[k];
     const auto& tri = mesh.triangles[t];
@@ -160,13 +176,26 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
     auto grid = [&](int i, int j) -> Eigen::Vector3d {
       return a + (b - a) * (static_cast<double>(i) / m) + (c - a) * (static_cast<double>(j) / m);
     };
+    const std::vector<ContactSegment>* cuts = contacts.empty() || contacts[k].empty() ? nullptr : &contacts[k];
+    auto add = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r) {
+      if (!cuts) {
+        scene.patches.push_back(make_patch(p, q, r, surface, rho));
+        return;
+      }
+      pieces.clear();
+      scene.stats.patches_cut += cut_along_segments({p, q, r}, *cuts, pieces);
+      for (const Triangle3& piece : pieces) scene.patches.push_back(make_patch(piece[0], piece[1], piece[2], surface, rho));
+    };
     for (int j = 0; j < m; ++j)
       for (int i = 0; i + j < m; ++i) {
-        scene.patches.push_back(make_patch(grid(i, j), grid(i + 1, j), grid(i, j + 1), surface, rho));
-        if (i + j + 2 <= m)
-          scene.patches.push_back(make_patch(grid(i + 1, j), grid(i + 1, j + 1), grid(i, j + 1), surface, rho));
+        add(grid(i, j), grid(i + 1, j), grid(i, j + 1));
+        if (i + j + 2 <= m) add(grid(i + 1, j), grid(i + 1, j + 1), grid(i, j + 1));
       }
   }
+  if (scene.patches.size() > options.max_patches)
+    throw PatchLimitError(mesh.path + ": meshing with max_patch_edge_m = " + std::to_string(options.max_patch_edge_m) +
+                          " and cuts along contact lines would make more than " + std::to_string(options.max_patches) +
+                          " patches");
 
   scene.channels = 1;
   for (const Patch& p : scene.patches)
@@ -211,13 +240,16 @@ void set_surface_exitance(Scene& scene, int surface, double exitance_lm_per_m2) 
 }
 
 std::ostream& operator<<(std::ostream& os, const SceneStats& s) {
-  return os << s.faces_read << " faces read, " << s.triangles_read << " triangles, " << s.degenerate_dropped
-            << " degenerate dropped, " << s.duplicate_dropped << " duplicates dropped, " << s.mesh_patches << " patches";
+  os << s.faces_read << " faces read, " << s.triangles_read << " triangles, " << s.degenerate_dropped
+     << " degenerate dropped, " << s.duplicate_dropped << " duplicates dropped, " << s.mesh_patches << " patches";
+  if (s.patches_cut > 0) os << " (" << s.patches_cut << " cut along " << s.contact_segments << " contact segments)";
+  return os;
 }
 
-static_assert(field_count<SceneOptions>() == 4, "SceneOptions changed: hash the new field here (or say why not)");
+static_assert(field_count<SceneOptions>() == 5, "SceneOptions changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const SceneOptions& o) {
   k.field("up_axis", o.up_axis).field("scale_to_m", o.scale_to_m).field("max_patch_edge_m", o.max_patch_edge_m);
+  k.field("cut_at_contacts", o.cut_at_contacts);
   // Not max_patches: it refuses a scene, never changes one.
 }
 

@@ -52,6 +52,8 @@ struct SceneStats {
   std::size_t degenerate_dropped = 0;    // zero-area or collinear triangles
   std::size_t duplicate_dropped = 0;     // the same triangle again in its surface, facing the same way
   std::size_t mesh_patches = 0;          // made from the mesh by subdivision (luminaires come on top)
+  std::size_t contact_segments = 0;      // pieces of contact lines the faces were cut along (contact_cuts.h)
+  std::size_t patches_cut = 0;           // subdivision patches cut along them (each into 2 or more)
 };
 
 // A luminaire of the scene: its opening is the patches of surface `surface`, which
@@ -88,6 +90,9 @@ struct SceneOptions {
   double scale_to_m = 1.0;        // metres per file unit, > 0
   double max_patch_edge_m = 0.0;  // 0: no subdivision
   std::size_t max_patches = 5'000'000;  // refuse meshing that would exceed this
+  // Cut faces where another face touches or crosses them (core/scene/contact_cuts.h), so
+  // that no patch lies half under a solid; false only to measure what it changes.
+  bool cut_at_contacts = true;
 };
 
 // The operator cache's key (core/base/key_hash.h): every field but max_patches, a
@@ -113,7 +118,10 @@ using TriangleReflectance = std::vector<Eigen::Vector3d>;
 
 // Transforms to metres with z up, drops degenerate triangles (counted in stats),
 // subdivides each triangle uniformly so that every patch edge is at most
-// max_patch_edge_m, and sets channels (3 if any reflectance is coloured).
+// max_patch_edge_m, cuts the patches along the lines where other faces touch or cross
+// their triangle (cut_at_contacts: a desk's foot on the floor, a partition's foot;
+// the pieces keep the patch's plane, winding and area), and sets channels (3 if any
+// reflectance is coloured).
 // Throws SceneError when no face survives, PatchLimitError when meshing would
 // exceed max_patches.
 Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectance,

@@ -26,12 +26,16 @@ struct RunResult {
   std::string err;
 };
 
-// Runs `ilp <args>` with stdout and stderr captured to files in `dir`.
-inline RunResult run_ilp(const TempDir& dir, const std::vector<std::string>& args) {
+// Runs `ilp <args>` with stdout and stderr captured to files in `dir`; `prefix` (e.g.
+// {"nice", "-n", "19"}) runs it through another program.
+inline RunResult run_ilp(const TempDir& dir, const std::vector<std::string>& args,
+                         const std::vector<std::string>& prefix = {}) {
   const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
   std::ostringstream command;  // (string + on GCC 12 trips a false -Wrestrict)
   // The operator cache goes to the test's folder, never to the user's.
-  command << "XDG_CACHE_HOME=" << quoted(dir.file("xdg-cache")) << ' ' << quoted(ILP_BINARY);
+  command << "XDG_CACHE_HOME=" << quoted(dir.file("xdg-cache"));
+  for (const std::string& p : prefix) command << ' ' << quoted(p);
+  command << ' ' << quoted(ILP_BINARY);
   for (const std::string& a : args) command << ' ' << quoted(a);
   command << " >" << quoted(out) << " 2>" << quoted(err) << " </dev/null";
   const int status = std::system(command.str().c_str());

@@ -6,11 +6,14 @@
 
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tests/apps/cli_runner.h"
@@ -70,8 +73,11 @@ TEST(IlpRun, PrintsTheLayoutAndWritesEveryOutput) {
   }
   const std::string json = read_file((fs::path(out) / "result.json").string());
   for (const char* key : {"\"luminaires\"", "\"goals\"", "\"target\"", "\"predicted\"", "\"verified\"", "\"met\"",
-                          "\"flux_lm\"", "\"power_w\"", "\"program_version\"", "\"sample_size\"", "\"seed\"", "\"timings_s\""})
+                          "\"flux_lm\"", "\"power_w\"", "\"program_version\"", "\"sample_size\"", "\"seed\"",
+                          "\"search_max_seconds\": null", "\"depends_on_machine\": false"})
     EXPECT_TRUE(OutputContains(json, key)) << key;
+  EXPECT_FALSE(OutputContains(json, "\"timings_s\"")) << "result.json holds no wall-clock times";
+  EXPECT_TRUE(OutputContains(read_file((fs::path(out) / "timings.json").string()), "\"timings_s\""));
   // illuminance.csv: one row per mat patch (0.4 m square at 0.25 m edges: 2 triangles
   // cut into 2 x 2 = 8 patches), with area adding up to the mat's 0.16 m².
   const std::vector<std::string> csv = lines_of(read_file((fs::path(out) / "illuminance.csv").string()));
@@ -123,6 +129,79 @@ TEST(IlpRun, SameSeedSameLayout) {
   ASSERT_EQ(run_ilp(dir, {"run", job, "--out", dir.file("a"), "-q", "--threads", "1", "--no-cache"}).exit_code, 0);
   ASSERT_EQ(run_ilp(dir, {"run", job, "--out", dir.file("b"), "-q", "--threads", "2", "--no-cache"}).exit_code, 0);
   EXPECT_EQ(saved_layout(dir, "a"), saved_layout(dir, "b"));
+}
+
+// The office job at small settings (0.5 m patches, 32 rays, the regular field search
+// it ships with), result.json only.
+std::string small_office_job(const TempDir& dir) {
+  std::string yaml = read_file(std::string(ILP_SOURCE_DIR) + "/configs/office.yaml");
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = yaml.find(from);
+    if (at == std::string::npos) throw std::runtime_error("configs/office.yaml lacks " + from);
+    yaml.replace(at, from.size(), to);
+  };
+  replace("../data/office.obj", std::string(ILP_SOURCE_DIR) + "/data/office.obj");
+  replace("max_patch_edge_m: 0.25", "max_patch_edge_m: 0.5");
+  replace("rays_per_patch: 256", "rays_per_patch: 32");
+  replace("rays_per_patch: 1024", "rays_per_patch: 32");
+  replace("formats: [json, csv, svg, ply, grid_csv, isolux_svg, isolux_png]", "formats: [json]");
+  return dir.write("office.yaml", yaml);
+}
+
+// Two threads that spin until destroyed: a busy machine.
+class CpuBurners {
+ public:
+  explicit CpuBurners(int n) {
+    for (int i = 0; i < n; ++i)
+      threads_.emplace_back([this] {
+        volatile double x = 1.0;
+        while (!stop_.load(std::memory_order_relaxed)) x = x * 1.0000001 + 1e-9;
+      });
+  }
+  ~CpuBurners() {
+    stop_ = true;
+    for (std::thread& t : threads_) t.join();
+  }
+
+ private:
+  std::atomic<bool> stop_{false};
+  std::vector<std::thread> threads_;
+};
+
+// Issue 21: the evaluation budgets, not the clock, end the search, and result.json
+// holds no times: the same bytes idle and under `nice` beside two CPU burners
+// (scripts/determinism.sh does the same with the office job as shipped).
+TEST(IlpRun, ResultJsonIsTheSameUnderLoad) {
+  TempDir dir;
+  const std::string job = small_office_job(dir);
+  const RunResult idle = run_ilp(dir, {"run", job, "--out", dir.file("idle"), "--no-cache", "-q"});
+  ASSERT_EQ(idle.exit_code, 0) << idle.out << idle.err;
+  RunResult busy;
+  {
+    const CpuBurners burners(2);
+    busy = run_ilp(dir, {"run", job, "--out", dir.file("busy"), "--no-cache", "-q"}, {"nice", "-n", "10"});
+  }
+  ASSERT_EQ(busy.exit_code, 0) << busy.out << busy.err;
+  const std::string a = read_file(dir.file("idle/result.json")), b = read_file(dir.file("busy/result.json"));
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a, b) << "result.json differs between an idle and a busy run";
+  EXPECT_TRUE(OutputContains(a, "\"depends_on_machine\": false"));
+  EXPECT_FALSE(OutputContains(idle.out, "wall-clock limit"));
+}
+
+// A wall-clock limit, when set, is reported as making the layout the machine's.
+TEST(IlpRun, AWallClockLimitIsReportedAsMachineDependent) {
+  TempDir dir;
+  std::string yaml = read_file(small_office_job(dir));
+  yaml.replace(yaml.find("  seed: 1\n\nverification"), 9, "  seed: 1\n  max_seconds: 3000\n");
+  dir.write("limited.yaml", yaml);
+  const RunResult r = run_ilp(dir, {"run", dir.file("limited.yaml"), "--out", dir.file("limited"), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_TRUE(OutputContains(r.out, "wall-clock limit 3000.0 s (optimizer.max_seconds): the layout may depend on the "
+                                    "machine's speed and load"));
+  const std::string json = read_file(dir.file("limited/result.json"));
+  EXPECT_TRUE(OutputContains(json, "\"search_max_seconds\": 3000.0"));
+  EXPECT_TRUE(OutputContains(json, "\"depends_on_machine\": true"));
 }
 
 TEST(IlpRun, SecondRunLoadsTheOperatorFromTheCache) {

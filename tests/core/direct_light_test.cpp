@@ -261,5 +261,80 @@ TEST(DirectLight, ADiscOpeningUnderItsAxisMatchesTheDiscClosedForm) {
   }
 }
 
+// Issue 21: a point that sees a small part of a panel, or has a small part of it
+// hidden, gets that part's light. An opaque sheet at z = 1 over x > c hides, from the
+// point (px, py, 0), the part of a panel at z = 2 with x > 2c - px (similar triangles).
+struct StripCase {
+  const char* name;
+  double rotation_deg;
+  double edge_x;     // the panel's parts with x > edge_x are hidden
+};
+
+// The Lambertian light per lm at (px, py, 0) facing up from the visible part (x <
+// edge_x) of a side x side panel centred at (0, 0, h), rotated by rotation_deg about z:
+// a midpoint rule over cells of side / kCells (independent of Lambert's formula).
+double visible_panel_lux_per_lm(double px, double py, double h, double side, double rotation_deg, double edge_x) {
+  constexpr int kCells = 2000;
+  const double c = std::cos(rotation_deg * std::numbers::pi / 180.0), s = std::sin(rotation_deg * std::numbers::pi / 180.0);
+  const double cell = side / kCells;
+  double sum = 0.0;
+  for (int i = 0; i < kCells; ++i)
+    for (int j = 0; j < kCells; ++j) {
+      const double lu = -0.5 * side + (i + 0.5) * cell, lv = -0.5 * side + (j + 0.5) * cell;
+      const double x = c * lu - s * lv, y = s * lu + c * lv;
+      if (x > edge_x) continue;
+      const double dx = x - px, dy = y - py, r2 = dx * dx + dy * dy + h * h;
+      sum += h * h / (r2 * r2) * cell * cell;  // cos at the point x cos at the panel / r^2
+    }
+  return sum / std::numbers::pi / (side * side);  // E = M F, M = 1 lm / area
+}
+
+TEST(DirectLight, APointSeeingOrMissingFivePercentOfAPanelGetsTheVisiblePartsLight) {
+  constexpr double kSide = 0.6, kHeight = 2.0;
+  const double px = 0.35, py = -0.2;
+  for (const StripCase& k : {StripCase{"5 % seen", 0.0, -0.27}, StripCase{"5 % hidden", 0.0, 0.27},
+                             StripCase{"5 % seen, rotated 30 deg", 30.0, -0.285}, StripCase{"5 % hidden, rotated 30 deg", 30.0, 0.285}}) {
+    const double c = 0.5 * (k.edge_x + px);  // the sheet's edge
+    Scene scene = reference::make_quad_scene({{"sheet", V(c, -5, 1), V(5, -5, 1), V(5, 5, 1), V(c, 5, 1)}}, 0.0);
+    LuminaireType panel = LuminaireType::square_lambertian(kSide);
+    add_luminaire(scene, "panel", panel, {V(0, 0, kHeight), k.rotation_deg}, 1.0);
+    const RayCaster caster(scene);
+    const double lux = lux_at(scene, caster, {{V(px, py, 0), V::UnitZ()}})[0];
+    const double exact = visible_panel_lux_per_lm(px, py, kHeight, kSide, k.rotation_deg, k.edge_x);
+    const double whole = visible_panel_lux_per_lm(px, py, kHeight, kSide, k.rotation_deg, 1.0);
+    ASSERT_GT(exact, 0.0);
+    EXPECT_NEAR(lux, exact, 0.01 * exact) << k.name << ": the visible part's share " << exact / whole;
+  }
+}
+
+TEST(DirectLight, ShadowRaysWhereAPanelIsWhollySeenAreTheGridsVerticesOnly) {
+  // No occluder: 3 x 3 vertices of the default grid (8 rays asked), nothing refined.
+  Scene scene = floor_scene();
+  add_square_luminaire(scene, "panel", V(0, 0, 2), 0.6, 1.0);
+  const RayCaster caster(scene);
+  const std::vector<ReceiverPoint> point{{V(0.2, 0.1, 0.8), V::UnitZ()}};
+  const LuminaireLight light =
+      compute_luminaire_light_at_points(scene, caster, point, luminaire_surfaces(scene), DirectLightOptions{});
+  EXPECT_EQ(light.shadow_rays_cast, 9u);
+  EXPECT_NEAR(light.lux_per_lm(0, 0), closed_form_lux_per_lm(scene, V(0.2, 0.1, 0.8), V::UnitZ()), 1e-15);
+}
+
+TEST(DirectLight, PenumbraLightIsTheSameForAnyThreadCount) {
+  // Points along a line under a sheet's edge: every one in a penumbra.
+  Scene scene = reference::make_quad_scene({{"sheet", V(0.0, -5, 1), V(5, -5, 1), V(5, 5, 1), V(0.0, 5, 1)}}, 0.0);
+  add_square_luminaire(scene, "panel", V(0, 0, 2), 0.6, 1.0);
+  const RayCaster caster(scene);
+  std::vector<ReceiverPoint> points;
+  for (int k = 0; k < 200; ++k) points.push_back({V(-0.3 + 0.003 * k, 0.001 * k, 0), V::UnitZ()});
+  DirectLightOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const LuminaireLight a = compute_luminaire_light_at_points(scene, caster, points, luminaire_surfaces(scene), one);
+  const LuminaireLight b = compute_luminaire_light_at_points(scene, caster, points, luminaire_surfaces(scene), two);
+  EXPECT_EQ(a.lux_per_lm, b.lux_per_lm);
+  EXPECT_EQ(a.shadow_rays_cast, b.shadow_rays_cast);
+  EXPECT_GT(a.shadow_rays_cast, 9u * points.size()) << "the penumbra is refined";
+}
+
 }  // namespace
 }  // namespace ilp

@@ -44,8 +44,10 @@ ResultRecord sample_record() {
 
 TEST(ResultJson, RoundTripsEveryField) {
   test::TempDir dir;
-  const ResultRecord r = sample_record();
+  ResultRecord r = sample_record();
+  r.search_max_seconds = 60.0;
   write_result_json(dir.file("result.json"), r);
+  write_timings_json(dir.file("timings.json"), r);
   const ResultRecord back = read_result_json(dir.file("result.json"));
   std::ostringstream a, b;
   print_result(a, r);
@@ -61,6 +63,40 @@ TEST(ResultJson, RoundTripsEveryField) {
   EXPECT_EQ(back.timings_s[1].first, "operator") << "phases keep their order";
   EXPECT_EQ(back.calibration, r.calibration);
   EXPECT_EQ(back.attempts[0].local_stop, "step tolerance reached");
+  EXPECT_EQ(back.attempts[0].seconds, 0.32) << "from timings.json";
+  EXPECT_EQ(back.search_max_seconds, 60.0);
+  EXPECT_TRUE(test::Contains(a.str(), "wall-clock limit 60.0 s (optimizer.max_seconds)", "report"));
+}
+
+// Issue 21: result.json is the same bytes whatever the run's times; they go to
+// timings.json, and a result.json read without it has none.
+TEST(ResultJson, HoldsNoWallClockTimes) {
+  test::TempDir dir;
+  ResultRecord fast = sample_record(), slow = sample_record();
+  slow.timings_s = {{"scene", 0.5}, {"operator", 9.0}, {"total", 80.0}};
+  slow.attempts[0].seconds = 7.5;
+  write_result_json(dir.file("fast.json"), fast);
+  write_result_json(dir.file("slow.json"), slow);
+  EXPECT_EQ(test::read_file(dir.file("fast.json")), test::read_file(dir.file("slow.json")));
+  EXPECT_TRUE(test::Contains(test::read_file(dir.file("fast.json")), "\"depends_on_machine\": false", "result.json"));
+  const ResultRecord back = read_result_json(dir.file("fast.json"));  // no timings.json beside it
+  EXPECT_TRUE(back.timings_s.empty());
+  std::ostringstream printed;
+  print_result(printed, back);
+  EXPECT_FALSE(test::Contains(printed.str(), "timings:", "report"));
+}
+
+// A result.json of an older version holds its times itself; they are still read.
+TEST(ResultJson, ReadsTheTimesOfAnOlderResultJson) {
+  test::TempDir dir;
+  write_result_json(dir.file("result.json"), sample_record());
+  std::string json = test::read_file(dir.file("result.json"));
+  const std::string anchor = "  \"attempts\": [";
+  json.replace(json.find(anchor), anchor.size(), "  \"timings_s\": {\"scene\": 0.25, \"total\": 3.5},\n" + anchor);
+  dir.write("result.json", json);
+  const ResultRecord back = read_result_json(dir.file("result.json"));
+  ASSERT_EQ(back.timings_s.size(), 2u);
+  EXPECT_EQ(back.timings_s[1].second, 3.5);
 }
 
 TEST(ResultJson, RoundTripsGridsMaintenanceAndFloorArea) {
