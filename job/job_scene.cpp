@@ -89,6 +89,7 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   }
   out.log.insert(out.log.end(), mesh.notes.begin(), mesh.notes.end());
   const SceneOptions frame = scene_frame(job, mesh, out.log);
+  out.frame = frame;
   const SurfaceSplitReport split = split_surfaces(mesh, frame, job.surface_split);
 
   std::map<std::string, int> surface_of;

@@ -287,14 +287,11 @@ TriangleMesh load_with_assimp(const std::string& path, const std::string& ext_in
   const FrameReading frame = read_frame(*scene, path, ext);
   mesh.frame = frame.frame;
 
-  // Materials.
-  std::vector<std::string> taken, not_taken, translucent;
+  // Materials (what the log says of them comes after the triangles: used ones only).
+  std::vector<MaterialReading> readings;
   for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
-    MaterialReading r = read_material(*scene->mMaterials[m], path, m);
-    mesh.materials.push_back(std::move(r.material));
-    if (!r.taken.empty()) taken.push_back(r.taken);
-    if (!r.not_taken.empty()) not_taken.push_back(r.not_taken);
-    if (!r.translucent.empty()) translucent.push_back(r.translucent);
+    readings.push_back(read_material(*scene->mMaterials[m], path, m));
+    mesh.materials.push_back(readings.back().material);
   }
 
   // World triangles, node by node.
@@ -374,6 +371,21 @@ TriangleMesh load_with_assimp(const std::string& path, const std::string& ext_in
   if (mesh.triangles.empty())
     throw SceneError(path + ": the model has no triangles of non-zero area (all " +
                      std::to_string(mesh.zero_area_dropped) + " have zero area)");
+
+  // Each used material's reading once (an IFC file repeats a style per element).
+  std::vector<bool> used(mesh.materials.size(), false);
+  for (int m : mesh.triangle_material)
+    if (m >= 0) used[static_cast<std::size_t>(m)] = true;
+  std::vector<std::string> taken, not_taken, translucent;
+  auto add_once = [](std::vector<std::string>& list, const std::string& item) {
+    if (!item.empty() && std::find(list.begin(), list.end(), item) == list.end()) list.push_back(item);
+  };
+  for (std::size_t m = 0; m < readings.size(); ++m) {
+    if (!used[m]) continue;
+    add_once(taken, readings[m].taken);
+    add_once(not_taken, readings[m].not_taken);
+    add_once(translucent, readings[m].translucent);
+  }
 
   std::ostringstream os;
   os << "assimp read " << mesh.triangles.size() << " triangles in " << mesh.surface_names.size() << " surfaces ("
