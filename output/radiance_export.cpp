@@ -27,7 +27,12 @@ std::string g(double v) {
   return os.str();
 }
 
-std::string point(const Eigen::Vector3d& p) { return "\t" + g(p.x()) + "\t" + g(p.y()) + "\t" + g(p.z()) + "\n"; }
+// "\tx\ty\tz\n" (a stream, not string +: GCC 12 warns falsely of -Wrestrict on "\t" + ...).
+std::string point(const Eigen::Vector3d& p) {
+  std::ostringstream os;
+  os << '\t' << g(p.x()) << '\t' << g(p.y()) << '\t' << g(p.z()) << '\n';
+  return os.str();
+}
 
 // One dimension of a Radiance data file as ies2rad's cvdata writes it: "first last n"
 // for evenly spaced angles, else "0 0 n" and the angles, four to a line.
@@ -87,7 +92,7 @@ void write_luminaire(std::ostream& out, const ExportLuminaire& l, const Radiance
   const bool rotational = photometry->c_angles_deg.size() < 2;
   const std::string transform = "-ry " + g(-l.placement.tilt_deg) + " -rz " + g(l.placement.rotation_deg) + " -t " +
                                 g(p.x()) + ' ' + g(p.y()) + ' ' + g(p.z());
-  const int transform_words = 9;
+  const int transform_words = 8;  // -ry A -rz B -t X Y Z
   // A1: the .dat holds the file's candela at its own flux; scale to this luminaire's output.
   const double a1 = l.flux_lm / photometry->luminaire_flux_lm / area_m2;
   out << "void brightdata " << id << "_dist\n"
@@ -131,7 +136,9 @@ void write_radiance_scene(const Scene& scene, const std::vector<ExportLuminaire>
       const auto key = std::make_pair(patch.surface, rho);
       auto it = materials.find(key);
       if (it == materials.end()) {
-        const std::string name = "m" + std::to_string(materials.size()) + "_" + file_safe_name(surface.name);
+        std::ostringstream material;  // a stream: GCC 12 warns falsely (-Wrestrict) of "m" + std::to_string(...)
+        material << 'm' << materials.size() << '_' << file_safe_name(surface.name);
+        const std::string name = material.str();
         it = materials.emplace(key, name).first;
         out << "\n# surface '" << surface.name << "'\n";
         if (patch.exitance_lm_per_m2 > 0.0) {  // an emitting surface: Lambertian light
