@@ -142,10 +142,10 @@ int run_inspect(const InspectArgs& args) {
   options.two_sided.assign(scene.surfaces.size(), job.two_sided_all);
   for (const std::string& name : job.two_sided_surfaces)
     if (const int s = scene.find_surface(name); s >= 0) options.two_sided[static_cast<std::size_t>(s)] = true;
-  const SceneInspection in = inspect_scene(scene, mesh, job.scene, caster, options);
+  const SceneInspection in = inspect_scene(scene, mesh, loaded.frame, caster, options);
 
-  std::cout << "scene: " << job.mesh_path << " as ilp sees it (metres, z up; scale_to_m " << job.scene.scale_to_m
-            << ", up_axis " << (job.scene.up_axis == UpAxis::y ? "y" : "z") << ")\n";
+  std::cout << "scene: " << job.mesh_path << " as ilp sees it (metres, z up; scale_to_m " << loaded.frame.scale_to_m
+            << ", up_axis " << (loaded.frame.up_axis == UpAxis::y ? "y" : "z") << ")\n";
   for (const std::string& line : loaded.log)
     if (line.rfind("warning: nothing emits", 0) != 0) std::cout << "  " << line << "\n";  // inspect places none
   std::cout << "  " << in.triangles << " triangles, " << in.welded_vertices << " vertices welded at "

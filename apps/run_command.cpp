@@ -13,6 +13,7 @@
 
 #include "apps/cli_support.h"
 #include "apps/commands.h"
+#include "apps/export_outputs.h"
 #include "apps/grid_outputs.h"
 #include "apps/plan_outputs.h"
 #include "job/config.h"
@@ -232,6 +233,51 @@ void stage_report_pdf(OutputSet& set, const RunProducts& p) {
   set.staged("report.pdf");
 }
 
+// The exports' view of the run: the layout's luminaires (as the record has them), then
+// those the job placed; the PLY's illuminance and colour scale; the grids' points.
+ExportInputs export_inputs(const RunProducts& p) {
+  ExportInputs in;
+  const Scene& scene = p.prepared.loaded.scene;
+  in.scene = &scene;
+  const SearchLuminaire& s = p.prepared.plan.search.luminaire;
+  for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j) {
+    ExportLuminaire l{luminaire_name(j), s.product, s.type,
+                      {p.outcome.luminaires[j].position_m, s.rotation_deg, s.tilt_deg},
+                      p.outcome.luminaires[j].flux_lm, p.prepared.plan.product.rated_flux_lm,
+                      p.outcome.luminaires[j].power_w};
+    if (j < p.record.luminaires.size()) l.above_floor_m = p.record.luminaires[j].above_floor_m;
+    in.luminaires.push_back(std::move(l));
+  }
+  const std::optional<double> floor_z = p.prepared.model.floor_z_m;
+  for (const SceneLuminaire& sl : scene.luminaires) {
+    ExportLuminaire l{scene.surfaces[static_cast<std::size_t>(sl.surface)].name, sl.type.name, sl.type, sl.placement,
+                      sl.flux_lm};
+    if (floor_z) l.above_floor_m = sl.placement.position_m.z() - *floor_z;
+    l.placed_by_job = true;
+    in.luminaires.push_back(std::move(l));
+  }
+  in.lux_per_patch = verified_lux_per_patch(scene, p.outcome);
+  if (p.outcome.verification.method == "none")
+    for (std::size_t r = 0; r < p.prepared.model.goal_patches.size(); ++r)
+      in.lux_per_patch[p.prepared.model.goal_patches[r]] = p.outcome.predicted_lux[static_cast<Eigen::Index>(r)];
+  in.scale = colour_scale_for(picture_goal_lux(p.prepared, p.outcome));
+  for (const GridResult& g : p.grids) {
+    ExportGrid grid{g.grid->name, {}, {}};
+    for (const ReceiverPoint& q : g.grid->points) {
+      grid.positions_m.push_back(q.position_m);
+      grid.normals.push_back(q.normal);
+    }
+    in.grids.push_back(std::move(grid));
+  }
+  in.floor_z_m = floor_z ? *floor_z : scene.bounds_m.min().z();
+  return in;
+}
+
+void stage_run_radiance(OutputSet& set, const RunProducts& p) { stage_radiance(set, export_inputs(p), p.job); }
+void stage_run_gltf(OutputSet& set, const RunProducts& p) { stage_gltf(set, export_inputs(p)); }
+void stage_run_dxf(OutputSet& set, const RunProducts& p) { stage_dxf(set, export_inputs(p)); }
+void stage_run_schedule(OutputSet& set, const RunProducts& p) { stage_schedule(set, export_inputs(p)); }
+
 std::vector<std::string> named(const char* name) { return {name}; }
 
 // One output format of `ilp run`: its flag in output.formats, every file it may write
@@ -255,6 +301,10 @@ const std::vector<RunOutput>& run_outputs() {
       {&OutputSettings::isolux_png, [](const JobConfig& j) { return isolux_names(j, ".png"); }, stage_isolux_png},
       {&OutputSettings::plan_png, [](const JobConfig&) { return named("plan.png"); }, stage_plan_png},
       {&OutputSettings::pdf, [](const JobConfig&) { return named("report.pdf"); }, stage_report_pdf},
+      {&OutputSettings::radiance, radiance_output_names, stage_run_radiance},
+      {&OutputSettings::gltf, [](const JobConfig&) { return named(kGltfName); }, stage_run_gltf},
+      {&OutputSettings::dxf, [](const JobConfig&) { return named(kDxfName); }, stage_run_dxf},
+      {&OutputSettings::schedule, [](const JobConfig&) { return named(kScheduleName); }, stage_run_schedule},
   };
   return outputs;
 }

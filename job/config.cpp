@@ -68,8 +68,12 @@ void read_scene(const Map& scene, JobConfig& job) {
     if (axis == "y") job.scene.up_axis = UpAxis::y;
     else if (axis == "z") job.scene.up_axis = UpAxis::z;
     else v->fail("must be y or z");
+    job.up_axis_loc = v->loc();
   }
-  if (auto v = scene.get("scale_to_m")) job.scene.scale_to_m = v->bounded(kMinScale, kMaxScale, " (metres per file unit)");
+  if (auto v = scene.get("scale_to_m")) {
+    job.scene.scale_to_m = v->bounded(kMinScale, kMaxScale, " (metres per file unit)");
+    job.scale_to_m_loc = v->loc();
+  }
   if (auto v = scene.get("max_patch_edge_m")) {
     job.scene.max_patch_edge_m = v->bounded(kMinPatchEdge_m, kMaxLength_m, " m");
     job.max_patch_edge_loc = v->loc();
@@ -489,7 +493,9 @@ void read_output(const Map& output, JobConfig& job) {
         {"svg", &OutputSettings::svg, false},            {"ply", &OutputSettings::ply, false},
         {"grid_csv", &OutputSettings::grid_csv, true},   {"isolux_svg", &OutputSettings::isolux_svg, true},
         {"isolux_png", &OutputSettings::isolux_png, true}, {"plan_png", &OutputSettings::plan_png, false},
-        {"pdf", &OutputSettings::pdf, false}};
+        {"pdf", &OutputSettings::pdf, false},            {"radiance", &OutputSettings::radiance, false},
+        {"gltf", &OutputSettings::gltf, false},          {"dxf", &OutputSettings::dxf, false},
+        {"schedule", &OutputSettings::schedule, false}};
     std::string names;
     for (const Format& f : kFormats) names += (names.empty() ? "" : ", ") + std::string(f.name);
     const std::vector<Value> formats = v->list();

@@ -217,6 +217,10 @@ struct OutputSettings {
   bool grid_csv = true, isolux_svg = true, isolux_png = true;
   bool plan_png = true;
   bool pdf = false;
+  // The exports other tools read, written only when listed: radiance (a Radiance scene:
+  // radiance_scene.rad, a .dat per photometric product, a .pts per grid), gltf
+  // (scene.glb), dxf (plan.dxf), schedule (schedule.csv).
+  bool radiance = false, gltf = false, dxf = false, schedule = false;
   // plan_cut_height_m: the plan's section plane over the floor (> 0); 0: the first
   // horizontal grid's height, else 0.8 m (EN 12464-1's work plane).
   double plan_cut_height_m = 0.0;
@@ -253,6 +257,10 @@ struct JobConfig {
   SceneOptions scene;
   SurfaceSplitOptions surface_split;    // surfaces_from: connected, weld_tolerance_m, regions
   FileLoc max_patch_edge_loc;           // where max_patch_edge_m was set (if it was)
+  // Where up_axis and scale_to_m were set (if they were): set, they override what an
+  // imported model (glTF, IFC, ...) states of its frame; unset, the file's statement holds.
+  FileLoc up_axis_loc;
+  FileLoc scale_to_m_loc;
   std::vector<ReflectanceSetting> reflectance;
   std::optional<Eigen::Vector3d> default_reflectance;
   std::vector<EmitterSetting> emitting_surfaces;

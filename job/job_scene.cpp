@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <new>
@@ -16,9 +17,16 @@
 #include <string_view>
 
 #include "core/base/key_hash.h"
+#include "core/scene/mesh_import.h"
 
 namespace ilp {
 namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
 
 std::string fmt_rgb(const Eigen::Vector3d& v) {
   std::ostringstream os;
@@ -36,6 +44,39 @@ std::string placed_product_line(const LuminaireSetting& l) {
   return os.str();
 }
 
+// The frame the mesh is read in: the job's up_axis and scale_to_m where it sets them,
+// else what an imported file states, else the defaults (metres, z up). For imported
+// formats the log says which and why.
+SceneOptions scene_frame(const JobConfig& job, const TriangleMesh& mesh, std::vector<std::string>& log) {
+  SceneOptions o = job.scene;
+  if (!is_imported_format(lower_extension(job.mesh_path))) return o;
+  const MeshFrame& stated = mesh.frame;
+  std::ostringstream unit, up;
+  if (!job.scale_to_m_loc.file.empty()) {
+    unit << "unit: scene.scale_to_m = " << o.scale_to_m << " m per unit, as the job sets it";
+    if (stated.scale_to_m) unit << " (the file states " << stated.unit_note << ")";
+  } else if (stated.scale_to_m) {
+    o.scale_to_m = *stated.scale_to_m;
+    unit << "unit: " << stated.unit_note;
+  } else {
+    unit << "unit: the file does not state its unit: taken as " << o.scale_to_m
+         << " m per unit (set scene.scale_to_m if it is not)";
+  }
+  if (!job.up_axis_loc.file.empty()) {
+    up << "up axis: scene.up_axis = " << (o.up_axis == UpAxis::y ? "y" : "z") << ", as the job sets it";
+    if (stated.up_axis) up << " (the file states " << stated.up_note << ")";
+  } else if (stated.up_axis) {
+    o.up_axis = *stated.up_axis;
+    up << "up axis: " << stated.up_note;
+  } else {
+    up << "up axis: the file does not state its up axis: taken as " << (o.up_axis == UpAxis::y ? "y" : "z")
+       << " (set scene.up_axis if it is not)";
+  }
+  log.push_back(unit.str());
+  log.push_back(up.str());
+  return o;
+}
+
 }  // namespace
 
 JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
@@ -46,7 +87,10 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   } catch (const SceneError& e) {
     throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
   }
-  const SurfaceSplitReport split = split_surfaces(mesh, job.scene, job.surface_split);
+  out.log.insert(out.log.end(), mesh.notes.begin(), mesh.notes.end());
+  const SceneOptions frame = scene_frame(job, mesh, out.log);
+  out.frame = frame;
+  const SurfaceSplitReport split = split_surfaces(mesh, frame, job.surface_split);
 
   std::map<std::string, int> surface_of;
   for (std::size_t s = 0; s < mesh.surface_names.size(); ++s) surface_of[mesh.surface_names[s]] = static_cast<int>(s);
@@ -111,8 +155,8 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
     surface_of[f.name] = s;
     added_rho.emplace_back(s, f.rgb);
     auto to_file = [&](double x, double y) {
-      const Eigen::Vector3d p = Eigen::Vector3d(x, y, f.z_m) / job.scene.scale_to_m;
-      return job.scene.up_axis == UpAxis::y ? Eigen::Vector3d(p.x(), p.z(), -p.y()) : p;
+      const Eigen::Vector3d p = Eigen::Vector3d(x, y, f.z_m) / frame.scale_to_m;
+      return frame.up_axis == UpAxis::y ? Eigen::Vector3d(p.x(), p.z(), -p.y()) : p;
     };
     const int base = static_cast<int>(mesh.positions.size());
     for (const Eigen::Vector3d& p : {to_file(f.lo.x(), f.lo.y()), to_file(f.hi.x(), f.lo.y()), to_file(f.hi.x(), f.hi.y()),
@@ -169,7 +213,7 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   }
 
   try {
-    out.scene = make_scene(mesh, rho, job.scene);
+    out.scene = make_scene(mesh, rho, frame);
   } catch (const PatchLimitError& e) {
     const FileLoc& loc = job.max_patch_edge_loc.file.empty() ? job.mesh_loc : job.max_patch_edge_loc;
     throw ConfigError(located(loc, std::string("scene.max_patch_edge_m: ") + e.what()));
@@ -325,6 +369,25 @@ std::string file_digest(const fs::path& path, std::vector<std::string>* mtllibs)
   return out + " " + std::to_string(bytes);
 }
 
+// The external files a .gltf names ("uri": "..." that is no data: URI), in file order.
+std::vector<std::string> gltf_uris(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<std::string> out;
+  const std::string key = "\"uri\"";
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + key.size())) {
+    std::size_t open = text.find_first_not_of(" \t\r\n", at + key.size());
+    if (open == std::string::npos || text[open] != ':') continue;
+    open = text.find_first_not_of(" \t\r\n", open + 1);
+    if (open == std::string::npos || text[open] != '"') continue;
+    const std::size_t close = text.find('"', open + 1);
+    if (close == std::string::npos) break;
+    std::string uri = text.substr(open + 1, close - open - 1);
+    if (uri.rfind("data:", 0) != 0) out.push_back(std::move(uri));
+  }
+  return out;
+}
+
 }  // namespace
 
 static_assert(field_count<ReflectanceSetting>() == 3, "ReflectanceSetting changed: hash the new field here (or say why not)");
@@ -350,7 +413,7 @@ void hash_fields(KeyWriter& k, const LuminaireSetting& l) {
 }
 
 // Each JobConfig field is a scene input below or named in the comment at the end.
-static_assert(field_count<JobConfig>() == 39,
+static_assert(field_count<JobConfig>() == 41,
               "JobConfig changed: if load_job_scene reads the new field, hash it in hash_scene_inputs; "
               "if the operator depends on it otherwise, it must reach it through plan_job's ModelSpec");
 void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
@@ -366,6 +429,14 @@ void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
   k.field("mtllibs", mtllibs.size());
   for (const std::string& name : mtllibs)
     k.field("mtllib", name).field("mtllib_bytes", file_digest(mesh.parent_path() / name, nullptr));
+  if (ext == ".gltf") {  // its buffers (and images) are files of their own
+    const std::vector<std::string> uris = gltf_uris(mesh);
+    k.field("gltf_uris", uris.size());
+    for (const std::string& uri : uris)
+      k.field("gltf_uri", uri).field("gltf_uri_bytes", file_digest(mesh.parent_path() / uri, nullptr));
+  }
+  // Set in the job, they override what an imported file states of its frame.
+  k.field("up_axis_set", !job.up_axis_loc.file.empty()).field("scale_to_m_set", !job.scale_to_m_loc.file.empty());
 
   k.field("mesh_read", job.mesh_read).field("scene", job.scene).field("surface_split", job.surface_split);
   k.field("reflectance", job.reflectance);  // in file order: a later one wins
@@ -376,7 +447,8 @@ void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
   k.field("two_sided_surfaces", job.two_sided_surfaces).field("two_sided_all", job.two_sided_all);
   k.field("luminaire_size_m", job.luminaire_size_m).field("luminaires", job.luminaires);
   k.field("ignore_material_kd", job.ignore_material_kd);
-  // Not scene inputs: path, mesh_loc, max_patch_edge_loc, exclude_surface_locs,
+  // Not scene inputs: path, mesh_loc, max_patch_edge_loc, (up_axis_loc and scale_to_m_loc
+  // only as set or not, above), exclude_surface_locs,
   // two_sided_locs, report_surfaces and report_surface_locs (checked, never change the
   // scene), max_memory_bytes (lowers scene.max_patches, a limit that refuses a scene);
   // form_factors, direct_light, sample, search, goals, grids (the operator's, through

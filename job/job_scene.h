@@ -17,6 +17,9 @@ class KeyWriter;  // core/base/key_hash.h
 struct JobScene {
   Scene scene;
   std::vector<std::string> log;  // what was done to the input, for the run log
+  // The frame the mesh was read in: the job's up_axis and scale_to_m, or what an
+  // imported file states where the job sets neither.
+  SceneOptions frame = {};
 };
 
 // `mesh_out`, when given, receives the mesh the scene was made from (file units, after

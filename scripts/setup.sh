@@ -8,8 +8,9 @@ cd "$(dirname "$0")/.."
 packages=(g++ cmake make pkg-config
           libeigen3-dev libembree-dev libnlopt-cxx-dev libnlopt-dev libopenmesh-dev libyaml-cpp-dev
           libtbb-dev libcli11-dev nlohmann-json3-dev libxxhash-dev libgtest-dev libbenchmark-dev
-          librsvg2-dev fonts-dejavu-core
+          librsvg2-dev fonts-dejavu-core libassimp-dev
           poppler-utils)  # pdftotext, pdffonts, pdftoppm: the report tests read report.pdf back
+packages+=(assimp-utils libdxflib-dev)  # tests: assimp's converter makes the office in other formats; dxflib reads the DXF plan back
 packages+=(clang)  # the libFuzzer harnesses (scripts/fuzz_photometry.sh)
 missing=()
 for p in "${packages[@]}"; do

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/scene/mesh.h"
+#include "core/scene/mesh_import.h"
 #include "core/base/key_hash.h"
 
 namespace ilp {
@@ -623,7 +624,9 @@ TriangleMesh load_mesh(const std::string& path_string, const MeshReadOptions& op
   TriangleMesh mesh;
   if (ext == ".obj") mesh = load_obj(path, options);
   else if (ext == ".ply" || ext == ".off") mesh = load_with_openmesh(path, ext);
-  else throw SceneError(path_string + ": unsupported mesh format '" + ext + "' (use .obj, .ply or .off)");
+  else if (is_imported_format(ext)) mesh = load_with_assimp(path_string, ext, options);
+  else throw SceneError(path_string + ": unsupported mesh format '" + ext +
+                        "' (use .obj, .ply, .off, .gltf, .glb, .3ds, .dae, .fbx or .ifc)");
   if (mesh.triangles.empty()) throw SceneError(path_string + ": the mesh has no faces");
   return mesh;
 }

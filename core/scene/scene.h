@@ -19,8 +19,6 @@ namespace ilp {
 
 class KeyWriter;  // core/base/key_hash.h
 
-enum class UpAxis { y, z };
-
 // Linear-sRGB luminance weights: the photometric (lux) value of an RGB quantity
 // whose channels each carry the emitted white light.
 inline const Eigen::Vector3d kLuminanceWeights(0.2126, 0.7152, 0.0722);

@@ -373,6 +373,46 @@ TEST(IlpRunProducts, APhotometricProductIsPlacedAndBilled) {
   EXPECT_TRUE(OutputContains(json, "\"product\": \"downlight\""));
 }
 
+// The exports listed in output.formats: the schedule's row is result.json's luminaire,
+// the Radiance scene has the product's distribution, the plan and the glTF are there.
+TEST(IlpRunProducts, ExportsListedInFormatsAreWrittenForTheVerifiedLayout) {
+  TempDir dir;
+  std::string job = read_file(product_job(dir, std::string(ILP_SOURCE_DIR) + "/data/photometry/erco_iku_downlight.ldt"));
+  job += "output:\n  formats: [json, schedule, dxf, gltf, radiance]\n";
+  const std::string out = dir.file("out");
+  const RunResult r = run_ilp(dir, {"run", dir.write("job.yaml", job), "--out", out, "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  for (const char* file : {"result.json", "schedule.csv", "plan.dxf", "scene.glb", "radiance_scene.rad",
+                           "radiance_downlight.dat"})
+    EXPECT_TRUE(fs::exists(fs::path(out) / file)) << file;
+  EXPECT_FALSE(fs::exists(fs::path(out) / "scene.ply")) << "only the formats listed";
+  const std::vector<std::string> schedule = lines_of(read_file((fs::path(out) / "schedule.csv").string()));
+  ASSERT_EQ(schedule.size(), 2u);
+  EXPECT_EQ(schedule[1].rfind("L1,downlight,", 0), 0u) << schedule[1];
+  const std::string json = read_file((fs::path(out) / "result.json").string());
+  for (const char* name : {"\"schedule.csv\"", "\"plan.dxf\"", "\"scene.glb\"", "\"radiance_scene.rad\""})
+    EXPECT_TRUE(OutputContains(json, name)) << "files lists " << name;
+  const std::string rad = read_file((fs::path(out) / "radiance_scene.rad").string());
+  EXPECT_TRUE(OutputContains(rad, "void brightdata L1_dist\n"));
+  EXPECT_TRUE(OutputContains(rad, "flatcorr radiance_downlight.dat source.cal src_theta"));
+  EXPECT_TRUE(OutputContains(read_file((fs::path(out) / "plan.dxf").string()), "ILP_LUMINAIRES"));
+  EXPECT_EQ(read_file((fs::path(out) / "scene.glb").string()).rfind("glTF", 0), 0u);
+}
+
+// A model assimp cannot read: exit 1, the file and the reason named, nothing written.
+TEST(IlpRun, AModelAssimpCannotReadExitsOneAndWritesNothing) {
+  TempDir dir;
+  const std::string ifc = std::string(ILP_SOURCE_DIR) + "/../shared/scenes/ifc4-wall/wall-standard-case.ifc";
+  std::string job = read_file(mat_job(dir));
+  job.replace(job.find("room.obj"), 8, ifc);
+  const std::string out = dir.file("out");
+  const RunResult r = run_ilp(dir, {"run", dir.write("job.yaml", job), "--out", out, "-q"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(OutputContains(r.err, ifc + ": assimp cannot read it")) << r.err;
+  EXPECT_TRUE(OutputContains(r.err, "schema is IFC4")) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(IlpRunProducts, AProductsOwnMountOffsetHangsItAndABadOneNamesTheKey) {
   TempDir dir;
   const std::string file = std::string(ILP_SOURCE_DIR) + "/data/photometry/erco_iku_downlight.ldt";

@@ -182,6 +182,9 @@ TEST(CacheKey, SceneInputsCoverEveryJobConfigField) {
       {"scene", [](JobConfig& j) { j.scene.max_patch_edge_m = 0.3; }},
       {"surface_split", [](JobConfig& j) { j.surface_split.connected = true; }},
       not_scene("max_patch_edge_loc", [](JobConfig& j) { j.max_patch_edge_loc = kAt; }),
+      // Set or not: a set up_axis or scale_to_m overrides what an imported model states.
+      {"up_axis_loc", [](JobConfig& j) { j.up_axis_loc = kAt; }},
+      {"scale_to_m_loc", [](JobConfig& j) { j.scale_to_m_loc = kAt; }},
       {"reflectance", [](JobConfig& j) { j.reflectance.push_back({"walls", Eigen::Vector3d::Constant(0.3), {}}); }},
       {"default_reflectance", [](JobConfig& j) { j.default_reflectance.reset(); }},
       {"emitting_surfaces", [](JobConfig& j) { j.emitting_surfaces.push_back({"ceiling", 50.0, {}}); }},
@@ -237,6 +240,16 @@ TEST(CacheKey, SceneInputsReadTheMeshFilesNotTheirPath) {
   JobConfig missing = job;
   missing.mesh_path = dir.file("none.obj");
   EXPECT_NE(scene_key(missing), key) << "no file: a marker, not an error";
+}
+
+TEST(CacheKey, SceneInputsReadAGltfsBufferFiles) {
+  TempDir dir;
+  JobConfig job;
+  dir.write("room.bin", "0123");
+  job.mesh_path = dir.write("room.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri" : "room.bin", "byteLength": 4}]})");
+  const std::string key = scene_key(job);
+  dir.write("room.bin", "4567");
+  EXPECT_NE(scene_key(job), key) << "the buffer's bytes are the geometry";
 }
 
 }  // namespace
