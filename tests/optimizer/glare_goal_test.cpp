@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "core/glare/cylindrical.h"
 #include "core/glare/ugr.h"
@@ -150,6 +151,63 @@ TEST(GlareGoal, CylindricalIlluminanceOfOnePanelInABlackRoomMatchesTheClosedForm
   std::cout << "Ez,m model " << model_ez << " lx, closed form " << closed_form << " lx, "
             << (model_ez / closed_form - 1.0) * 100 << " %\n";
   EXPECT_NEAR(model_ez / closed_form, 1.0, 0.01);
+}
+
+
+TEST(GlareGoal, TiltedLuminaireFacingAwayGivesNoGlare) {
+  // A Lambertian panel tilted 90 degrees faces +x (its nadir swings toward C0): seen from
+  // an eye behind it (at -x) it shows its back, so it adds no glare. Before the fix the
+  // tilt was ignored and the panel glared as if facing down.
+  const UgrObserver eye{Eigen::Vector3d(0, 0, 1.2), Eigen::Vector3d::UnitX()};
+  const LuminaireType panel = LuminaireType::square_lambertian(0.6);
+  EXPECT_EQ(glare_term(glare_source(panel, {{4.0, 0.0, 3.2}, 0.0, 90.0}, 3000.0), eye), 0.0);
+  // Turned 180 degrees it faces the eye: I = 3000 cos(angle to -x) / pi toward it, seen
+  // at the panel's full area times that cosine: L = 3000 / (pi 0.36) as for any Lambertian face.
+  const GlareView v = glare_view(glare_source(panel, {{4.0, 0.0, 3.2}, 180.0, 90.0}, 3000.0), eye);
+  EXPECT_NEAR(v.luminance_cd_m2, 3000.0 / (std::numbers::pi * 0.36), 0.05);
+  EXPECT_GT(v.term, 0.0);
+}
+
+TEST(GlareGoal, ObserversOutsideTheRoomOrInASolidAreErrorsAtTheirLine) {
+  TempDir dir;
+  {
+    const JobConfig job = glare_job(dir, "    ugr_max: 19\n    observers:\n      - {position_m: [6.0, 2.0], view_direction: [-1, 0]}\n");
+    try {
+      test::prepare(job);
+      FAIL() << "an observer outside the room";
+    } catch (const ConfigError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("job.yaml:"), std::string::npos) << what;
+      EXPECT_NE(what.find("goals.work.observers[0]"), std::string::npos) << what;
+      EXPECT_NE(what.find("outside"), std::string::npos) << what;
+    }
+  }
+  {
+    // A closed box (a cabinet) on the floor; an eye inside it.
+    const std::string obj = room_obj({});
+    int base = 0;
+    std::istringstream lines(obj);
+    for (std::string line; std::getline(lines, line);) base += line.rfind("v ", 0) == 0 ? 1 : 0;
+    std::ostringstream box;
+    box << "g cabinet\n";
+    const double x0 = 0.5, x1 = 1.5, y0 = 0.5, y1 = 1.5, z0 = 0.0, z1 = 2.0;
+    for (double z : {z0, z1})
+      for (double y : {y0, y1})
+        for (double x : {x0, x1}) box << "v " << x << " " << y << " " << z << "\n";
+    // vertices base+1 .. base+8: (x0,y0,z0) (x1,y0,z0) (x0,y1,z0) (x1,y1,z0), then z1
+    const int f[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5}, {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
+    for (const auto& q : f) box << "f " << base + q[0] << " " << base + q[1] << " " << base + q[2] << " " << base + q[3] << "\n";
+    const JobConfig job = glare_job(dir, "    ugr_max: 19\n    observers:\n      - {position_m: [1.0, 1.0], view_direction: [1, 0]}\n");
+    dir.write("room.obj", obj + box.str());
+    try {
+      test::prepare(job);
+      FAIL() << "an observer inside a solid";
+    } catch (const ConfigError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("observers[0]"), std::string::npos) << what;
+      EXPECT_NE(what.find("inside a solid"), std::string::npos) << what;
+    }
+  }
 }
 
 }  // namespace
