@@ -70,6 +70,9 @@ struct ObserverSpec {
   FileLoc loc = {};  // for an observer outside the room or inside a solid
 };
 
+// The operator cache's key: every field but the FileLoc.
+void hash_fields(KeyWriter& k, const ObserverSpec& o);
+
 // Vertical receivers per point of a cylindrical area (their mean is Ez), at azimuths
 // 360 / kCylinderPlanes apart, turned per point by a low-discrepancy offset so that the
 // quadrature's error (at most -5.2 % / +2.6 % for one point source) averages out over a grid.

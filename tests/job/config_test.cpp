@@ -1736,7 +1736,7 @@ TEST(JobConfigGrids, PresetTurnsIntoEveryGoalOfItsRowAndChecksRa) {
   // A product without Ra, or below the row's 80: an error at the product, naming the key.
   for (const auto& [ra, where, rule] :
        {std::tuple<std::string, std::string, std::string>{"", ":6:7: luminaires.products[1].ra", "missing for product 'other'"},
-        {", ra: 70", ":6:90: luminaires.products[1].ra = 70", "below what the preset office_writing"}}) {
+        {", ra: 70", ":6:92: luminaires.products[1].ra = 70", "below what the preset office_writing"}}) {
     SCOPED_TRACE(ra);
     try {
       ilp::load_job_config(dir.write("job.yaml", head + ra + tail));
@@ -1779,21 +1779,21 @@ TEST(JobConfigGrids, BadGridsNameFileLineAndKey) {
       {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, preset: zzz}\n",
        ":6:23: goals[0].preset = zzz", "unknown preset (EN 12464-1 rows: office_filing, office_writing"},
       {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, average_lux: 300, ugr_max: 9.5}\n",
-       ":6:39: goals[0].ugr_max = 9.5", "must be in [10, 30]"},
+       ":6:42: goals[0].ugr_max = 9.5", "must be in [10, 30]"},
       {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, average_lux: 300, ugr_max: 31}\n",
-       ":6:39: goals[0].ugr_max = 31", "must be in [10, 30]"},
-      {"goals:\n  - {surface: floor, cylindrical_lux: 150}\n", ":4:37: goals[0].cylindrical_lux = 150",
+       ":6:42: goals[0].ugr_max = 31", "must be in [10, 30]"},
+      {"goals:\n  - {surface: floor, cylindrical_lux: 150}\n", ":4:39: goals[0].cylindrical_lux = 150",
        "put the goal on a grid"},
       {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, average_lux: 300, observers: "
        "[{position_m: [1, 1], view_direction: [0, 0]}]}\n",
        "goals[0].observers[0].view_direction", "must not be [0, 0]"},
       {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, average_lux: 300, observers: "
        "[{position_m: [1, 1], view_direction: [1, 0]}]}\n",
-       ":6:39: goals[0].observers", "applies to ugr_max only"},
+       ":6:44: goals[0].observers", "applies to ugr_max only"},
       {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, preset: toilets, em: modified}\n",
        ":6:36: goals[0].em = modified", "gives no modified Em"},
       {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, average_lux: 300, walls: walls}\n",
-       ":6:42: goals[0].walls = walls", "needs a preset"},
+       ":6:40: goals[0].walls = walls", "needs a preset"},
       {"maintenance_factor: 1.2\n", ":3:21: maintenance_factor = 1.2", "must be in [0.1, 1]"},
       {"maintenance_factor: 1e-300\n", ":3:21: maintenance_factor = 1e-300", "must be in [0.1, 1]"},
   };
