@@ -170,16 +170,45 @@ std::string goal_bound_rule(const std::vector<GoalSetting>& others, const std::s
   return "";
 }
 
+// EN 12464-1:2021 rows. Sources (docs/config.md, "Presets"): ../shared/LIGHTING.md (the
+// offices' writing row with Ez, walls and ceiling; Em, modified Em, UGR_L, U0, Ra of the
+// education and circulation rows it lists), the office table of
+// performanceinlighting.com/ww/us/en-12464-1; the other rows as EN 12464-1 tabulates them
+// (2011 numbering), not checked against the printed 2021 standard. Walls 50 lx and
+// ceiling 30 lx (U0 >= 0.10) are the general requirement where a row gives none.
+//  key, row, building type, Em, Em modified, U0, UGR_L, Ra, Ez,m, Em wall, Em ceiling
 constexpr GoalPreset kPresets[] = {
-    {"office_writing", "Writing, typing, reading, data processing", 500.0, 0.60},
-    {"office_filing", "Filing, copying", 300.0, 0.40},
-    {"classroom", "Classrooms", 300.0, 0.60},
-    {"board", "Black/green board", 500.0, 0.70},
-    {"corridor", "Corridors, circulation", 100.0, 0.40},
-    {"stairs_education", "Stairs (education)", 150.0, 0.40},
-    {"entrance_hall_education", "Entrance halls (education)", 200.0, 0.40},
-    {"toilets", "Toilets, cloakrooms", 200.0, 0.40},
+    {"office_filing", "Filing, copying, etc.", "offices", 300, 500, 0.40, 19, 80, 100, 100, 75},
+    {"office_writing", "Writing, typing, reading, data processing", "offices", 500, 1000, 0.60, 19, 80, 150, 150, 100},
+    {"office_technical_drawing", "Technical drawing", "offices", 750, 1500, 0.70, 16, 80, 150, 150, 100},
+    {"office_cad", "CAD work stations", "offices", 500, 1000, 0.60, 19, 80, 150, 150, 100},
+    {"office_conference", "Conference and meeting rooms", "offices", 500, 1000, 0.60, 19, 80, 150, 150, 100},
+    {"office_reception", "Reception desk", "offices", 300, 500, 0.60, 22, 80, 100, 100, 75},
+    {"office_archives", "Archives", "offices", 200, 300, 0.40, 25, 80, 75, 75, 50},
+    {"classroom", "Classrooms, tutorial rooms", "education", 300, 500, 0.60, 19, 80, 0, 50, 30},
+    {"classroom_adult", "Classrooms for evening classes and adult education", "education", 500, 750, 0.60, 19, 80, 0, 50, 30},
+    {"lecture_hall", "Lecture hall", "education", 500, 750, 0.60, 19, 80, 0, 50, 30},
+    {"board", "Black, green and white boards", "education", 500, 0, 0.70, 19, 80, 0, 50, 30},
+    {"stairs_education", "Stairs (educational buildings)", "education", 150, 200, 0.40, 25, 80, 0, 50, 30},
+    {"entrance_hall_education", "Entrance halls (educational buildings)", "education", 200, 300, 0.40, 22, 80, 0, 50, 30},
+    {"toilets", "Toilets, cloakrooms", "education", 200, 0, 0.40, 25, 80, 0, 50, 30},
+    {"health_waiting_room", "Waiting rooms", "health care", 200, 0, 0.40, 22, 80, 0, 50, 30},
+    {"health_ward", "Wards: general lighting", "health care", 100, 0, 0.40, 19, 80, 0, 50, 30},
+    {"health_examination", "Examination rooms: general lighting", "health care", 500, 0, 0.60, 19, 90, 0, 50, 30},
+    {"health_treatment", "Examination and treatment", "health care", 1000, 0, 0.70, 19, 90, 0, 50, 30},
+    {"retail_sales", "Sales area", "retail", 300, 0, 0.40, 22, 80, 0, 50, 30},
+    {"retail_till", "Till area", "retail", 500, 0, 0.60, 19, 80, 0, 50, 30},
+    {"industry_assembly_rough", "Assembly work: rough", "industry", 200, 0, 0.60, 25, 80, 0, 50, 30},
+    {"industry_assembly_medium", "Assembly work: medium", "industry", 300, 0, 0.60, 25, 80, 0, 50, 30},
+    {"industry_assembly_fine", "Assembly work: fine", "industry", 500, 0, 0.60, 22, 80, 0, 50, 30},
+    {"industry_assembly_precision", "Assembly work: precision", "industry", 750, 0, 0.70, 19, 80, 0, 50, 30},
+    {"industry_storage", "Store and stockrooms", "industry", 100, 0, 0.40, 25, 60, 0, 50, 30},
+    {"corridor", "Corridors and circulation areas", "circulation", 100, 150, 0.40, 28, 40, 0, 50, 30},
+    {"stairs", "Stairs, escalators, travolators", "circulation", 100, 150, 0.40, 25, 40, 0, 50, 30},
+    {"worship_body", "Body of place of worship", "places of worship", 100, 0, 0.40, 25, 80, 0, 50, 30},
+    {"worship_altar", "Chair, altar, pulpit", "places of worship", 300, 0, 0.60, 22, 80, 0, 50, 30},
 };
+
 
 std::vector<Eigen::Vector2d> point_list(const Value& v) {
   std::vector<Eigen::Vector2d> out;
@@ -269,11 +298,123 @@ void read_grids(const Value& section, JobConfig& job) {
   }
 }
 
-// A goals entry's keys: where it is measured, then one per metric (optimizer/goal_spec.h).
+// A goals entry's keys: where it is measured, the preset and its companions, the eyes,
+// then one per metric (optimizer/goal_spec.h).
 std::vector<std::string> goal_entry_keys() {
-  std::vector<std::string> keys{"name", "surface", "grid", "facing", "preset"};
+  std::vector<std::string> keys{"name", "surface", "grid", "facing", "preset", "em", "walls", "ceiling",
+                                "eye_height_m", "observers"};
   for (const MetricRule& rule : metric_rules()) keys.emplace_back(rule.key);
   return keys;
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// The preset a goals entry names, or an error listing the rows closest to the name
+// (by edit distance, or sharing a word with it), else every row.
+const GoalPreset& find_preset(const Value& v) {
+  const std::string key = v.text();
+  for (const GoalPreset& p : kPresets)
+    if (key == p.key) return p;
+  std::vector<std::pair<std::size_t, std::string>> close;
+  for (const GoalPreset& p : kPresets) {
+    const std::string name = p.key;
+    const std::size_t d = edit_distance(key, name);
+    const bool shares_word = !key.empty() && (name.find(key.substr(0, key.find('_'))) != std::string::npos);
+    if (d <= std::max<std::size_t>(3, name.size() / 3) || shares_word) close.emplace_back(d, name);
+  }
+  std::sort(close.begin(), close.end());
+  std::string listed;
+  for (std::size_t k = 0; k < close.size() && k < 6; ++k) listed += (k ? ", " : "") + close[k].second;
+  if (listed.empty()) {
+    for (const GoalPreset& p : kPresets) listed += (listed.empty() ? "" : ", ") + std::string(p.key);
+    v.fail("unknown preset (EN 12464-1 rows: " + listed + ")");
+  }
+  v.fail("unknown preset; close EN 12464-1 rows: " + listed + " (docs/config.md lists all)");
+}
+
+// observers: [{position_m: [x, y], view_direction: [dx, dy], eye_height_m: h}, ...]
+std::vector<ObserverSpec> read_observers(const Value& v, std::optional<double> eye_height_m) {
+  std::vector<ObserverSpec> out;
+  const std::vector<Value> items = v.list();
+  if (items.empty()) v.fail("must list at least one observer (leave it out for the standard's four)");
+  for (const Value& item : items) {
+    const Map m(item, {"position_m", "view_direction", "eye_height_m"});
+    ObserverSpec o;
+    o.loc = item.loc();
+    o.xy_m = pair_of(m.require("position_m"), [](const Value& e) { return e.bounded(-kMaxLength_m, kMaxLength_m, " m"); });
+    const Value view = m.require("view_direction");
+    o.view = pair_of(view, [](const Value& e) { return e.bounded(-1e6, 1e6, ""); });
+    if (!(o.view.norm() > 0.0)) view.fail("must not be [0, 0]: the line of sight's horizontal direction");
+    o.eye_height_m = eye_height_m.value_or(kSeatedEyeHeightM);
+    if (auto h = m.get("eye_height_m")) o.eye_height_m = h->number_in(0.1, 100.0, false, "[0.1, 100] m");
+    out.push_back(o);
+  }
+  return out;
+}
+
+// A product under a preset that asks for colour rendering must state its Ra, at least the row's.
+void check_products_ra(const JobConfig& job, const GoalPreset& p, const Value& preset) {
+  if (!(p.ra > 0.0)) return;
+  const std::string why = "preset " + std::string(p.key) + " (" + preset.key() + " at line " +
+                          std::to_string(preset.loc().line) + ") asks for Ra >= " + format_number(p.ra);
+  for (std::size_t i = 0; i < job.products.size(); ++i) {
+    const ProductSetting& product = job.products[i];
+    const std::string key = "luminaires.products[" + std::to_string(i) + "].ra";
+    if (!product.ra)
+      throw ConfigError(located(product.loc, key + ": missing for product '" + product.name + "': " + why +
+                                                 " (give the data sheet's Ra)"));
+    if (*product.ra < p.ra)
+      throw ConfigError(located(product.ra_loc, key + " = " + format_number(*product.ra) + ": below what the " + why));
+  }
+}
+
+// The target a preset gives a metric (nothing when the row gives none).
+std::optional<double> preset_target(const GoalPreset& p, GoalMetric metric, bool modified) {
+  switch (metric) {
+    case GoalMetric::average: return modified ? p.modified_lux : p.average_lux;
+    case GoalMetric::uniformity: return p.uniformity;
+    case GoalMetric::ugr: return p.ugr_max > 0.0 ? std::optional(p.ugr_max) : std::nullopt;
+    case GoalMetric::cylindrical: return p.cylindrical_lux > 0.0 ? std::optional(p.cylindrical_lux) : std::nullopt;
+    case GoalMetric::cylindrical_uniformity:
+      return p.cylindrical_lux > 0.0 ? std::optional(kRoomSurfaceUniformity) : std::nullopt;
+    default: return std::nullopt;
+  }
+}
+
+// walls: / ceiling: of a preset entry: a goal on those surfaces with the row's Em and U0 >= 0.10.
+void add_room_surface_goal(const Map& entry, const std::string& key, double average_lux, std::vector<GoalSetting>& goals) {
+  const auto v = entry.get(key);
+  if (!v) return;
+  GoalSetting g;
+  if (v->node().IsSequence()) {
+    for (const Value& item : v->list()) g.surfaces.push_back(item.text());
+    if (g.surfaces.empty()) v->fail("must be a surface name or a non-empty list of names");
+  } else {
+    g.surfaces.push_back(v->text());
+  }
+  for (const std::string& surface : g.surfaces) g.name += (g.name.empty() ? "" : "+") + surface;
+  g.surfaces_loc = g.loc = v->loc();
+  for (const GoalSetting& other : goals)
+    if (other.name == g.name) v->fail("goal '" + g.name + "' is already defined: give its targets there, not here");
+  g.metric = GoalMetric::average;
+  g.target = average_lux;
+  goals.push_back(g);
+  g.metric = GoalMetric::uniformity;
+  g.target = kRoomSurfaceUniformity;
+  goals.push_back(g);
 }
 
 void read_goals(const Value& section, JobConfig& job) {
@@ -320,16 +461,22 @@ void read_goals(const Value& section, JobConfig& job) {
       if (g.name == base.name && g.grid != base.grid)
         item.fail("goal '" + base.name + "' is already defined on " +
                   (g.grid.empty() ? std::string("surfaces") : "grid '" + g.grid + "'"));
+    if (auto v = entry.get("eye_height_m")) base.eye_height_m = v->number_in(0.1, 100.0, false, "[0.1, 100] m");
+    if (auto v = entry.get("observers")) base.observers = read_observers(*v, base.eye_height_m);
     const GoalPreset* preset = nullptr;
     std::optional<Value> preset_value = entry.get("preset");
     if (preset_value) {
-      const std::string key = preset_value->text();
-      std::string known;
-      for (const GoalPreset& p : kPresets) {
-        if (key == p.key) preset = &p;
-        known += (known.empty() ? "" : ", ") + std::string(p.key);
-      }
-      if (!preset) preset_value->fail("unknown preset (EN 12464-1 rows: " + known + ")");
+      preset = &find_preset(*preset_value);
+      check_products_ra(job, *preset, *preset_value);
+    }
+    bool modified = false;
+    if (auto v = entry.get("em")) {
+      if (!preset) v->fail("needs a preset (em chooses its required or modified Em)");
+      const std::string level = v->text();
+      if (level != "required" && level != "modified") v->fail("must be required or modified");
+      modified = level == "modified";
+      if (modified && !(preset->modified_lux > 0.0))
+        v->fail("preset " + std::string(preset->key) + " gives no modified Em (docs/config.md)");
     }
     // This entry's metrics, each checked alone and against the same goal's earlier
     // entries; a bound conflict inside the entry is reported at max_lux.
@@ -338,19 +485,31 @@ void read_goals(const Value& section, JobConfig& job) {
       const GoalMetric metric = rule_of_metric.metric;
       const std::string key(rule_of_metric.key);
       auto v = entry.get(key);
-      const bool from_preset = !v && preset && (metric == GoalMetric::average || metric == GoalMetric::uniformity);
+      const std::optional<double> from_preset = !v && preset ? preset_target(*preset, metric, modified) : std::nullopt;
       if (from_preset) v = preset_value;  // an explicit key overrides the preset's value
       if (!v) continue;
+      if (rule_of_metric.area == AreaKind::cylindrical && !grid)
+        v->fail(from_preset ? "the row gives Ez,m (cylindrical illuminance): put the goal on a grid (grid: NAME)"
+                            : "is measured over a grid's points: put the goal on a grid (grid: NAME)");
       GoalSetting goal = base;
       goal.metric = metric;
-      goal.target = from_preset ? (metric == GoalMetric::average ? preset->average_lux : preset->uniformity) : v->number();
+      goal.target = from_preset ? *from_preset : v->number();
       if (const std::string rule = target_rule(metric, goal.target); !rule.empty()) v->fail(rule);
       goal.loc = v->loc();
       for (const GoalSetting& g : job.goals)
         if (g.name == goal.name && g.metric == metric) v->fail("goal '" + goal.name + "' already has " + key);
       metrics.emplace_back(goal, *v);
     }
-    if (metrics.empty()) item.fail("needs at least one of average_lux, min_lux, max_lux, uniformity (or a preset)");
+    if (metrics.empty())
+      item.fail("needs at least one of average_lux, min_lux, max_lux, uniformity, ugr_max, cylindrical_lux, "
+                "cylindrical_uniformity, modelling (or a preset)");
+    const bool eyes = std::any_of(metrics.begin(), metrics.end(), [](const auto& m) {
+      return metric_rule(m.first.metric).area != AreaKind::illuminance;
+    });
+    const bool rates_glare = std::any_of(metrics.begin(), metrics.end(),
+                                         [](const auto& m) { return m.first.metric == GoalMetric::ugr; });
+    if (auto v = entry.get("eye_height_m"); v && !eyes) v->fail("applies to ugr_max and the cylindrical metrics only");
+    if (auto v = entry.get("observers"); v && !rates_glare) v->fail("applies to ugr_max only");
     std::vector<GoalSetting> here;
     for (const auto& [goal, v] : metrics) here.push_back(goal);
     for (const auto& [goal, v] : metrics) {
@@ -360,6 +519,12 @@ void read_goals(const Value& section, JobConfig& job) {
       if (!rule.empty()) v.fail(rule);
     }
     job.goals.insert(job.goals.end(), here.begin(), here.end());
+    for (const char* key : {"walls", "ceiling"})
+      if (auto v = entry.get(key); v && !preset) v->fail("needs a preset (its row's Em on these surfaces, U0 >= 0.10)");
+    if (preset) {
+      add_room_surface_goal(entry, "walls", preset->wall_lux, job.goals);
+      add_room_surface_goal(entry, "ceiling", preset->ceiling_lux, job.goals);
+    }
   }
 }
 
@@ -641,7 +806,7 @@ void read_solver(const Map& solver, JobConfig& job) {
 std::span<const GoalPreset> goal_presets() { return kPresets; }
 
 double initial_target(const JobConfig& job, const GoalSetting& goal) {
-  return goal.metric == GoalMetric::uniformity ? goal.target : goal.target / job.maintenance_factor;
+  return metric_rule(goal.metric).lux ? goal.target / job.maintenance_factor : goal.target;
 }
 
 int find_grid(const JobConfig& job, const std::string& name) {

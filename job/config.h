@@ -24,6 +24,7 @@
 #include "core/scene/scene.h"
 #include "core/scene/surface_split.h"
 #include "optimizer/goal_spec.h"
+#include "optimizer/lighting_model.h"
 #include "optimizer/search_spec.h"
 
 namespace ilp {
@@ -111,6 +112,8 @@ struct ProductSetting {
   double tilt_deg = 0.0;                 // aim: [0, 90] about its C90-C270 axis, nadir toward C0 (a wall washer, a spot)
   std::optional<double> length_axis_c_deg;  // which C-plane (0 or 90) its opening's length runs along; default: from the file
   FileLoc length_axis_loc;
+  std::optional<double> ra;                 // colour rendering index Ra (data sheet), checked against a preset's
+  FileLoc ra_loc;
 };
 
 // luminaires: the luminaires the search places (present when mounting_surface is given).
@@ -173,17 +176,32 @@ struct GoalSetting {
   GoalMetric metric = GoalMetric::average;
   double target = 0.0;                // lux, or the U0 ratio: a maintained value (see maintenance_factor)
   FileLoc loc;                        // of the metric's key (or the preset's)
+  // eye_height_m: cylindrical metrics' points and the standard's observers this far above
+  // the floor (default 1.2 m, seated); observers: ugr_max's (default: the standard's four).
+  std::optional<double> eye_height_m;
+  std::vector<ObserverSpec> observers;
 };
 
-// EN 12464-1 task areas (../shared/LIGHTING.md): `preset: office_writing` gives the
-// row's Em (average_lux) and U0 (uniformity), maintained values.
+// EN 12464-1:2021 rows (docs/config.md gives the sources): `preset: office_writing` on a
+// task area gives the row's Em (required, or modified with `em: modified`) as average_lux,
+// U0 as uniformity, UGR_L as ugr_max, Ez,m as cylindrical_lux (with Ez U0 >= 0.10) and,
+// on the surfaces the entry names as `walls` and `ceiling`, their Em and U0 >= 0.10.
+// Products must state Ra (`ra`) at least the row's. 0: the row gives no value.
 struct GoalPreset {
-  const char* key;       // office_writing, ...
-  const char* standard;  // the row as the standard names it
-  double average_lux;
-  double uniformity;
+  const char* key;         // office_writing, ...
+  const char* standard;    // the row as the standard names it
+  const char* building;    // offices, education, health care, retail, industry, circulation, places of worship
+  double average_lux;      // Em required
+  double modified_lux;     // Em modified (0: none known)
+  double uniformity;       // U0
+  double ugr_max;          // UGR_L (0: none)
+  double ra;               // Ra (0: none)
+  double cylindrical_lux;  // Ez,m (0: none)
+  double wall_lux;         // Em,wall (the general 50 lx when the row gives none)
+  double ceiling_lux;      // Em,ceiling (the general 30 lx when the row gives none)
 };
 std::span<const GoalPreset> goal_presets();
+inline constexpr double kRoomSurfaceUniformity = 0.10;  // EN 12464-1:2021: walls, ceiling and Ez
 
 struct SearchConstraints {
   std::optional<int> max_luminaires;    // caps luminaires.count (free) or rows x columns (array: error if more)

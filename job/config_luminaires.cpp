@@ -130,7 +130,7 @@ void read_products(const Value& section, JobConfig& job) {
   std::set<std::string> names;
   for (const Value& item : section.list()) {
     const Map m(item, {"name", "photometry", "model", "size_m", "flux_lm", "power_w", "dimming", "maintenance_factor",
-                       "rotations_deg", "mount_offset_m", "tilt_deg", "length_axis_c_deg"});
+                       "rotations_deg", "mount_offset_m", "tilt_deg", "length_axis_c_deg", "ra"});
     ProductSetting p;
     p.loc = item.loc();
     p.name = m.require("name").text();
@@ -172,6 +172,10 @@ void read_products(const Value& section, JobConfig& job) {
       p.mount_offset_loc = v->loc();
     }
     if (auto v = m.get("tilt_deg")) p.tilt_deg = v->number_in(0.0, 90.0, false, "[0, 90] degrees");
+    if (auto v = m.get("ra")) {
+      p.ra = v->number_in(0.0, 100.0, false, "[0, 100]");
+      p.ra_loc = v->loc();
+    }
     if (auto v = m.get("length_axis_c_deg")) {
       if (!photometry) v->fail("only for photometry: FILE (the panel's sides are its own)");
       const double c = v->number();

@@ -11,6 +11,7 @@
 
 #include "core/base/error.h"
 #include "core/exact/exact_solver.h"
+#include "core/glare/ugr.h"
 #include "job/plan.h"
 #include "core/rays/point_gather.h"
 #include "optimizer/goal_metrics.h"
@@ -271,6 +272,43 @@ void set_floor_area(JobOutcome& out, const PreparedJob& prepared) {
     }
 }
 
+// The glare side of a layout's light (GoalLight): per observer, the indirect illuminance at
+// the eye and the glare terms.
+struct EyeLight {
+  Eigen::VectorXd eye_indirect_lux, glare;
+};
+
+// As predicted: the search's, every flux scaled by `scale` (lux by scale, terms by scale^2).
+EyeLight predicted_eye_light(const LayoutEvaluation& best, double scale) {
+  return {best.eye_indirect_lux * scale, best.glare * (scale * scale)};
+}
+
+// As verified: the indirect light at each eye from the verification's solve, and the glare
+// terms of the real luminaires at their positions (not blended) plus the fixed ones'.
+EyeLight verified_eye_light(const PreparedJob& prepared, const std::vector<PlacedLuminaire>& layout,
+                            const Verification& v) {
+  const LightingModel& model = prepared.model;
+  const SearchLuminaire& s = prepared.plan.search.luminaire;
+  EyeLight out;
+  const auto n = static_cast<Eigen::Index>(model.observers.size());
+  out.eye_indirect_lux.resize(n);
+  out.glare = model.fixed_glare;
+  const auto patches = static_cast<Eigen::Index>(model.goal_patches.size());
+  for (Eigen::Index o = 0; o < n; ++o) {
+    const Eigen::Index q = model.observer_rows[static_cast<std::size_t>(o)] - patches;
+    out.eye_indirect_lux[o] = std::max(0.0, v.point_lux[q] - v.point_direct_lux[q]);
+    for (const PlacedLuminaire& l : layout)
+      out.glare[o] += glare_term(glare_source(s.type, {l.position_m, s.rotation_deg, s.tilt_deg}, l.flux_lm),
+                                 model.observers[static_cast<std::size_t>(o)]);
+  }
+  return out;
+}
+
+std::vector<GoalJudgement> judge(const LightingModel& model, const SearchSpec& spec, const Eigen::VectorXd& lux,
+                                 const EyeLight& eyes) {
+  return judge_goals(model, spec, {lux, eyes.eye_indirect_lux, eyes.glare});
+}
+
 // The search layout's direct light at the goal rows, through the candidates' direct columns.
 Eigen::VectorXd predicted_direct_lux(const LightingModel& model, const LayoutEvaluation& best) {
   Eigen::VectorXd a = model.fixed_direct_lux;
@@ -295,14 +333,15 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
   out.predicted_lux = best.lux;
   out.predicted_direct_lux = predicted_direct_lux(model, best);
   // Met as predicted is judged on the search's own layout, before any flux correction.
-  const std::vector<GoalJudgement> as_searched = judge_goals(model, job, out.predicted_lux);
+  const std::vector<GoalJudgement> as_searched = judge(model, job, out.predicted_lux, predicted_eye_light(best, 1.0));
   std::vector<GoalJudgement> predicted = as_searched;
 
   out.verification = verify_layout(prepared, out.luminaires, progress);
   out.verify_seconds = out.verification.seconds;
   std::optional<std::vector<GoalJudgement>> verified;
   if (out.verification.method != "none") {
-    verified = judge_goals(model, job, verified_goal_lux(model, out.verification));
+    verified = judge(model, job, verified_goal_lux(model, out.verification),
+                     verified_eye_light(prepared, out.luminaires, out.verification));
     // Without fixed sources every illuminance is proportional to the common flux scale.
     const bool no_fixed = model.fixed_lux.cwiseAbs().maxCoeff() == 0.0;
     if (no_fixed && !out.luminaires.empty()) {
@@ -318,8 +357,9 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
         out.verification.direct_lux *= out.flux_correction;
         out.verification.point_lux *= out.flux_correction;
         out.verification.point_direct_lux *= out.flux_correction;
-        predicted = judge_goals(model, job, out.predicted_lux);
-        verified = judge_goals(model, job, verified_goal_lux(model, out.verification));
+        predicted = judge(model, job, out.predicted_lux, predicted_eye_light(best, out.flux_correction));
+        verified = judge(model, job, verified_goal_lux(model, out.verification),
+                         verified_eye_light(prepared, out.luminaires, out.verification));
       }
     }
   }

@@ -48,14 +48,20 @@ CandidateSpec candidate_spec(const LuminaireSearch& s, const ProductVariant& pro
   return c;
 }
 
-// One area per goal name, in the goals' order, with the first goal's facing.
+// One area per goal name and kind of area its metrics are measured over, in the goals'
+// order, with the first goal's facing (and for cylinders and observers, the first goal's eyes).
 std::vector<GoalAreaSpec> area_specs(const JobConfig& job) {
   std::vector<GoalAreaSpec> out;
   for (const GoalSetting& goal : job.goals) {
+    const AreaKind kind = metric_rule(goal.metric).area;
     bool seen = false;
-    for (const GoalAreaSpec& a : out) seen = seen || a.name == goal.name;
+    for (const GoalAreaSpec& a : out) seen = seen || (a.name == goal.name && a.kind == kind);
     if (seen) continue;
     GoalAreaSpec area{goal.name, goal.surfaces, goal.facing, -1};
+    area.kind = kind;
+    area.loc = goal.loc;
+    if (goal.eye_height_m) area.eye_height_m = *goal.eye_height_m;
+    if (kind == AreaKind::glare) area.observers = goal.observers;
     if (!goal.grid.empty()) {
       area.grid = find_grid(job, goal.grid);
       if (area.grid < 0) throw std::invalid_argument("goal '" + goal.name + "': no grid '" + goal.grid + "'");

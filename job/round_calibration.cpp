@@ -13,7 +13,7 @@ std::optional<double> next_search_target(GoalMetric metric, double real_target, 
   if (!(predicted > 0.0) || !(verified > 0.0)) return std::nullopt;
   constexpr double kMargin = 0.002;  // aim just past the target, not at it
   const double ratio = predicted / verified;
-  double next = metric == GoalMetric::maximum ? std::min(current_target, real_target * ratio * (1.0 - kMargin))
+  double next = !metric_rule(metric).lower_bound ? std::min(current_target, real_target * ratio * (1.0 - kMargin))
                                               : std::max(current_target, real_target * ratio * (1.0 + kMargin));
   if (metric == GoalMetric::uniformity) next = std::min(next, 1.0);
   if (next == current_target) return std::nullopt;

@@ -16,7 +16,19 @@ enum class GoalMetric {
   minimum,     // lowest patch illuminance >= target lux
   maximum,     // highest patch illuminance <= target lux
   uniformity,  // U0 = Emin / Eavg >= target (a ratio in (0, 1])
+  ugr,                     // unified glare rating (CIE 117), the highest over the observers <= target
+  cylindrical,             // mean cylindrical illuminance Ez,m >= target lux (at eye height over a grid)
+  cylindrical_uniformity,  // U0 of the cylindrical illuminance, Ez,min / Ez,m >= target
+  modelling,               // modelling Ez,m / Eh,m >= target (EN 12464-1 recommends 0.30 to 0.60)
 };
+
+// What a goal area is made of, by the metric measured over it (its rule's `area`):
+// - illuminance: patches of surfaces, or the points of a grid (one row each);
+// - cylindrical: a grid's points lifted to eye height, each as kCylinderPlanes
+//   vertical receivers (their mean is Ez) and one facing up (Eh);
+// - glare: observers' eyes, each one vertical receiver facing its line of sight (its
+//   indirect illuminance gives the background luminance) with the luminaires' glare terms.
+enum class AreaKind { illuminance, cylindrical, glare };
 
 // Which patches of a goal's surfaces count: all, or only those facing up (a desk's top
 // without its edges and underside) or down, within about 25 degrees of vertical.
@@ -47,14 +59,17 @@ bool is_target_goal(Objective objective, GoalMetric metric);
 
 struct MetricRule {
   GoalMetric metric;
-  std::string_view key;   // in goals entries and sweep keys: average_lux, min_lux, max_lux, uniformity
-  std::string_view name;  // average, minimum, maximum, uniformity
-  std::string_view unit;  // "lx", or "" for the U0 ratio
+  std::string_view key;   // in goals entries and sweep keys: average_lux, min_lux, max_lux, uniformity,
+                          // ugr_max, cylindrical_lux, cylindrical_uniformity, modelling
+  std::string_view name;  // average, minimum, maximum, uniformity, UGR, cylindrical, cylindrical U0, modelling
+  std::string_view unit;  // "lx", or "" for ratios and UGR
   bool lower_bound;       // value >= target (else value <= target)
   bool lux;               // in lux: linear in flux and maintained = initial x MF (U0 is neither)
   bool scale_closed_form; // the least flux scale meeting it is a closed form (average, minimum)
   bool zero_allowed;      // a target of 0 is valid (minimum); every other must be > 0
   double max_target;      // the largest valid target (1e7 lx; 1 for U0)
+  AreaKind area = AreaKind::illuminance;  // what the metric is measured over
+  double min_target = 0.0;  // the least valid target (exclusive unless zero_allowed; inclusive for UGR)
 };
 
 // Every metric, in GoalMetric order.

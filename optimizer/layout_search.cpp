@@ -33,8 +33,9 @@ using Clock = std::chrono::steady_clock;
 std::vector<int> goal_areas(const LightingModel& model, const SearchSpec& spec) {
   std::vector<int> out;
   for (const GoalSpec& g : spec.goals) {
-    const int a = find_goal_area(model, g.name);
-    if (a < 0) throw std::invalid_argument("goal '" + g.name + "' is not in the lighting model");
+    const int a = find_goal_area(model, g.name, metric_rule(g.metric).area);
+    if (a < 0) throw std::invalid_argument("goal '" + g.name + "' (" + std::string(metric_rule(g.metric).name) +
+                                           ") is not in the lighting model");
     out.push_back(a);
   }
   return out;
@@ -47,7 +48,7 @@ double area_average(const GoalArea& area, const Eigen::VectorXd& lux) {
 }
 
 std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchSpec& spec, const std::vector<int>& areas,
-                                       const Eigen::VectorXd& lux);
+                                       const GoalLight& light);
 
 // One search variable layout: how a point x of the search space becomes positions
 // and relative fluxes.
@@ -187,7 +188,17 @@ class Evaluator {
         candidates_(model.candidate_lux_per_lm.cast<float>()),
         arena_(std::make_unique<tbb::task_arena>(arena_threads(spec.options.threads))),
         column_weight_(static_cast<std::size_t>(candidates_.cols())),
-        column_used_(static_cast<std::size_t>(candidates_.cols())) {}
+        column_used_(static_cast<std::size_t>(candidates_.cols())) {
+    // The indirect light at each observer's eye (T minus D at its row), per candidate and fixed.
+    const auto n_obs = static_cast<Eigen::Index>(model.observer_rows.size());
+    eye_indirect_.resize(n_obs, model.candidate_lux_per_lm.cols());
+    fixed_eye_indirect_.resize(n_obs);
+    for (Eigen::Index o = 0; o < n_obs; ++o) {
+      const Eigen::Index r = model.observer_rows[static_cast<std::size_t>(o)];
+      eye_indirect_.row(o) = model.candidate_lux_per_lm.row(r) - model.candidate_direct_lux_per_lm.row(r);
+      fixed_eye_indirect_[o] = model.fixed_lux[r] - model.fixed_direct_lux[r];
+    }
+  }
 
   LayoutEvaluation operator()(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& w) const {
     const SearchLuminaire& s = spec_.luminaire;
@@ -264,7 +275,8 @@ class Evaluator {
     scale = std::clamp(scale, scale_lo, scale_hi);
 
     out.lux = f + scale * a;
-    out.goals = judge_goals(model_, spec_, areas_, out.lux);
+    glare_at_eyes(out, terms, scale, w);
+    out.goals = judge_goals(model_, spec_, areas_, {out.lux, out.eye_indirect_lux, out.glare});
     for (std::size_t j = 0; j < n; ++j) {
       out.luminaires[j].flux_lm = scale * w[j];
       out.luminaires[j].power_w = out.luminaires[j].flux_lm / s.efficacy_lm_per_w;
@@ -302,8 +314,29 @@ class Evaluator {
     const int automatic = tbb::task_arena::automatic;
     return threads > 0 ? threads : automatic;
   }
+  // Per observer: the indirect illuminance at the eye (the blended columns, linear in
+  // the flux) and the glare terms (each luminaire's flux squared times the blend of its
+  // candidates' terms per lm^2). Nothing without observers.
+  void glare_at_eyes(LayoutEvaluation& out, const std::vector<std::pair<Eigen::Index, double>>& terms, double scale,
+                     const std::vector<double>& w) const {
+    if (model_.observers.empty()) return;
+    out.eye_indirect_lux = fixed_eye_indirect_;
+    for (const auto& [column, weight] : terms) out.eye_indirect_lux += (scale * weight) * eye_indirect_.col(column);
+    out.eye_indirect_lux = out.eye_indirect_lux.cwiseMax(0.0);
+    out.glare = model_.fixed_glare;
+    for (std::size_t j = 0; j < out.luminaires.size(); ++j) {
+      const GridPoint& blend = out.luminaires[j].blend;
+      const double flux2 = scale * w[j] * scale * w[j];
+      for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
+        if (blend.candidates[k] >= 0)
+          out.glare += (flux2 * blend.weights[k]) * model_.candidate_glare_per_lm2.col(blend.candidates[k]);
+    }
+    out.glare = out.glare.cwiseMax(0.0);  // Catmull-Rom weights can be negative
+  }
   // Rows per parallel block: large enough that a block's work outweighs scheduling it.
   static constexpr Eigen::Index kRowBlock = 512;
+  Eigen::MatrixXd eye_indirect_;        // observers x candidates: indirect lux per lm at the eye
+  Eigen::VectorXd fixed_eye_indirect_;  // per observer, from the fixed sources
   const LightingModel& model_;
   const SearchSpec spec_;  // a copy: an evaluator may outlive the spec it was made from
   std::vector<int> areas_;
@@ -453,21 +486,28 @@ double goal_tolerance(Objective objective, GoalMetric metric) {
                                                                                          : kConstraintTolerance;
 }
 
+std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchSpec& spec, const GoalLight& light) {
+  return judge_goals(model, spec, goal_areas(model, spec), light);
+}
+
 std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchSpec& spec, const Eigen::VectorXd& lux) {
-  return judge_goals(model, spec, goal_areas(model, spec), lux);
+  const Eigen::VectorXd none;
+  return judge_goals(model, spec, goal_areas(model, spec), {lux, none, none});
 }
 
 namespace {
 
 std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchSpec& spec, const std::vector<int>& areas,
-                                       const Eigen::VectorXd& lux) {
+                                       const GoalLight& light) {
   std::vector<GoalJudgement> out;
   for (std::size_t g = 0; g < spec.goals.size(); ++g) {
     const GoalSpec& goal = spec.goals[g];
     const GoalArea& area = model.areas[static_cast<std::size_t>(areas[g])];
     const double target = goal.target;  // initial, as the values are
     GoalJudgement j{goal.name, goal.metric, target, 0.0, 0.0};
-    j.value = metric_value(goal.metric, area_statistics(area, lux));
+    if (goal.metric == GoalMetric::ugr && light.glare.size() != static_cast<Eigen::Index>(model.observers.size()))
+      throw std::logic_error("judge_goals: goal '" + goal.name + "' rates glare, and no glare terms were given");
+    j.value = goal_value(goal.metric, area, light);
     j.violation = relative_violation(goal.metric, j.value, target, objective_rule(spec.objective).averages_are_targets);
     out.push_back(j);
   }

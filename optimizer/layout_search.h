@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/base/progress.h"
+#include "optimizer/goal_metrics.h"
 #include "optimizer/goal_spec.h"
 #include "optimizer/lighting_model.h"
 #include "optimizer/search_spec.h"
@@ -49,11 +50,16 @@ struct LayoutEvaluation {
   double objective = 0.0;             // what the search minimised, penalty included
   bool feasible = false;              // every constraint within tolerance
   Eigen::VectorXd lux;                // total illuminance at the goal patches
+  Eigen::VectorXd eye_indirect_lux;   // per model observer: indirect illuminance at the eye (empty without observers)
+  Eigen::VectorXd glare;              // per model observer: sum of the luminaires' L^2 omega / p^2
   std::string arrangement;            // a regular layout's ("3 x 4 field"); empty for free and array layouts
   Eigen::Vector2d spacing_m = Eigen::Vector2d::Zero();  // a regular layout's, along x and y
 };
 
-// Judges goals on illuminance at the goal patches (lux per LightingModel::goal_patches row).
+// Judges goals on a layout's light: illuminance at the goal rows (LightingModel::goal_patches,
+// then goal_points) and, for glare goals, per observer the indirect light at the eye and the
+// glare terms. The overload on illuminance alone throws std::logic_error for a glare goal.
+std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchSpec& spec, const GoalLight& light);
 std::vector<GoalJudgement> judge_goals(const LightingModel& model, const SearchSpec& spec, const Eigen::VectorXd& lux);
 // Relative violation allowed before a constraint counts as missed (and, for
 // closest_to_target, the deviation of an average goal from its target).

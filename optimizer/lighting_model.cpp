@@ -8,12 +8,13 @@
 #include <stdexcept>
 
 #include "core/base/error.h"
+#include "optimizer/area_points.h"
 
 namespace ilp {
 
-int find_goal_area(const LightingModel& model, const std::string& name) {
+int find_goal_area(const LightingModel& model, const std::string& name, AreaKind kind) {
   for (std::size_t a = 0; a < model.areas.size(); ++a)
-    if (model.areas[a].name == name) return static_cast<int>(a);
+    if (model.areas[a].name == name && model.areas[a].kind == kind) return static_cast<int>(a);
   return -1;
 }
 
@@ -147,7 +148,7 @@ void lay_grids(LightingModel& model, const Scene& job_scene, const ModelSpec& sp
 
 // The patches of an area's surfaces that face as asked (none for a grid area).
 std::vector<int> area_patches(const Scene& job_scene, const GoalAreaSpec& area) {
-  if (area.grid >= 0) return {};
+  if (area.grid >= 0 || area.kind != AreaKind::illuminance) return {};
   std::vector<int> patches = job_scene.patches_of(area.surfaces);
   if (area.facing != GoalFacing::any) {
     constexpr double kVerticalCos = 0.9;  // within about 25 degrees of straight up or down
@@ -167,6 +168,8 @@ GoalArea make_area(const LightingModel& model, const Scene& job_scene, const Goa
   area.name = spec.name;
   area.surfaces = spec.surfaces;
   area.grid = spec.grid;
+  area.kind = spec.kind;
+  if (spec.kind != AreaKind::illuminance) return area;  // rows laid by lay_area_points
   if (area.grid >= 0) {
     const CalcGrid& grid = model.grids[static_cast<std::size_t>(area.grid)];
     const Eigen::Index first = model.grid_first_row[static_cast<std::size_t>(area.grid)];
@@ -239,6 +242,47 @@ void log_candidates(LightingModel& model, const CandidateSpec& spec) {
                         spec.mounting_surface + "' do not face down and hold no luminaire");
 }
 
+// The rows of the cylindrical and glare areas, after every grid's points: a grid's
+// points at eye height as cylinders, observers' eyes (model.observers, observer_rows).
+void lay_area_points(LightingModel& model, const Scene& job_scene, const ModelSpec& spec, const RayCaster* caster) {
+  std::unique_ptr<RayCaster> own;
+  for (std::size_t a = 0; a < spec.areas.size(); ++a) {
+    const GoalAreaSpec& s = spec.areas[a];
+    GoalArea& area = model.areas[a];
+    const auto first = static_cast<Eigen::Index>(model.goal_patches.size() + model.goal_points.size());
+    if (s.kind == AreaKind::cylindrical) {
+      if (!model.floor_z_m)
+        throw ConfigError(located(s.loc, "goals." + s.name + ".cylindrical_lux: no floor to measure the eye height "
+                                         "from: name luminaires.floor_surface (or lay the grid over_surface the floor)"));
+      const CalcGrid& grid = model.grids.at(static_cast<std::size_t>(s.grid));
+      const std::vector<ReceiverPoint> points = cylinder_receivers(grid, *model.floor_z_m + s.eye_height_m);
+      model.goal_points.insert(model.goal_points.end(), points.begin(), points.end());
+      const auto n = static_cast<double>(grid.points.size());
+      area.area_weights.resize(static_cast<Eigen::Index>(points.size()));
+      for (std::size_t r = 0; r < points.size(); ++r) {
+        area.rows.push_back(first + static_cast<Eigen::Index>(r));
+        const bool up = r % (kCylinderPlanes + 1) == kCylinderPlanes;
+        area.area_weights[static_cast<Eigen::Index>(r)] = up ? 0.0 : 1.0 / (kCylinderPlanes * n);
+      }
+      area.area_m2 = grid.area_m2;
+    } else if (s.kind == AreaKind::glare) {
+      if (!caster) {
+        own = std::make_unique<RayCaster>(job_scene, spec.threads);
+        caster = own.get();
+      }
+      for (const UgrObserver& o : area_observers(job_scene, *caster, s, model.floor_z_m, model.floor_surface)) {
+        area.observers.push_back(static_cast<int>(model.observers.size()));
+        area.rows.push_back(static_cast<Eigen::Index>(model.goal_patches.size() + model.goal_points.size()));
+        model.observers.push_back(o);
+        model.observer_rows.push_back(area.rows.back());
+        model.goal_points.push_back(eye_receiver(o));
+      }
+      area.area_weights = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(area.rows.size()),
+                                                    1.0 / static_cast<double>(area.rows.size()));
+    }
+  }
+}
+
 }  // namespace
 
 LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& spec, const RayCaster* caster,
@@ -272,8 +316,10 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& s
   // job scene's patches keep their indices).
   model.zone_m = mounting_zone_m(model, job_scene, spec.candidates);
   model.floor_z_m = floor_height_m(job_scene, spec, model.floor_surface);
+  lay_area_points(model, job_scene, spec, caster);
   model.grid = make_grid(job_scene, spec.candidates, model.zone_m, model.floor_z_m);
   add_candidates(model, job_scene, spec.candidates);
+  compute_glare_terms(model, job_scene, spec.candidates);
   log_candidates(model, spec.candidates);
   return model;
 }

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/glare/ugr.h"
 #include "core/grid/calc_grid.h"
 #include "core/base/error.h"
 #include "core/light/luminaire.h"
@@ -60,14 +61,41 @@ struct CandidateSpec {
 // every field but the FileLocs.
 void hash_fields(KeyWriter& k, const CandidateSpec& c);
 
-// One named goal area to lay: the patches of some surfaces (those facing as asked), or
-// the points of one calculation grid.
+// An observer a job places for glare: where (x, y in the scene frame), the eye this far
+// above the floor, looking along `view` (horizontal, need not be unit length).
+struct ObserverSpec {
+  Eigen::Vector2d xy_m = Eigen::Vector2d::Zero();
+  double eye_height_m = kSeatedEyeHeightM;
+  Eigen::Vector2d view = Eigen::Vector2d::UnitX();
+  FileLoc loc = {};  // for an observer outside the room or inside a solid
+};
+
+// The operator cache's key: every field but the FileLoc.
+void hash_fields(KeyWriter& k, const ObserverSpec& o);
+
+// Vertical receivers per point of a cylindrical area (their mean is Ez), at azimuths
+// 360 / kCylinderPlanes apart, turned per point by a low-discrepancy offset so that the
+// quadrature's error (at most -5.2 % / +2.6 % for one point source) averages out over a grid.
+inline constexpr int kCylinderPlanes = 8;
+
+// One named goal area to lay (optimizer/goal_spec.h, AreaKind): the patches of some
+// surfaces (those facing as asked) or the points of one calculation grid; a grid's
+// points at eye height as cylinders; or observers' eyes.
 struct GoalAreaSpec {
   std::string name;
   std::vector<std::string> surfaces;
   GoalFacing facing = GoalFacing::any;
   int grid = -1;  // into ModelSpec::grids, or -1 for surfaces
+  AreaKind kind = AreaKind::illuminance;
+  // cylindrical: the grid's points this far above the floor; glare without observers:
+  // the eye height of the standard's observers (1.2 m seated, 1.6 m standing).
+  double eye_height_m = kSeatedEyeHeightM;
+  // glare: the observers; empty: the standard's, at the middle of each wall of the
+  // floor's plan box, kDefaultObserverWallOffsetM into the room, looking across it.
+  std::vector<ObserverSpec> observers = {};
+  FileLoc loc = {};  // the goal's, for an area that cannot be laid (no floor)
 };
+inline constexpr double kDefaultObserverWallOffsetM = 0.5;
 
 // The operator cache's key: every field.
 void hash_fields(KeyWriter& k, const GoalAreaSpec& a);
@@ -93,6 +121,11 @@ void hash_fields(KeyWriter& k, const ModelSpec& m);
 // area), or the points of its calculation grid (equal weights: each stands for one cell).
 struct GoalArea {
   std::string name;
+  AreaKind kind = AreaKind::illuminance;
+  // cylindrical: each point's kCylinderPlanes vertical rows, then its row facing up;
+  // area_weights 1 / (planes x points) on the vertical rows and 0 on the up rows, so
+  // their dot product with the lux is Ez,m. glare: one eye row per observer.
+  std::vector<int> observers;      // glare: into LightingModel::observers, one per row
   std::vector<std::string> surfaces;
   int grid = -1;                   // into LightingModel::grids, or -1 for surfaces
   std::vector<Eigen::Index> rows;  // goal rows: LightingModel::goal_patches, then goal_points
@@ -110,7 +143,16 @@ struct LightingModel {
   std::vector<ReceiverPoint> goal_points;        // the grids' points, grid after grid: the goal rows after the patches
   std::vector<CalcGrid> grids;                   // every grid of the job (named by goals or only reported), in job.grids order
   std::vector<Eigen::Index> grid_first_row;      // per grid: its first goal row
-  std::vector<GoalArea> areas;                   // one per goal name, in the job's order
+  std::vector<GoalArea> areas;                   // one per goal name and area kind, in the job's order
+  // Glare: every glare area's observers (eyes at their height, horizontal lines of
+  // sight), each with its eye's goal row, and per observer and candidate the glare term
+  // L^2 omega / p^2 per lm^2 (core/glare/ugr.h), so a luminaire of flux phi blended from
+  // candidates adds phi^2 x the blend of their terms; the fixed luminaires' terms at
+  // their flux. The indirect illuminance at the eye row (T minus D) gives Lb = E_ind / pi.
+  std::vector<UgrObserver> observers;
+  std::vector<Eigen::Index> observer_rows;
+  Eigen::MatrixXd candidate_glare_per_lm2;       // observers x candidates
+  Eigen::VectorXd fixed_glare;                   // per observer
   // Goal rows: T's rows, patches then points (fixed_lux and the candidate columns have this many).
   Eigen::Index goal_rows() const { return static_cast<Eigen::Index>(goal_patches.size() + goal_points.size()); }
   Eigen::VectorXd fixed_lux;                     // from the fixed sources at their flux
@@ -124,8 +166,8 @@ struct LightingModel {
   double build_seconds = 0.0;
 };
 
-// Index of the GoalArea with this name, or -1.
-int find_goal_area(const LightingModel& model, const std::string& name);
+// Index of the GoalArea with this name and kind, or -1.
+int find_goal_area(const LightingModel& model, const std::string& name, AreaKind kind = AreaKind::illuminance);
 
 // The cheap part of the model: the candidate grid, the scene with the candidates,
 // the goal patches, the grids' points and the areas, fixed_flux_lm. Throws ConfigError

@@ -17,9 +17,18 @@ void hash_fields(KeyWriter& k, const CandidateSpec& c) {
   // Not the FileLocs: where the values were written.
 }
 
-static_assert(field_count<GoalAreaSpec>() == 4, "GoalAreaSpec changed: hash the new field here (or say why not)");
+static_assert(field_count<ObserverSpec>() == 4, "ObserverSpec changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const ObserverSpec& o) {
+  k.field("xy_m", o.xy_m).field("eye_height_m", o.eye_height_m).field("view", o.view);
+  // Not the FileLoc.
+}
+
+static_assert(field_count<GoalAreaSpec>() == 8, "GoalAreaSpec changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const GoalAreaSpec& a) {
   k.field("name", a.name).field("surfaces", a.surfaces).field("facing", a.facing).field("grid", a.grid);
+  // The area's kind and where its points go (cylinders at eye height, observers' eyes):
+  // they are goal rows of the operator. Not the FileLoc.
+  k.field("kind", a.kind).field("eye_height_m", a.eye_height_m).field("observers", a.observers);
 }
 
 static_assert(field_count<ModelSpec>() == 7, "ModelSpec changed: hash the new field here (or say why not)");

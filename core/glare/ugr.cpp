@@ -72,7 +72,7 @@ GlareView glare_view(const GlareSource& s, const UgrObserver& obs, PositionIndex
   v.h_m = d.z();
   v.distance_m = d.norm();
   const Eigen::Vector3d toward_eye_local =
-      luminaire_rotation(s.placement.rotation_deg).transpose() * (-d).normalized();  // distributions want unit vectors
+      luminaire_rotation(s.placement).transpose() * (-d).normalized();  // distributions want unit vectors
   v.intensity_cd = s.distribution ? s.distribution->cd_per_lm(toward_eye_local) * s.flux_lm : 0.0;
   v.projected_area_m2 = projected_area_m2(s.opening, toward_eye_local);
   if (!(v.projected_area_m2 > 0.0) || !(v.distance_m > 0.0)) return v;

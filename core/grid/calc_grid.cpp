@@ -80,6 +80,8 @@ bool inside_less_band(const Outline& outline, const Eigen::Vector2d& p, double b
   return true;
 }
 
+}  // namespace
+
 // A point inside a solid object sees the backs of its faces: the first hit is a back
 // face in at least 4 of the 6 axis directions.
 bool inside_solid(const RayCaster& caster, const Eigen::Vector3d& p) {
@@ -93,8 +95,6 @@ bool inside_solid(const RayCaster& caster, const Eigen::Vector3d& p) {
   }
   return back >= 4;
 }
-
-}  // namespace
 
 double en12464_grid_spacing_m(double longer_side_m) {
   if (!(longer_side_m > 0.0)) return 0.0;

@@ -54,6 +54,10 @@ struct CalcGridSetting {
 // max_points, a limit that refuses a grid and never changes one.
 void hash_fields(KeyWriter& k, const CalcGridSetting& s);
 
+// Is p inside a solid object? It sees the backs of its faces: the first hit is a back
+// face in at least 4 of the 6 axis directions (a grid point, an observer's eye).
+bool inside_solid(const RayCaster& caster, const Eigen::Vector3d& p);
+
 // EN 12464-1: p = 0.2 x 5^log10(d) m for the longer side d (m), at most 10 m.
 double en12464_grid_spacing_m(double longer_side_m);
 

@@ -79,6 +79,27 @@ TEST(IlpLayouts, OfficeProductsIsACentredFieldAtOneOutputThatMeetsEveryGoal) {
     ASSERT_TRUE(g.verified.has_value()) << g.name;
     EXPECT_TRUE(g.met) << g.name << " " << g.metric;
   }
+  // Issue 20: the office row of EN 12464-1:2021 (preset office_writing) as verified lines:
+  // UGR_L 19 at the four seated observers, Ez,m 150 lx (U0 0.10) at 1.2 m, walls 150 lx and
+  // ceiling 100 lx (U0 0.10), each with its value.
+  std::map<std::string, const ilp::GoalRecord*> line;
+  for (const ilp::GoalRecord& g : result.goals) line[g.name + " " + g.metric] = &g;
+  const std::map<std::string, double> row = {{"work_plane UGR", 19.0},        {"work_plane cylindrical", 150.0},
+                                             {"work_plane cylindrical U0", 0.10}, {"walls average", 150.0},
+                                             {"walls uniformity", 0.10},      {"ceiling average", 100.0},
+                                             {"ceiling uniformity", 0.10}};
+  for (const auto& [label, target] : row) {
+    ASSERT_TRUE(line.count(label)) << label;
+    const ilp::GoalRecord& g = *line[label];
+    EXPECT_DOUBLE_EQ(g.target, target) << label;
+    ASSERT_TRUE(g.verified) << label;
+    if (label == "work_plane UGR") {
+      EXPECT_LE(*g.verified, 19.0);
+      EXPECT_GT(*g.verified, 10.0) << "a value, not a placeholder";
+    } else {
+      EXPECT_GE(*g.verified, target) << label;
+    }
+  }
 
   const std::string free_job = office_products_free(dir);
   const RunResult f = run_ilp(dir, {"run", free_job, "--out", dir.file("free"), "--cache", dir.file("cache"), "-q"});

@@ -60,6 +60,19 @@ TEST(CacheKey, GoalAreaSpecCoversEveryField) {
       {"surfaces", [](GoalAreaSpec& a) { a.surfaces.push_back("table"); }},
       {"facing", [](GoalAreaSpec& a) { a.facing = GoalFacing::up; }},
       {"grid", [](GoalAreaSpec& a) { a.grid = 0; }},
+      {"kind", [](GoalAreaSpec& a) { a.kind = AreaKind::glare; }},
+      {"eye_height_m", [](GoalAreaSpec& a) { a.eye_height_m = 1.6; }},
+      {"observers", [](GoalAreaSpec& a) { a.observers.push_back(ObserverSpec{}); }},
+      left_out<GoalAreaSpec>("loc", [](GoalAreaSpec& a) { a.loc = kAt; }),
+  });
+}
+
+TEST(CacheKey, ObserverSpecCoversEveryField) {
+  expect_key_covers_fields<ObserverSpec>("ObserverSpec", ObserverSpec{}, {
+      {"xy_m", [](ObserverSpec& o) { o.xy_m.x() = 1.0; }},
+      {"eye_height_m", [](ObserverSpec& o) { o.eye_height_m = 1.6; }},
+      {"view", [](ObserverSpec& o) { o.view = Eigen::Vector2d(0, 1); }},
+      left_out<ObserverSpec>("loc", [](ObserverSpec& o) { o.loc = kAt; }),
   });
 }
 

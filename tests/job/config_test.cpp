@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "job/config.h"
@@ -1660,7 +1661,7 @@ TEST(JobConfigGrids, GridGoalsPresetsAndMaintenanceFactor) {
                                      "goals:\n"                                                           // 15
                                      "  - {grid: work, preset: office_writing, uniformity: 0.7}\n"        // 16
                                      "  - {name: b, grid: board, preset: board, min_lux: 100}\n");        // 17
-  const ilp::JobConfig job = ilp::load_job_config(yaml);
+  ilp::JobConfig job = ilp::load_job_config(yaml);
   ASSERT_EQ(job.grids.size(), 3u);
   EXPECT_EQ(job.grids[0].over_surface, "floor");
   EXPECT_DOUBLE_EQ(job.grids[0].height_m, 0.75);
@@ -1676,7 +1677,17 @@ TEST(JobConfigGrids, GridGoalsPresetsAndMaintenanceFactor) {
   EXPECT_FALSE(job.grids[2].facing_left);
   EXPECT_DOUBLE_EQ(job.grids[2].border_m, 0.0);
   EXPECT_DOUBLE_EQ(job.maintenance_factor, 0.8);
-  ASSERT_EQ(job.goals.size(), 5u);
+  // office_writing: Em, U0 (overridden), UGR_L 19, Ez,m 150 with Ez U0 0.10; board: Em,
+  // the explicit min_lux, U0, UGR_L 19 (no Ez: on a vertical grid the row gives none).
+  ASSERT_EQ(job.goals.size(), 9u);
+  EXPECT_EQ(job.goals[2].metric, ilp::GoalMetric::ugr);
+  EXPECT_DOUBLE_EQ(job.goals[2].target, 19.0);
+  EXPECT_EQ(job.goals[3].metric, ilp::GoalMetric::cylindrical);
+  EXPECT_DOUBLE_EQ(job.goals[3].target, 150.0);
+  EXPECT_EQ(job.goals[4].metric, ilp::GoalMetric::cylindrical_uniformity);
+  EXPECT_DOUBLE_EQ(job.goals[4].target, 0.10);
+  job.goals.erase(job.goals.begin() + 2, job.goals.begin() + 5);
+  job.goals.pop_back();
   EXPECT_EQ(job.goals[0].name, "work");
   EXPECT_EQ(job.goals[0].grid, "work");
   EXPECT_TRUE(job.goals[0].surfaces.empty());
@@ -1704,6 +1715,47 @@ TEST(JobConfigGrids, GridGoalsPresetsAndMaintenanceFactor) {
   EXPECT_TRUE(office);
 }
 
+// A preset on a task area with walls and ceiling, every goal of its row; Ra of the products.
+TEST(JobConfigGrids, PresetTurnsIntoEveryGoalOfItsRowAndChecksRa) {
+  TempDir dir;
+  const std::string head =
+      "scene:\n  mesh: room.obj\n"                                                                 // 1-2
+      "luminaires:\n  products:\n"                                                                // 3-4
+      "    - {name: panel, model: square_lambertian, size_m: 0.6, flux_lm: 3600, power_w: 30, ra: 80}\n"  // 5
+      "    - {name: other, model: square_lambertian, size_m: 0.6, flux_lm: 3600, power_w: 30";    // 6
+  const std::string tail =
+      "}\ngrids:\n  - {name: work, over_surface: floor}\n"                                           // 6-8
+      "goals:\n  - {grid: work, preset: office_writing, em: modified, walls: walls, ceiling: [ceiling]}\n";  // 9-10
+  const ilp::JobConfig job = ilp::load_job_config(dir.write("job.yaml", head + ", ra: 90" + tail));
+  std::vector<std::pair<std::string, ilp::GoalMetric>> got;
+  for (const ilp::GoalSetting& g : job.goals) got.emplace_back(g.name, g.metric);
+  using M = ilp::GoalMetric;
+  const std::vector<std::pair<std::string, M>> expected = {
+      {"work", M::average}, {"work", M::uniformity}, {"work", M::ugr}, {"work", M::cylindrical},
+      {"work", M::cylindrical_uniformity}, {"walls", M::average}, {"walls", M::uniformity},
+      {"ceiling", M::average}, {"ceiling", M::uniformity}};
+  EXPECT_EQ(got, expected);
+  const double targets[] = {1000, 0.60, 19, 150, 0.10, 150, 0.10, 100, 0.10};
+  for (std::size_t k = 0; k < job.goals.size() && k < 9; ++k) EXPECT_DOUBLE_EQ(job.goals[k].target, targets[k]) << k;
+  EXPECT_EQ(job.goals[5].surfaces, std::vector<std::string>{"walls"});
+  EXPECT_EQ(job.goals[5].loc.line, 10);
+  // A product without Ra, or below the row's 80: an error at the product, naming the key.
+  for (const auto& [ra, where, rule] :
+       {std::tuple<std::string, std::string, std::string>{"", ":6:7: luminaires.products[1].ra", "missing for product 'other'"},
+        {", ra: 70", ":6:92: luminaires.products[1].ra = 70", "below what the preset office_writing"}}) {
+    SCOPED_TRACE(ra);
+    try {
+      ilp::load_job_config(dir.write("job.yaml", head + ra + tail));
+      ADD_FAILURE() << "no error";
+    } catch (const ilp::ConfigError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(where), std::string::npos) << msg;
+      EXPECT_NE(msg.find(rule), std::string::npos) << msg;
+      EXPECT_NE(msg.find("Ra >= 80"), std::string::npos) << msg;
+    }
+  }
+}
+
 TEST(JobConfigGrids, BadGridsNameFileLineAndKey) {
   TempDir dir;
   struct Case {
@@ -1727,7 +1779,27 @@ TEST(JobConfigGrids, BadGridsNameFileLineAndKey) {
       {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, surface: floor, average_lux: 300}\n",
        ":6:12: goals[0].grid = g", "not both"},
       {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, preset: office}\n",
-       ":6:23: goals[0].preset = office", "unknown preset (EN 12464-1 rows: office_writing"},
+       ":6:23: goals[0].preset = office", "unknown preset; close EN 12464-1 rows: office_"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, preset: ofice_writting}\n",
+       ":6:23: goals[0].preset = ofice_writting", "close EN 12464-1 rows: office_writing"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, preset: zzz}\n",
+       ":6:23: goals[0].preset = zzz", "unknown preset (EN 12464-1 rows: office_filing, office_writing"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, average_lux: 300, ugr_max: 9.5}\n",
+       ":6:42: goals[0].ugr_max = 9.5", "must be in [10, 30]"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, average_lux: 300, ugr_max: 31}\n",
+       ":6:42: goals[0].ugr_max = 31", "must be in [10, 30]"},
+      {"goals:\n  - {surface: floor, cylindrical_lux: 150}\n", ":4:39: goals[0].cylindrical_lux = 150",
+       "put the goal on a grid"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, average_lux: 300, observers: "
+       "[{position_m: [1, 1], view_direction: [0, 0]}]}\n",
+       "goals[0].observers[0].view_direction", "must not be [0, 0]"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, average_lux: 300, observers: "
+       "[{position_m: [1, 1], view_direction: [1, 0]}]}\n",
+       ":6:44: goals[0].observers", "applies to ugr_max only"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, preset: toilets, em: modified}\n",
+       ":6:36: goals[0].em = modified", "gives no modified Em"},
+      {"grids:\n  - {name: g, over_surface: floor}\ngoals:\n  - {grid: g, average_lux: 300, walls: walls}\n",
+       ":6:40: goals[0].walls = walls", "needs a preset"},
       {"maintenance_factor: 1.2\n", ":3:21: maintenance_factor = 1.2", "must be in [0.1, 1]"},
       {"maintenance_factor: 1e-300\n", ":3:21: maintenance_factor = 1e-300", "must be in [0.1, 1]"},
   };
