@@ -9,7 +9,7 @@ packages=(g++ cmake make pkg-config
           libeigen3-dev libembree-dev libnlopt-cxx-dev libnlopt-dev libopenmesh-dev libyaml-cpp-dev
           libtbb-dev libcli11-dev nlohmann-json3-dev libxxhash-dev libgtest-dev libbenchmark-dev
           librsvg2-dev fonts-dejavu-core libassimp-dev)
-packages+=(assimp-utils libdxflib-dev)  # tests: assimp's converter makes the office in other formats; dxflib reads the DXF plan back
+packages+=(libdxflib-dev)  # tests: dxflib reads the DXF plan back (tests/data/import/README.md: assimp-utils remakes the converted office)
 packages+=(clang)  # the libFuzzer harnesses (scripts/fuzz_photometry.sh)
 missing=()
 for p in "${packages[@]}"; do
