@@ -9,14 +9,14 @@
 # RADIANCE_SRC: a checkout of github.com/LBNL-ETA/Radiance (branch master). The tools are
 # built once into build-radiance/ (headless, Release). CONFIG defaults to
 # configs/office.yaml configs/office_products.yaml. RTRACE_OPTIONS overrides the rtrace
-# settings below (no ambient cache, so each point is an independent Monte Carlo estimate).
+# settings below (6 ambient bounces with Radiance's ambient cache: minutes per grid here).
 # Prints per grid: points, Em by ilp and by Radiance and their difference in %.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 : "${RADIANCE_SRC:?set RADIANCE_SRC to a Radiance source tree (github.com/LBNL-ETA/Radiance)}"
 configs=("$@")
 [ ${#configs[@]} -gt 0 ] || configs=(configs/office.yaml configs/office_products.yaml)
-rtrace_options="${RTRACE_OPTIONS:--ab 8 -ad 4096 -as 0 -aa 0 -lw 1e-6 -dj 0.7 -ds 0.05 -dt 0 -dc 1 -dr 3 -dp 512}"
+rtrace_options="${RTRACE_OPTIONS:--ab 6 -ad 1024 -as 256 -aa 0.08 -ar 256 -lw 1e-5}"
 
 rad_build="$PWD/build-radiance"
 if [ ! -x "$rad_build/bin/rtrace" ]; then

@@ -10,7 +10,7 @@ packages=(g++ cmake make pkg-config
           libtbb-dev libcli11-dev nlohmann-json3-dev libxxhash-dev libgtest-dev libbenchmark-dev
           librsvg2-dev fonts-dejavu-core libassimp-dev
           poppler-utils)  # pdftotext, pdffonts, pdftoppm: the report tests read report.pdf back
-packages+=(assimp-utils libdxflib-dev)  # tests: assimp's converter makes the office in other formats; dxflib reads the DXF plan back
+packages+=(libdxflib-dev)  # tests: dxflib reads the DXF plan back (tests/data/import/README.md: assimp-utils remakes the converted office)
 packages+=(clang)  # the libFuzzer harnesses (scripts/fuzz_photometry.sh)
 missing=()
 for p in "${packages[@]}"; do

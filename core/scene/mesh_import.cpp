@@ -14,6 +14,8 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <string_view>
 #include <map>
 #include <sstream>
 #include <utility>
@@ -247,6 +249,30 @@ FrameReading read_frame(const aiScene& scene, const std::string& path, const std
   return r;
 }
 
+// assimp 5.2.5 dereferences a null pointer on a COLLADA array element without its
+// count attribute (found by fuzz/import_fuzz.cpp): such a file is refused before it is
+// handed over, naming the line.
+void check_collada_arrays(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* tag : {"<float_array", "<int_array", "<Name_array", "<IDREF_array", "<bool_array", "<SIDREF_array",
+                          "<token_array"}) {
+    const std::string t(tag);
+    for (std::size_t at = text.find(t); at != std::string::npos; at = text.find(t, at + t.size())) {
+      const std::size_t end = text.find('>', at);
+      const std::string_view element(text.data() + at, (end == std::string::npos ? text.size() : end) - at);
+      const char next = at + t.size() < text.size() ? text[at + t.size()] : '>';
+      if (!std::isspace(static_cast<unsigned char>(next)) && next != '>' && next != '/') continue;  // another tag
+      if (element.find(" count=") != std::string_view::npos || element.find("\tcount=") != std::string_view::npos ||
+          element.find("\ncount=") != std::string_view::npos)
+        continue;
+      const long line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
+      throw SceneError(path + ":" + std::to_string(line) + ": " + t + "> without its count attribute (COLLADA requires "
+                       "one; assimp 5.2.5 would crash reading the file)");
+    }
+  }
+}
+
 }  // namespace
 
 bool is_imported_format(const std::string& ext) {
@@ -260,6 +286,7 @@ TriangleMesh load_with_assimp(const std::string& path, const std::string& ext_in
   // No FindDegenerates: it turns zero-area triangles into points and lines, whose count
   // would be lost; they are dropped and counted below instead.
   const unsigned flags = aiProcess_Triangulate | aiProcess_ValidateDataStructure;
+  if (ext == ".dae") check_collada_arrays(path);
   const aiScene* scene = nullptr;
   try {
     scene = importer.ReadFile(path, flags);

@@ -227,6 +227,19 @@ TEST(MeshImport, GltfWithoutTrianglesIsAnError) {
   EXPECT_NE(what.find("no triangles"), std::string::npos) << what;
 }
 
+// A COLLADA array without its count made assimp 5.2.5 crash (found by fuzz/import_fuzz.cpp):
+// refused before assimp reads it, naming the file and line.
+TEST(MeshImport, ColladaArrayWithoutCountIsRefusedBeforeAssimpCrashesOnIt) {
+  TempDir dir;
+  std::string text = test::read_file(kImport + "office.dae");
+  const std::string with = "<float_array id=\"floor_2-positions-array\" count=\"12\">";
+  ASSERT_NE(text.find(with), std::string::npos);
+  text.replace(text.find(with), with.size(), "<float_array id=\"floor_2-positions-array\">");
+  const std::string dae = dir.write("no_count.dae", text);
+  const std::string what = test::error_of<SceneError>([&] { (void)load_mesh(dae); });
+  EXPECT_NE(what.find(dae + ":233: <float_array> without its count attribute"), std::string::npos) << what;
+}
+
 // Bytes that are no model: assimp's reason, the file named.
 TEST(MeshImport, UnreadableModelIsAnErrorNamingTheFile) {
   TempDir dir;

@@ -410,7 +410,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"ObjWithNoFaces", "verts.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng floor\n", ": ", {"no faces"}},
         BadFile{"EmptyObj", "empty.obj", "", nullptr, {"no faces"}},
         BadFile{"UnsupportedExtension", "mesh.stl", "solid x\nendsolid x\n", ": ",
-                {"unsupported mesh format '.stl'", ".obj, .ply or .off"}},
+                {"unsupported mesh format '.stl'", ".obj, .ply, .off, .gltf, .glb, .3ds, .dae, .fbx or .ifc"}},
         BadFile{"NoExtension", "mesh", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", nullptr,
                 {"unsupported mesh format ''"}}),
     [](const ::testing::TestParamInfo<BadFile>& info) { return std::string(info.param.name); });
