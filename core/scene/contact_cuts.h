@@ -23,17 +23,23 @@ struct ContactSegment {
 
 using Triangle3 = std::array<Eigen::Vector3d, 3>;
 
-// For each triangle, the segments along which other triangles touch or cross it:
-// another triangle's edge lying in its plane (a box's foot on the floor, a coplanar
-// sheet's outline) or the line where another triangle passes through its plane, each
-// clipped to the triangle; segments along the triangle's own edges (its mesh
-// neighbours) and shorter than the tolerance are left out. Deterministic (segments in
-// the order of the other triangle's index); `threads` 0: all cores.
+// For each triangle, the segments along which triangles of other surfaces touch or
+// cross it on its front side: another triangle's edge lying in its plane (a box's
+// foot on the floor, a coplanar sheet's outline) or the line where another triangle
+// passes through its plane, each clipped to the triangle. Left out: triangles of the
+// same surface (a chair's parts meeting each other: many small cuts, little light),
+// triangles wholly behind it, segments along the triangle's own edges (its mesh
+// neighbours) and shorter than the tolerance. `surface` gives each triangle's surface.
+// Deterministic (segments in the order of the other triangle's index); `threads` 0:
+// all cores.
 std::vector<std::vector<ContactSegment>> contact_segments(const std::vector<Triangle3>& triangles,
+                                                          const std::vector<int>& surface,
                                                           double tolerance_m = kContactTolerance_m, int threads = 0);
 
-// Cuts `patch` (a triangle in the plane of `parent`'s segments) along every segment
-// that passes through it: each piece is split by the segment's line where the segment
+// Cuts `patch` (a triangle in the plane of its segments) along every segment that
+// passes through it and is at least a tenth of the patch's longest edge long (shorter
+// ones, a thin leg's many-sided outline, would make dozens of pieces for a few per
+// cent of its area): each piece is split by the segment's line where the segment
 // enters it. Appends the pieces (triangles, wound as `patch`, together exactly its
 // area) to `out`; `patch` itself when nothing cuts it. Returns whether it was cut.
 bool cut_along_segments(const Triangle3& patch, const std::vector<ContactSegment>& segments,

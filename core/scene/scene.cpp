@@ -152,12 +152,14 @@ Scene make_scene(const TriangleMesh& mesh, const TriangleReflectance& reflectanc
   std::vector<std::vector<ContactSegment>> contacts;
   if (options.cut_at_contacts) {
     std::vector<Triangle3> triangles;
+    std::vector<int> surfaces;
     triangles.reserve(kept.size());
     for (const std::size_t t : kept) {
       const auto& tri = mesh.triangles[t];
       triangles.push_back({positions[tri[0]], positions[tri[1]], positions[tri[2]]});
+      surfaces.push_back(mesh.triangle_surface[t]);
     }
-    contacts = contact_segments(triangles);
+    contacts = contact_segments(triangles, surfaces);
     for (const auto& c : contacts) scene.stats.contact_segments += c.size();
   }
 

@@ -116,7 +116,7 @@ TEST(ContactCuts, SegmentsAreTheFootprintOfABoxAndLieInTheFace) {
   // One side of a box standing on the floor (its bottom edge from (1, 1) to (2, 1)).
   triangles.push_back({V(1, 1, 0), V(2, 1, 0), V(2, 1, 1)});
   triangles.push_back({V(1, 1, 0), V(2, 1, 1), V(1, 1, 1)});
-  const auto segments = contact_segments(triangles);
+  const auto segments = contact_segments(triangles, {0, 0, 1, 1});
   ASSERT_EQ(segments.size(), 4u);
   double length = 0.0;
   for (int t = 0; t < 2; ++t)
