@@ -17,7 +17,7 @@ cleanup() {
 trap cleanup EXIT
 
 start=$(date +%s%N)
-"$ilp" run "$job" --out "$work/idle" --no-cache -q > "$work/idle.log"
+"$ilp" run "$job" --out "$work/idle" --no-cache -q > "$work/idle.log" 2>&1
 idle_ms=$(( ($(date +%s%N) - start) / 1000000 ))
 
 for _ in 1 2; do
@@ -25,7 +25,7 @@ for _ in 1 2; do
   burners+=("$!")
 done
 start=$(date +%s%N)
-nice -n 10 "$ilp" run "$job" --out "$work/busy" --no-cache -q > "$work/busy.log"
+nice -n 10 "$ilp" run "$job" --out "$work/busy" --no-cache -q > "$work/busy.log" 2>&1
 busy_ms=$(( ($(date +%s%N) - start) / 1000000 ))
 for pid in "${burners[@]}"; do kill "$pid"; done
 burners=()

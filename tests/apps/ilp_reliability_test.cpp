@@ -204,7 +204,8 @@ Files files_in(const std::string& folder) {
   return out;
 }
 
-const std::vector<std::string> kRunFiles = {"result.json", "illuminance.csv", "plan.svg", "scene.ply", "plan.png"};
+// The json format writes result.json and its timings.json.
+const std::vector<std::string> kRunFiles = {"result.json", "timings.json", "illuminance.csv", "plan.svg", "scene.ply", "plan.png"};
 
 // Starts `ilp args...` in the background with `env` (NAME=VALUE ...), stderr to `err`.
 pid_t start_ilp(const TempDir& dir, const std::string& env, const std::vector<std::string>& args,

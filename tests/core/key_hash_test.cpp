@@ -115,7 +115,7 @@ TEST(KeyHash, SceneOptionsCoverEveryField) {
       {"up_axis", [](SceneOptions& o) { o.up_axis = UpAxis::y; }},
       {"scale_to_m", [](SceneOptions& o) { o.scale_to_m = 0.001; }},
       {"max_patch_edge_m", [](SceneOptions& o) { o.max_patch_edge_m = 0.25; }},
-      {"cut_at_contacts", [](SceneOptions& o) { o.cut_at_contacts = false; }},
+      {"cut_at_contacts", [](SceneOptions& o) { o.cut_at_contacts = true; }},
       left_out<SceneOptions>("max_patches", [](SceneOptions& o) { o.max_patches = 1000; }),
   });
 }
