@@ -15,6 +15,18 @@ namespace ilp {
 // Product x count, watts each and in all (empty when the outcome has no layout).
 std::vector<BillLine> bill_of_materials(const VariantPlan& plan, const JobOutcome& outcome);
 
+// The verdict's lines of an outcome: each goal (maintained values, judged against
+// `job`'s targets) and each constraint.
+struct VerdictLines {
+  std::vector<VerdictLine> goals, constraints;
+  bool all_met() const;  // every line met
+};
+VerdictLines verdict_lines(const JobConfig& job, const JobOutcome& outcome);
+
+// A variant's record: its summary line, and its lines when it was searched.
+VariantRecord variant_record(const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
+                             const std::string& summary, bool chosen);
+
 // The record of the chosen variant's outcome, goals judged against `job`'s targets,
 // with the grids' records and the run's phase timings.
 ResultRecord make_record(const std::string& program_version, const PreparedJob& prepared, const JobConfig& job,

@@ -130,7 +130,7 @@ TEST(IlpRunGrids, WritesGridCsvAndIsoluxPlansFromTheReportedValues) {
   ASSERT_EQ(strip.size(), 8u) << "a grid without a goal is reported too\n" << r.out;
   EXPECT_EQ(plane[0], kWorkPlanePoints);
   EXPECT_EQ(strip[0], kStripPoints);
-  EXPECT_NEAR(plane[5], 200.0, 0.05) << "the verified maintained Em just meets the target";
+  EXPECT_NEAR(plane[5], 200.0 * 1.005, 0.05) << "the verified maintained Em meets the target by the 0.5 % margin";
 
   const std::map<std::string, CsvGrid> csv = read_grid_csv((fs::path(out) / "grid.csv").string());
   ASSERT_EQ(csv.size(), 2u);
