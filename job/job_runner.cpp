@@ -260,9 +260,10 @@ std::pair<double, double> upward_area_m2(const Scene& scene, int surface) {
 
 // The power density's area, the first that applies: the finished floor the job names
 // (luminaires.floor_surface); the floor under the first horizontal grid laid over a
-// surface whose upward patches lie at the room's lowest level (a grid over a table top
-// is a task area, not the floor); the first horizontal grid's own area (its cells,
-// named as such); else the mounting surface's plan area.
+// surface whose upward patches lie at the room's lowest level; the own area (its cells,
+// named as such) of the first horizontal grid drawn as a rectangle or polygon (a grid
+// over a raised surface, a table top, is a task area and gives none); else the
+// mounting surface's plan area.
 void set_floor_area(JobOutcome& out, const PreparedJob& prepared) {
   const Scene& scene = prepared.loaded.scene;
   const CandidateSpec& c = prepared.plan.model.candidates;
@@ -285,12 +286,14 @@ void set_floor_area(JobOutcome& out, const PreparedJob& prepared) {
       }
       break;
     }
-  for (const CalcGrid& g : prepared.model.grids)
-    if (g.kind == GridKind::horizontal && g.area_m2 > 0.0) {
+  for (std::size_t k = 0; k < prepared.model.grids.size(); ++k) {
+    const CalcGrid& g = prepared.model.grids[k];
+    if (g.kind == GridKind::horizontal && prepared.plan.model.grids[k].over_surface.empty() && g.area_m2 > 0.0) {
       out.floor_area_m2 = g.area_m2;
       out.floor_area_source = "area of grid '" + g.name + "' (no floor surface known)";
       return;
     }
+  }
   out.floor_area_m2 = out.mounting_area_m2;
   out.floor_area_source = c.suspended_height_m ? std::string("plan area of the suspension zone")
                                                : "plan area of the mounting surface '" + c.mounting_surface + "'";

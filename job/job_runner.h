@@ -99,9 +99,9 @@ struct JobOutcome {
   double fixed_flux_lm = 0.0;               // placed in the config (not counted in power_w)
   double mounting_area_m2 = 0.0;
   // The power density's area, the first known: the floor luminaires.floor_surface names,
-  // the floor under the first horizontal grid laid over a floor-level surface, the first
-  // horizontal grid's own area, else the mounting surface's plan area (floor_area_source
-  // says which).
+  // the floor under the first horizontal grid laid over a floor-level surface, the own
+  // area of the first horizontal grid drawn as a rectangle or polygon, else the mounting
+  // surface's plan area (floor_area_source says which).
   double floor_area_m2 = 0.0;
   std::string floor_area_source;            // what floor_area_m2 is the area of
   double power_density_w_per_m2 = 0.0;      // power_w / floor_area_m2

@@ -204,5 +204,40 @@ TEST(VerificationMargin, TheFloorIsCheckedAsAKey) {
   }
 }
 
+// The power density's area: a rectangle grid over no floor surface gave the mounting
+// surface's plan area (38 W/m² "over 56.74 m²" for a 116 m² nave grid); it is the
+// grid's own area now, named, unless the job names its floor.
+std::string rectangle_grid_job(const test::TempDir& dir, const std::string& floor_surface) {
+  dir.write("room.obj", test::room_obj({}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  count: 1\n" + floor_surface;
+  const std::string rest = "grids:\n  - name: task\n    rectangle_m: [[0.5, 0.5], [2.5, 3.5]]\n    height_m: 0.8\n"
+                           "    border_m: 0\n    spacing_m: 0.5\n"
+                           "optimizer:\n  max_evaluations: 200\n  local_max_evaluations: 100\n";
+  return dir.write("job.yaml", test::room_job("0.4", luminaires, "  - grid: task\n    average_lux: 100\n", rest));
+}
+
+TEST(PowerDensity, ARectangleGridOverNoFloorGivesItsOwnAreaNamed) {
+  test::TempDir dir;
+  const JobConfig job = load_job_config(rectangle_grid_job(dir, ""));
+  const PreparedJob prepared = test::prepare(job);
+  const JobOutcome outcome = solve_prepared(prepared, job);
+  ASSERT_EQ(prepared.model.grids.size(), 1u);
+  EXPECT_NEAR(prepared.model.grids[0].area_m2, 6.0, 1e-9) << "2 x 3 m in 0.5 m cells";
+  EXPECT_NEAR(outcome.mounting_area_m2, 16.0, 1e-9);
+  EXPECT_NEAR(outcome.floor_area_m2, 6.0, 1e-9);
+  EXPECT_EQ(outcome.floor_area_source, "area of grid 'task' (no floor surface known)");
+  EXPECT_NEAR(outcome.power_density_w_per_m2, outcome.power_w / 6.0, 1e-12);
+}
+
+TEST(PowerDensity, TheFloorTheJobNamesIsTheArea) {
+  test::TempDir dir;
+  const JobConfig job = load_job_config(rectangle_grid_job(dir, "  floor_surface: floor\n"));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), job);
+  EXPECT_NEAR(outcome.floor_area_m2, 16.0, 1e-9);
+  EXPECT_EQ(outcome.floor_area_source, "floor 'floor' (luminaires.floor_surface)");
+}
+
 }  // namespace
 }  // namespace ilp
