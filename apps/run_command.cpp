@@ -175,14 +175,22 @@ void stage_plan_file(OutputSet& set, const RunProducts& p, const std::string& na
 void stage_plan_svg(OutputSet& set, const RunProducts& p) { stage_plan_file(set, p, "plan.svg"); }
 void stage_plan_png(OutputSet& set, const RunProducts& p) { stage_plan_file(set, p, "plan.png"); }
 
-// The PLY's colour scale is the plan's (colour_scale_for over the same values), so both read the same.
+// The PLY's colour scale spans the values it shows (verified where the job was verified:
+// every patch after an exact solve), not only the goal patches' (none when every goal
+// is on a grid, which gave a 0 .. 1 lx scale), up to their area-weighted 99th
+// percentile: the few patches of a housing right under a panel (14,700 lx on the
+// classroom, where 99 % of the area is under 570 lx) take the top colour.
+constexpr double kPlyScaleQuantile = 0.99;
+
 void stage_scene_ply(OutputSet& set, const RunProducts& p) {
   const Scene& scene = p.prepared.loaded.scene;
   Eigen::VectorXd lux = verified_lux_per_patch(scene, p.outcome);
   if (p.outcome.verification.method == "none")
     for (std::size_t r = 0; r < p.prepared.model.goal_patches.size(); ++r)
       lux[p.prepared.model.goal_patches[r]] = p.outcome.predicted_lux[static_cast<Eigen::Index>(r)];
-  write_illuminance_ply(set.staging_path("scene.ply"), scene, lux, colour_scale_for(picture_goal_lux(p.prepared, p.outcome)));
+  Eigen::VectorXd area(lux.size());
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) area[static_cast<Eigen::Index>(i)] = scene.patches[i].area_m2;
+  write_illuminance_ply(set.staging_path("scene.ply"), scene, lux, colour_scale_for(lux, area, kPlyScaleQuantile));
   set.staged("scene.ply");
 }
 
@@ -413,14 +421,14 @@ int run_job(const RunArgs& args) {
   for (const GridResult& g : grids) grid_records.push_back(grid_record(g, outcome.verification.method != "none"));
   ResultRecord record = make_record(kVersion, prepared, job, outcome, grid_records, timings);
   record.bill_of_materials = bill_of_materials(prepared.plan, outcome);
-  record.variants = chosen.tried;
+  record.variants = chosen.records;
   record.files = run_output_names(job, true);
   if (no_layout) record_no_layout(record);
   print_result(std::cout, record);
   for (const std::string& file : write_outputs(set, {prepared, job, outcome, record, grids}))
     std::cout << "wrote " << file << "\n";
   std::cout << std::fixed << std::setprecision(2) << "peak memory " << peak_memory_gb() << " GB (resident)\n";
-  return outcome.all_met && !no_layout ? 0 : 2;
+  return record.all_met && !no_layout ? 0 : 2;
 }
 
 int run_sweep(const SweepArgs& args) {
@@ -445,10 +453,13 @@ int run_sweep(const SweepArgs& args) {
   std::ostringstream csv;
   csv << std::setprecision(9) << csv_field(sweep.key)
       << ",luminaires,power_w,power_density_w_per_m2,feasible,all_met,flux_correction,evaluations,search_s,verification_s";
+  // Targets are maintained values (as the job states them); the search and verification
+  // work on initial ones (new luminaires): each column says which (a U0 ratio is both).
   for (const GoalSetting& g : job.goals) {
     const std::string label = "goals." + g.name + "." + std::string(goal_key(g.metric));
-    csv << "," << csv_field(label + ".target") << "," << csv_field(label + ".predicted") << ","
-        << csv_field(label + ".verified");
+    for (const char* column : {".target_maintained", ".predicted_initial", ".predicted_maintained", ".verified_initial",
+                               ".verified_maintained", ".met"})
+      csv << "," << csv_field(label + column);
   }
   csv << "\n";
   std::vector<double> xs, powers;
@@ -464,9 +475,13 @@ int run_sweep(const SweepArgs& args) {
         << outcome.power_density_w_per_m2 << ',' << outcome.feasible << ',' << outcome.all_met << ','
         << outcome.flux_correction << ',' << outcome.search.evaluations << ',' << outcome.search.seconds << ','
         << outcome.verify_seconds;
-    for (const GoalOutcome& g : outcome.goals) {
-      csv << ',' << g.predicted.target << ',' << g.predicted.value << ',';
-      if (g.verified) csv << g.verified->value;
+    for (std::size_t k = 0; k < outcome.goals.size(); ++k) {
+      const GoalOutcome& g = outcome.goals[k];
+      const double mf = metric_rule(g.predicted.metric).lux ? outcome.maintenance_factor : 1.0;
+      csv << ',' << point.goals[k].target << ',' << g.predicted.value << ',' << g.predicted.value * mf << ',';
+      if (g.verified) csv << g.verified->value << ',' << g.verified->value * mf;
+      else csv << ',';
+      csv << ',' << g.met;
     }
     csv << "\n";
     std::cout << std::defaultfloat << std::setprecision(6) << std::left << std::setw(28) << sweep.values[i] << std::right << std::setw(12) << outcome.luminaires.size()

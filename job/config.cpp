@@ -632,6 +632,7 @@ void read_verification(const Map& verification, JobConfig& job) {
   if (auto v = verification.get("indirect_rays_per_patch"))
     s.indirect_rays_per_patch = static_cast<int>(v->integer(1, 1 << 24));
   if (auto v = verification.get("rounds")) s.rounds = static_cast<int>(v->integer(1, 10));
+  if (auto v = verification.get("margin")) s.margin = v->number_in(0.0, 0.2, false, "[0, 0.2]");
   if (auto v = verification.get("max_exact_patches"))
     s.max_exact_patches = static_cast<std::size_t>(v->integer(1, 100'000'000));
   if (auto v = verification.get("sample_fraction")) {
@@ -892,7 +893,7 @@ JobConfig load_job_config(const std::string& path) {
                               "max_seconds", "seed"}),
                      job);
     if (auto v = top.get("verification"))
-      read_verification(Map(*v, {"method", "rays_per_patch", "indirect_rays_per_patch", "rounds", "max_exact_patches", "sample_fraction"}), job);
+      read_verification(Map(*v, {"method", "rays_per_patch", "indirect_rays_per_patch", "rounds", "max_exact_patches", "sample_fraction", "margin"}), job);
     if (auto v = top.get("output")) read_output(Map(*v, {"directory", "formats", "plan_cut_height_m"}), job);
     if (auto v = top.get("energy")) read_energy(*v, job);
     if (auto v = top.get("sweep")) read_sweep(*v, top.key_loc("sweep"), job);

@@ -223,6 +223,10 @@ struct VerificationSettings {
   int rounds = 3;
   std::size_t max_exact_patches = 30000;
   double sample_fraction = 0.25;  // method sample: k as a fraction of the reflecting patches
+  // The least margin (relative) the flux correction keeps above the target of each goal
+  // it scales (average, minimum), for the error the verification does not estimate
+  // (job/verification_margin.h).
+  double margin = 0.005;
 };
 
 struct OutputSettings {

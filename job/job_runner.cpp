@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "core/base/error.h"
 #include "core/exact/exact_solver.h"
@@ -19,6 +20,7 @@
 #include "job/job_cost.h"
 #include "job/model_cache.h"
 #include "job/round_calibration.h"
+#include "job/verification_margin.h"
 
 namespace ilp {
 namespace {
@@ -68,6 +70,7 @@ Verification verify_layout(const PreparedJob& prepared, const std::vector<Placed
                                                           options.form_factors, options.direct_light, progress);
       out.point_lux = at.total_lux;
       out.point_direct_lux = at.direct_lux;
+      out.point_error_lux = at.indirect_standard_error_lux;
     }
   } else {
     const RayCaster caster(scene, worker_threads(job, run));
@@ -113,20 +116,23 @@ Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification
 
 namespace {
 
-// The flux scale that makes the verified values just meet the lower-bound goals
-// (min_power) or fit the average targets best (closest_to_target): illuminance is
-// linear in flux, so scaling every flux scales the verified values exactly.
+// The flux scale that makes the verified values meet the lower-bound goals with their
+// margins, target x (1 + margin) (min_power), or fit the average targets best
+// (closest_to_target): illuminance is linear in flux, so scaling every flux scales the
+// verified values exactly.
 double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgement>& verified,
-                           const std::vector<PlacedLuminaire>& layout, bool& limited) {
+                           const std::vector<GoalMargin>& margins, const std::vector<PlacedLuminaire>& layout,
+                           bool& limited) {
   limited = false;
   double scale = 0.0, num = 0.0, den = 0.0;
-  for (const GoalJudgement& g : verified) {
+  for (std::size_t k = 0; k < verified.size(); ++k) {
+    const GoalJudgement& g = verified[k];
     if (is_target_goal(spec.objective, g.metric)) {
       num += g.value / g.target;
       den += g.value * g.value / (g.target * g.target);
     } else if (metric_rule(g.metric).scale_closed_form && g.target > 0.0) {
       if (!(g.value > 0.0)) return 1.0;
-      scale = std::max(scale, g.target / g.value);
+      scale = std::max(scale, g.target * (1.0 + margins[k].margin) / g.value);
     }
   }
   if (objective_rule(spec.objective).averages_are_targets) scale = den > 0.0 ? num / den : 1.0;
@@ -245,31 +251,56 @@ PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const Run
 
 namespace {
 
-// The power density's floor: a grid's surface whose upward patches lie at the room's
-// lowest level (a grid over a table top is a task area, not the floor); else the
+// The area of a surface's patches facing up, and the height of the highest of them.
+std::pair<double, double> upward_area_m2(const Scene& scene, int surface) {
+  double area = 0.0, highest_m = -std::numeric_limits<double>::infinity();
+  for (const Patch& p : scene.patches)
+    if (p.surface == surface && p.normal.z() >= 0.9) {
+      area += p.area_m2;
+      highest_m = std::max(highest_m, p.centroid_m.z());
+    }
+  return {area, highest_m};
+}
+
+// The power density's area, the first that applies: the finished floor the job names
+// (luminaires.floor_surface); the floor under the first horizontal grid laid over a
+// surface whose upward patches lie at the room's lowest level; the own area (its cells,
+// named as such) of the first horizontal grid drawn as a rectangle or polygon (a grid
+// over a raised surface, a table top, is a task area and gives none); else the
 // mounting surface's plan area.
 void set_floor_area(JobOutcome& out, const PreparedJob& prepared) {
-  out.floor_area_m2 = out.mounting_area_m2;
+  const Scene& scene = prepared.loaded.scene;
   const CandidateSpec& c = prepared.plan.model.candidates;
-  out.floor_area_source = c.suspended_height_m ? std::string("plan area of the suspension zone")
-                                               : "plan area of the mounting surface '" + c.mounting_surface + "'";
+  if (!c.floor_surface.empty()) {
+    const double area = upward_area_m2(scene, scene.find_surface(c.floor_surface)).first;
+    if (area > 0.0) {
+      out.floor_area_m2 = area;
+      out.floor_area_source = "floor '" + c.floor_surface + "' (luminaires.floor_surface)";
+      return;
+    }
+  }
   constexpr double kFloorLevelTolerance_m = 0.2;
   for (const CalcGridSetting& g : prepared.plan.model.grids)
     if (g.kind == GridKind::horizontal && !g.over_surface.empty()) {
-      const Scene& scene = prepared.loaded.scene;
-      const int surface = scene.find_surface(g.over_surface);
-      double area = 0.0, highest_m = -std::numeric_limits<double>::infinity();
-      for (const Patch& p : scene.patches)
-        if (p.surface == surface && p.normal.z() >= 0.9) {
-          area += p.area_m2;
-          highest_m = std::max(highest_m, p.centroid_m.z());
-        }
+      const auto [area, highest_m] = upward_area_m2(scene, scene.find_surface(g.over_surface));
       if (area > 0.0 && highest_m <= scene.bounds_m.min().z() + kFloorLevelTolerance_m) {
         out.floor_area_m2 = area;
         out.floor_area_source = "floor '" + g.over_surface + "' (under grid '" + g.name + "')";
+        return;
       }
       break;
     }
+  for (std::size_t k = 0; k < prepared.model.grids.size(); ++k) {
+    const CalcGrid& g = prepared.model.grids[k];
+    if (g.kind == GridKind::horizontal && prepared.plan.model.grids[k].over_surface.empty() && g.area_m2 > 0.0) {
+      out.floor_area_m2 = g.area_m2;
+      out.floor_area_source = "area of grid '" + g.name + "' (no floor surface known)";
+      return;
+    }
+  }
+  out.floor_area_m2 = out.mounting_area_m2;
+  out.floor_area_source = c.suspended_height_m ? std::string("plan area of the suspension zone")
+                                               : "plan area of the mounting surface '" + c.mounting_surface + "'";
 }
 
 // The glare side of a layout's light (GoalLight): per observer, the indirect illuminance at
@@ -339,13 +370,17 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
   out.verification = verify_layout(prepared, out.luminaires, progress);
   out.verify_seconds = out.verification.seconds;
   std::optional<std::vector<GoalJudgement>> verified;
+  std::vector<GoalMargin> margins(job.goals.size());
+  out.margin_floor = prepared.job.verification.margin;
   if (out.verification.method != "none") {
-    verified = judge(model, job, verified_goal_lux(model, out.verification),
-                     verified_eye_light(prepared, out.luminaires, out.verification));
+    const Eigen::VectorXd verified_lux = verified_goal_lux(model, out.verification);
+    verified = judge(model, job, verified_lux, verified_eye_light(prepared, out.luminaires, out.verification));
+    margins = goal_margins(model, *verified, verified_lux, out.verification.point_error_lux, out.margin_floor,
+                           objective_rule(job.objective).averages_are_targets);
     // Without fixed sources every illuminance is proportional to the common flux scale.
     const bool no_fixed = model.fixed_lux.cwiseAbs().maxCoeff() == 0.0;
     if (no_fixed && !out.luminaires.empty()) {
-      out.flux_correction = verified_flux_scale(job, *verified, out.luminaires, out.flux_correction_limited);
+      out.flux_correction = verified_flux_scale(job, *verified, margins, out.luminaires, out.flux_correction_limited);
       if (std::abs(out.flux_correction - 1.0) > 1e-12) {
         for (PlacedLuminaire& l : out.luminaires) {
           l.flux_lm *= out.flux_correction;
@@ -357,6 +392,7 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
         out.verification.direct_lux *= out.flux_correction;
         out.verification.point_lux *= out.flux_correction;
         out.verification.point_direct_lux *= out.flux_correction;
+        out.verification.point_error_lux *= out.flux_correction;
         predicted = judge(model, job, out.predicted_lux, predicted_eye_light(best, out.flux_correction));
         verified = judge(model, job, verified_goal_lux(model, out.verification),
                          verified_eye_light(prepared, out.luminaires, out.verification));
@@ -371,11 +407,14 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
   out.power_density_w_per_m2 = out.floor_area_m2 > 0.0 ? out.power_w / out.floor_area_m2 : 0.0;
   // Feasible as predicted: against the real targets, with the distance constraint.
   out.feasible = best.distance_violation <= 1e-4;
-  out.all_met = out.feasible;
+  out.constraints = check_constraints(job, model.grid.surface_box_m(), prepared.plan.model.candidates.wall_distance_m, out.luminaires);
+  out.all_met = std::all_of(out.constraints.begin(), out.constraints.end(), [](const ConstraintOutcome& c) { return c.met; });
   for (std::size_t g = 0; g < predicted.size(); ++g) {
     GoalOutcome o;
     o.predicted = predicted[g];
     o.tolerance = goal_tolerance(job.objective, predicted[g].metric);
+    o.relative_error = margins[g].relative_error;
+    o.margin = margins[g].margin;
     // The closed-form scale meets goals to round-off; allow for it.
     const bool predicted_met = as_searched[g].violation <= o.tolerance + 1e-9;
     if (!is_target_goal(job.objective, predicted[g].metric))

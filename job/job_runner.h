@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "job/config.h"
+#include "job/constraint_check.h"
 #include "job/job_scene.h"
 #include "job/plan.h"
 #include "core/base/progress.h"
@@ -58,6 +59,11 @@ struct GoalOutcome {
   bool met = false;                        // judged on the verified value (predicted if unverified)
   bool fails_only_on_verification = false;
   double tolerance = 0.0;                  // relative violation accepted as met
+  // The verification's relative standard error of the verified value, when it has an
+  // estimate, and the margin the flux correction kept above the target (relative; 0
+  // for goals it does not scale to: job/verification_margin.h).
+  std::optional<double> relative_error;
+  double margin = 0.0;
 };
 
 struct Verification {
@@ -70,6 +76,9 @@ struct Verification {
   // At the model's goal points (LightingModel::goal_points order): exact, each point's
   // gather of the exact radiosity with rays_per_patch rays; sample, the sample operator's rows.
   Eigen::VectorXd point_lux, point_direct_lux;
+  // Exact: each goal point's statistical error (lux, one standard error, of its gather;
+  // core/rays/point_gather.h). Empty when there is no estimate (sample).
+  Eigen::VectorXd point_error_lux;
 };
 
 // Places `layout` as real luminaires in the job's scene and solves it as
@@ -84,11 +93,15 @@ Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification
 struct JobOutcome {
   std::vector<PlacedLuminaire> luminaires;  // named L1, L2, ... in this order
   std::vector<GoalOutcome> goals;
+  std::vector<ConstraintOutcome> constraints;  // the job's constraints on the final layout (job/constraint_check.h)
+  double margin_floor = 0.0;                // verification.margin: the least margin above a scaled goal's target
   double power_w = 0.0;                     // of the luminaires placed
   double fixed_flux_lm = 0.0;               // placed in the config (not counted in power_w)
   double mounting_area_m2 = 0.0;
-  // The power density's area: the floor under the first horizontal grid laid over a
-  // surface (its patches facing up), else the mounting surface's plan area.
+  // The power density's area, the first known: the floor luminaires.floor_surface names,
+  // the floor under the first horizontal grid laid over a floor-level surface, the own
+  // area of the first horizontal grid drawn as a rectangle or polygon, else the mounting
+  // surface's plan area (floor_area_source says which).
   double floor_area_m2 = 0.0;
   std::string floor_area_source;            // what floor_area_m2 is the area of
   double power_density_w_per_m2 = 0.0;      // power_w / floor_area_m2
@@ -96,7 +109,7 @@ struct JobOutcome {
   double power_density_w_per_m2_per_100_lx = 0.0;
   double maintenance_factor = 1.0;          // maintained = initial x this
   bool feasible = false;                    // predicted: every constraint met
-  bool all_met = false;                     // judged as `met` is
+  bool all_met = false;                     // every goal met (judged as `met` is) and every constraint
   double flux_correction = 1.0;             // every flux was scaled by this after verification
   bool flux_correction_limited = false;     // the flux range kept it from the scale the goals wanted
   SearchResult search;

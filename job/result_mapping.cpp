@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <string_view>
 
 #include "core/energy/leni.h"
 #include "optimizer/goal_metrics.h"
@@ -84,6 +85,83 @@ std::vector<BillLine> bill_of_materials(const VariantPlan& plan, const JobOutcom
   return {line};
 }
 
+namespace {
+
+std::string_view rule_text(ConstraintRule rule) {
+  switch (rule) {
+    case ConstraintRule::at_least: return ">=";
+    case ConstraintRule::at_most: return "<=";
+    case ConstraintRule::within: return "in";
+  }
+  return "";
+}
+
+}  // namespace
+
+bool VerdictLines::all_met() const {
+  auto met = [](const VerdictLine& l) { return l.met; };
+  return std::all_of(goals.begin(), goals.end(), met) && std::all_of(constraints.begin(), constraints.end(), met);
+}
+
+VerdictLines verdict_lines(const JobConfig& job, const JobOutcome& outcome) {
+  VerdictLines out;
+  for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
+    const GoalOutcome& o = outcome.goals[g];
+    const MetricRule& rule = metric_rule(o.predicted.metric);
+    VerdictLine rec;
+    rec.name = o.predicted.name;
+    rec.surfaces = job.goals[g].surfaces;
+    rec.grid = job.goals[g].grid;
+    rec.metric = std::string(rule.name);
+    rec.unit = std::string(rule.unit);
+    // The report shows maintained values, as the job states its targets.
+    const double mf = rule.lux ? outcome.maintenance_factor : 1.0;
+    rec.target = job.goals[g].target;
+    rec.predicted = o.predicted.value * mf;
+    if (o.verified) rec.verified = o.verified->value * mf;
+    rec.met = o.met;
+    rec.fails_only_on_verification = o.fails_only_on_verification;
+    rec.tolerance = o.tolerance;
+    rec.rule = is_target_goal(job.objective, o.predicted.metric) ? "=" : rule.lower_bound ? ">=" : "<=";
+    rec.relative_error = o.relative_error;
+    rec.margin = o.margin;
+    out.goals.push_back(rec);
+  }
+  for (const ConstraintOutcome& c : outcome.constraints) {
+    VerdictLine rec;
+    rec.kind = "constraint";
+    rec.name = c.name;
+    rec.metric = c.what;
+    rec.unit = c.unit;
+    rec.rule = std::string(rule_text(c.rule));
+    rec.target = c.target;
+    rec.target_max = c.target_max;
+    rec.predicted = c.value;
+    rec.met = c.met;
+    rec.tolerance = c.tolerance;
+    out.constraints.push_back(rec);
+  }
+  return out;
+}
+
+VariantRecord variant_record(const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
+                             const std::string& summary, bool chosen) {
+  VariantRecord v;
+  v.product = prepared.plan.product.product;
+  v.rotation_deg = prepared.plan.product.rotation_deg;
+  v.summary = summary;
+  v.chosen = chosen;
+  v.searched = !outcome.search.beaten;
+  if (!v.searched) return v;
+  v.luminaires = static_cast<int>(outcome.luminaires.size());
+  v.power_w = outcome.power_w;
+  const VerdictLines lines = verdict_lines(job, outcome);
+  v.all_met = lines.all_met();
+  v.goals = lines.goals;
+  v.constraints = lines.constraints;
+  return v;
+}
+
 ResultRecord make_record(const std::string& program_version, const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
                          const std::vector<GridRecord>& grids, const std::vector<std::pair<std::string, double>>& timings) {
   const SearchLuminaire& luminaire = prepared.plan.search.luminaire;
@@ -102,24 +180,10 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
                             luminaire.product, luminaire.rotation_deg,
                             floor_z ? std::optional<double>(l.position_m.z() - *floor_z) : std::nullopt});
   }
-  for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
-    const GoalOutcome& o = outcome.goals[g];
-    GoalRecord rec;
-    rec.name = o.predicted.name;
-    rec.surfaces = job.goals[g].surfaces;
-    rec.grid = job.goals[g].grid;
-    rec.metric = std::string(to_string(o.predicted.metric));
-    rec.unit = std::string(metric_rule(o.predicted.metric).unit);
-    // The report shows maintained values, as the job states its targets.
-    const double mf = metric_rule(o.predicted.metric).lux ? outcome.maintenance_factor : 1.0;
-    rec.target = job.goals[g].target;
-    rec.predicted = o.predicted.value * mf;
-    if (o.verified) rec.verified = o.verified->value * mf;
-    rec.met = o.met;
-    rec.fails_only_on_verification = o.fails_only_on_verification;
-    rec.tolerance = o.tolerance;
-    r.goals.push_back(rec);
-  }
+  const VerdictLines lines = verdict_lines(job, outcome);
+  r.goals = lines.goals;
+  r.constraints = lines.constraints;
+  r.margin_floor = outcome.margin_floor;
   r.power_w = outcome.power_w;
   r.mounting_area_m2 = outcome.mounting_area_m2;
   r.power_density_w_per_m2 = outcome.power_density_w_per_m2;
@@ -133,7 +197,8 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.grids = grids;
   r.fixed_flux_lm = outcome.fixed_flux_lm;
   r.feasible = outcome.feasible;
-  r.all_met = outcome.all_met;
+  // Met exactly when every line is: never "not met" without a line that says why.
+  r.all_met = lines.all_met();
   r.flux_correction = outcome.flux_correction;
   r.flux_correction_limited = outcome.flux_correction_limited;
   r.verification = outcome.verification.method;

@@ -6,6 +6,8 @@
 #include <numeric>
 #include <sstream>
 
+#include "job/result_mapping.h"
+
 namespace ilp {
 namespace {
 
@@ -14,6 +16,17 @@ double least_power_w(const PreparedJob& prepared, const JobConfig& goals_job) {
   SearchSpec spec = prepared.plan.search;
   spec.goals = goal_specs(goals_job, prepared.plan.maintenance_factor);
   return least_layout_power_w(prepared.model, spec);
+}
+
+// The names of the lines an outcome does not meet: "desks uniformity, min_distance_m".
+std::string missed_lines(const JobOutcome& outcome) {
+  std::string out;
+  auto add = [&](const std::string& name) { out += (out.empty() ? "" : ", ") + name; };
+  for (const GoalOutcome& g : outcome.goals)
+    if (!g.met) add(g.predicted.name + " " + std::string(to_string(g.predicted.metric)));
+  for (const ConstraintOutcome& c : outcome.constraints)
+    if (!c.met) add(c.name);
+  return out;
 }
 
 // "PRODUCT at R deg: ..." for the run log and result.json's variants: no timings, so
@@ -29,7 +42,7 @@ std::string tried_line(const VariantPlan& plan, const JobOutcome& outcome, doubl
     line << "not searched: at least " << least_w << " W, no less than the " << to_beat << " W already found";
   else
     line << outcome.luminaires.size() << " luminaires, " << outcome.power_w << " W, "
-         << (outcome.all_met ? "every goal met" : "goals missed");
+         << (outcome.all_met ? "every goal and constraint met" : "not met: " + missed_lines(outcome));
   return line.str();
 }
 
@@ -75,11 +88,13 @@ VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const Job
   bool have = false;
   std::string refusal;  // the first variant whose layout could not be mounted
   best.tried.resize(prepared.size());
+  best.records.resize(prepared.size());
   for (const std::size_t v : order) {
     const double to_beat = bounded && have && best.outcome.all_met ? best.outcome.power_w : kNoPowerToBeat;
     JobOutcome outcome = solve_prepared(prepared[v], goals_job, progress, to_beat);
     if (prepared[v].plan.listed) {
       best.tried[v] = tried_line(prepared[v].plan, outcome, least_w[v], to_beat);
+      best.records[v] = variant_record(prepared[v], goals_job, outcome, best.tried[v], false);
       if (log) log("variant " + std::to_string(v + 1) + ": " + best.tried[v] + timing_note(outcome));
     }
     best.search_seconds += outcome.search.seconds;
@@ -98,7 +113,12 @@ VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const Job
     const LayoutSpec& layout = prepared.front().plan.search.layout;
     throw ConfigError(located(layout.loc, "luminaires.layout: " + refusal));
   }
-  if (!prepared.front().plan.listed) best.tried.clear();
+  if (!prepared.front().plan.listed) {
+    best.tried.clear();
+    best.records.clear();
+  } else if (have) {
+    best.records[best.variant].chosen = true;
+  }
   return best;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "job/job_runner.h"
+#include "output/result_record.h"
 
 namespace ilp {
 
@@ -22,6 +23,7 @@ struct VariantChoice {
   std::size_t variant = 0;          // into the prepared variants
   JobOutcome outcome;
   std::vector<std::string> tried;   // one line per listed product variant (none for the plain panel)
+  std::vector<VariantRecord> records;  // the same variants with their goal and constraint lines
   double search_seconds = 0.0;      // every variant's search, all rounds
   double verify_seconds = 0.0;      // every variant's verification, all rounds
 };

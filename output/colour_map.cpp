@@ -1,6 +1,8 @@
 #include "output/colour_map.h"
 
 #include <algorithm>
+#include <utility>
+#include <vector>
 #include <array>
 #include <cmath>
 
@@ -78,6 +80,28 @@ ColourScale colour_scale_for(const Eigen::VectorXd& lux) {
     if (std::isfinite(lux[i])) largest = std::max(largest, lux[i]);
   if (!(largest > 0.0)) return {0.0, 1.0};  // all NaN, zero or negative: nothing to span
   return {0.0, nice_ceiling(largest)};
+}
+
+ColourScale colour_scale_for(const Eigen::VectorXd& lux, const Eigen::VectorXd& weights, double quantile) {
+  std::vector<std::pair<double, double>> finite;  // value, weight
+  double total = 0.0;
+  for (Eigen::Index i = 0; i < lux.size(); ++i)
+    if (std::isfinite(lux[i]) && weights[i] > 0.0) {
+      finite.emplace_back(lux[i], weights[i]);
+      total += weights[i];
+    }
+  if (finite.empty()) return {0.0, 1.0};
+  std::sort(finite.begin(), finite.end());
+  double below = 0.0, at = finite.back().first;
+  for (const auto& [value, weight] : finite) {
+    below += weight;
+    if (below >= quantile * total) {
+      at = value;
+      break;
+    }
+  }
+  if (!(at > 0.0)) return {0.0, 1.0};
+  return {0.0, nice_ceiling(at)};
 }
 
 }  // namespace ilp

@@ -29,4 +29,10 @@ struct ColourScale {
 // are ignored; no finite entry above 0 gives [0, 1].
 ColourScale colour_scale_for(const Eigen::VectorXd& lux);
 
+// The same up to the `quantile` (in (0, 1]) of the finite entries, each counted with its
+// weight (a patch's area): what a whole scene shows, where a few hot patches (a
+// luminaire housing right under a panel) would otherwise stretch the scale and paint
+// everything else one dark colour. Entries above it take the top colour.
+ColourScale colour_scale_for(const Eigen::VectorXd& lux, const Eigen::VectorXd& weights, double quantile);
+
 }  // namespace ilp

@@ -1,6 +1,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -17,6 +18,33 @@ namespace {
 
 // Keys in the order written, so the file reads top-down like the printed report.
 using json = nlohmann::ordered_json;
+
+json line_json(const VerdictLine& g) {
+  json line = {{"kind", g.kind},   {"name", g.name},       {"surfaces", g.surfaces}, {"grid", g.grid},
+               {"metric", g.metric}, {"unit", g.unit},     {"rule", g.rule},         {"target", g.target}};
+  if (g.rule == "in") line["target_max"] = g.target_max;
+  line["predicted"] = g.predicted;
+  line["verified"] = g.verified ? json(*g.verified) : json(nullptr);
+  line["met"] = g.met;
+  line["fails_only_on_verification"] = g.fails_only_on_verification;
+  line["tolerance"] = g.tolerance;
+  line["relative_error"] = g.relative_error ? json(*g.relative_error) : json(nullptr);
+  line["margin"] = g.margin;
+  return line;
+}
+
+json lines_json(const std::vector<VerdictLine>& lines) {
+  json out = json::array();
+  for (const VerdictLine& l : lines) out.push_back(line_json(l));
+  return out;
+}
+
+json variant_json(const VariantRecord& v) {
+  return {{"product", v.product},     {"rotation_deg", v.rotation_deg}, {"summary", v.summary},
+          {"searched", v.searched},   {"chosen", v.chosen},             {"luminaires", v.luminaires},
+          {"power_w", v.power_w},     {"all_met", v.all_met},           {"goals", lines_json(v.goals)},
+          {"constraints", lines_json(v.constraints)}};
+}
 
 json to_json(const ResultRecord& r) {
   json j;
@@ -44,17 +72,12 @@ json to_json(const ResultRecord& r) {
                                       {"unit_power_w", b.unit_power_w},
                                       {"output_fraction", b.output_fraction},
                                       {"total_power_w", b.total_power_w}});
-  j["variants"] = r.variants;
+  j["variants"] = json::array();
+  for (const VariantRecord& v : r.variants) j["variants"].push_back(variant_json(v));
   j["files"] = r.files;
-  j["goals"] = json::array();
-  for (const GoalRecord& g : r.goals) {
-    json goal = {{"name", g.name},     {"surfaces", g.surfaces}, {"grid", g.grid}, {"metric", g.metric},
-                 {"unit", g.unit},     {"target", g.target},     {"predicted", g.predicted},
-                 {"verified", nullptr}, {"met", g.met},          {"fails_only_on_verification", g.fails_only_on_verification},
-                 {"tolerance", g.tolerance}};
-    if (g.verified) goal["verified"] = *g.verified;
-    j["goals"].push_back(goal);
-  }
+  j["goals"] = lines_json(r.goals);
+  j["constraints"] = lines_json(r.constraints);
+  j["margin_floor"] = r.margin_floor;
   j["power_w"] = r.power_w;
   j["mounting_area_m2"] = r.mounting_area_m2;
   j["power_density_w_per_m2"] = r.power_density_w_per_m2;
@@ -145,6 +168,56 @@ void read_timings(const json& j, ResultRecord& r) {
   }
 }
 
+// A goal or constraint line; files before constraints and margins lack their keys.
+VerdictLine line_from_json(const json& g) {
+  VerdictLine goal;
+  goal.kind = g.value("kind", std::string("goal"));
+  goal.name = g.at("name").get<std::string>();
+  goal.surfaces = g.value("surfaces", std::vector<std::string>());
+  goal.grid = g.value("grid", std::string());
+  goal.metric = g.at("metric").get<std::string>();
+  goal.unit = g.at("unit").get<std::string>();
+  goal.rule = g.value("rule", std::string());
+  goal.target = g.at("target").get<double>();
+  goal.target_max = g.value("target_max", 0.0);
+  goal.predicted = g.at("predicted").get<double>();
+  if (!g.at("verified").is_null()) goal.verified = g.at("verified").get<double>();
+  goal.met = g.at("met").get<bool>();
+  goal.fails_only_on_verification = g.value("fails_only_on_verification", false);
+  goal.tolerance = g.at("tolerance").get<double>();
+  if (g.contains("relative_error") && g.at("relative_error").is_number())
+    goal.relative_error = g.at("relative_error").get<double>();
+  goal.margin = g.value("margin", 0.0);
+  return goal;
+}
+
+std::vector<VerdictLine> lines_from_json(const json& j, const char* key) {
+  std::vector<VerdictLine> out;
+  if (j.contains(key))
+    for (const json& l : j.at(key)) out.push_back(line_from_json(l));
+  return out;
+}
+
+// A variant: an object, or (files before variant tables) its summary line alone.
+VariantRecord variant_from_json(const json& v) {
+  VariantRecord out;
+  if (v.is_string()) {
+    out.summary = v.get<std::string>();
+    return out;
+  }
+  out.product = v.at("product").get<std::string>();
+  out.rotation_deg = v.at("rotation_deg").get<double>();
+  out.summary = v.at("summary").get<std::string>();
+  out.searched = v.at("searched").get<bool>();
+  out.chosen = v.at("chosen").get<bool>();
+  out.luminaires = v.at("luminaires").get<int>();
+  out.power_w = v.at("power_w").get<double>();
+  out.all_met = v.at("all_met").get<bool>();
+  out.goals = lines_from_json(v, "goals");
+  out.constraints = lines_from_json(v, "constraints");
+  return out;
+}
+
 ResultRecord from_json(const json& j) {
   ResultRecord r;
   r.program_version = j.at("program_version").get<std::string>();
@@ -173,23 +246,13 @@ ResultRecord from_json(const json& j) {
                                      b.at("count").get<int>(), b.at("rated_flux_lm").get<double>(),
                                      b.at("unit_power_w").get<double>(), b.at("output_fraction").get<double>(),
                                      b.at("total_power_w").get<double>()});
-  r.variants = j.value("variants", std::vector<std::string>());
+  if (j.contains("variants"))
+    for (const json& v : j.at("variants")) r.variants.push_back(variant_from_json(v));
   r.files = j.value("files", std::vector<std::string>());
-  for (const json& g : j.at("goals")) {
-    GoalRecord goal;
-    goal.name = g.at("name").get<std::string>();
-    goal.surfaces = g.at("surfaces").get<std::vector<std::string>>();
-    goal.grid = g.value("grid", std::string());
-    goal.metric = g.at("metric").get<std::string>();
-    goal.unit = g.at("unit").get<std::string>();
-    goal.target = g.at("target").get<double>();
-    goal.predicted = g.at("predicted").get<double>();
-    if (!g.at("verified").is_null()) goal.verified = g.at("verified").get<double>();
-    goal.met = g.at("met").get<bool>();
-    goal.fails_only_on_verification = g.at("fails_only_on_verification").get<bool>();
-    goal.tolerance = g.at("tolerance").get<double>();
-    r.goals.push_back(goal);
-  }
+  (void)j.at("goals");  // a result has goals (the error names the key)
+  r.goals = lines_from_json(j, "goals");
+  r.constraints = lines_from_json(j, "constraints");
+  r.margin_floor = j.value("margin_floor", 0.0);
   r.power_w = j.at("power_w").get<double>();
   r.mounting_area_m2 = j.at("mounting_area_m2").get<double>();
   r.power_density_w_per_m2 = j.at("power_density_w_per_m2").get<double>();
@@ -266,10 +329,56 @@ std::string fixed(double v, int digits) {
   return os.str();
 }
 
-// Lux with one decimal, ratios (uniformity) with three.
-std::string goal_value(const GoalRecord& g, double v) { return fixed(v, g.unit.empty() ? 3 : 1); }
+// Lux and lumens with one decimal, metres and ratios (uniformity) with three, whole
+// numbers (counts) as they are.
+std::string line_number(const VerdictLine& g, double v) {
+  if (g.unit.empty() && v == std::round(v) && std::abs(v) < 1e9 && (g.kind == "constraint" || v == 0.0))
+    return fixed(v, 0);
+  return fixed(v, g.unit == "lx" || g.unit == "lm" ? 1 : 3);
+}
+std::string goal_value(const GoalRecord& g, double v) { return line_number(g, v); }
+
+// A line's rule, for files written before lines had one: a maximum is an upper bound.
+std::string rule_of(const VerdictLine& g) {
+  if (!g.rule.empty()) return g.rule;
+  return g.metric == "maximum" ? "<=" : ">=";
+}
+
+std::string with_unit(const VerdictLine& g, double v) { return line_number(g, v) + (g.unit.empty() ? "" : " " + g.unit); }
+
+// "goal metric" for goals, the key for constraints.
+std::string line_label(const VerdictLine& g) { return g.kind == "constraint" ? g.name : g.name + " " + g.metric; }
+
+// The target column: ">= 2.000", "<= 0", "8 .. 12", "= 500.0".
+std::string target_text(const VerdictLine& g) {
+  const std::string rule = rule_of(g);
+  if (rule == "in")
+    return g.target == g.target_max ? line_number(g, g.target) : line_number(g, g.target) + " .. " + line_number(g, g.target_max);
+  return rule + " " + line_number(g, g.target);
+}
 
 }  // namespace
+
+std::string failing_line_text(const VerdictLine& g) {
+  const std::string rule = rule_of(g);
+  const double v = g.value();
+  std::string text = line_label(g) + " " + with_unit(g, v);
+  auto by = [&](const char* relation, double bound) {
+    text += std::string(" ") + relation + " " + with_unit(g, bound) + " (by " + with_unit(g, std::abs(v - bound));
+    if (g.unit == "lx" && bound > 0.0) text += ", " + fixed(100.0 * std::abs(v - bound) / bound, 1) + " %";
+    text += ")";
+  };
+  if (rule == "=") {
+    text += ", " + fixed(g.target > 0.0 ? 100.0 * std::abs(v - g.target) / g.target : 0.0, 1) + " % off " +
+            with_unit(g, g.target) + " (tolerance " + fixed(100.0 * g.tolerance, 1) + " %)";
+  } else if (rule == "<=" || (rule == "in" && v > g.target_max)) {
+    by(">", rule == "in" ? g.target_max : g.target);
+  } else {
+    by("<", g.target);
+  }
+  if (g.fails_only_on_verification) text += " on verification only";
+  return text;
+}
 
 void write_result_json(const std::string& path, const ResultRecord& result) {
   const json j = to_json(result);
@@ -346,23 +455,82 @@ void print_arrangements(std::ostream& os, const std::vector<AttemptRecord>& atte
        << first.second << "\n";
 }
 
+// Not met: the lines that fail, by name and by how much, then what kind of miss it is.
+// Met exactly when every line is (result_mapping), so a "NOT MET" always names a line.
+void print_verdict(std::ostream& os, const ResultRecord& r) {
+  if (r.all_met) return;
+  std::vector<const VerdictLine*> failing;
+  bool missed_as_predicted = false;
+  for (const std::vector<VerdictLine>* lines : {&r.goals, &r.constraints})
+    for (const VerdictLine& l : *lines)
+      if (!l.met) {
+        failing.push_back(&l);
+        missed_as_predicted = missed_as_predicted || !l.fails_only_on_verification;
+      }
+  os << "NOT MET: ";
+  if (failing.empty()) os << "the result says not met, but every line is met (a result written by an older ilp?)";
+  for (std::size_t k = 0; k < failing.size(); ++k) os << (k ? "; " : "") << failing_line_text(*failing[k]);
+  os << "\n";
+  if (!missed_as_predicted)
+    os << "NOT MET on verification: the layout meets every goal as predicted, but not every goal as verified\n";
+  else if (r.objective == "min_power")
+    os << "INFEASIBLE: no layout found meets every goal and constraint; the closest found is shown\n";
+  else
+    os << "no layout found comes within the tolerance of every target and meets every constraint; the closest found "
+          "is shown\n";
+}
+
+// The lines of one table: goals (target, predicted, verified, margin) or constraints
+// (target, value).
+void print_lines(std::ostream& os, const std::vector<VerdictLine>& lines, bool goals) {
+  if (lines.empty()) return;
+  if (goals)
+    os << std::left << std::setw(30) << "goal" << std::right << std::setw(12) << "target" << std::setw(11) << "predicted"
+       << std::setw(10) << "verified" << std::setw(9) << "margin" << "  status\n";
+  else
+    os << std::left << std::setw(30) << "constraint" << std::right << std::setw(16) << "target" << std::setw(12)
+       << "value" << "  status\n";
+  for (const VerdictLine& g : lines) {
+    const std::string label = line_label(g) + (g.unit.empty() ? "" : " (" + g.unit + ")");
+    std::string status = g.met ? "met" : "MISSED";
+    const double value = g.value();
+    if (!g.met && g.target > 0.0 && rule_of(g) != "in")
+      status += " by " + fixed(100.0 * std::abs(value - g.target) / g.target, 1) + " %";
+    else if (!g.met)
+      status += ": " + failing_line_text(g);
+    if (g.fails_only_on_verification) status += " (fails on verification only)";
+    if (!goals) {
+      os << std::left << std::setw(30) << label << std::right << std::setw(16) << target_text(g) << std::setw(12)
+         << line_number(g, value) << "  " << status << "\n";
+      continue;
+    }
+    const std::string margin = g.margin > 0.0 ? fixed(100.0 * g.margin, 2) + " %" : std::string("-");
+    os << std::left << std::setw(30) << label << std::right << std::setw(12) << target_text(g) << std::setw(11)
+       << goal_value(g, g.predicted) << std::setw(10) << (g.verified ? goal_value(g, *g.verified) : std::string("-"))
+       << std::setw(9) << margin << "  " << status << "\n";
+  }
+}
+
+// Each product variant tried, and for one not reported that was searched and missed, why.
+void print_variants(std::ostream& os, const std::vector<VariantRecord>& variants) {
+  if (variants.empty()) return;
+  os << "\nvariants:\n";
+  for (const VariantRecord& v : variants) {
+    os << "  " << (v.chosen ? "* " : "  ") << v.summary << "\n";
+    if (!v.searched || v.chosen || v.all_met) continue;
+    for (const std::vector<VerdictLine>* lines : {&v.goals, &v.constraints})
+      for (const VerdictLine& l : *lines)
+        if (!l.met) os << "      not met: " << failing_line_text(l) << "\n";
+  }
+}
+
 void print_result_text(std::ostream& os, const ResultRecord& r) {
   if (!r.no_layout.empty()) {
     os << "NO LAYOUT: " << r.no_layout << "\n";
-    for (const std::string& v : r.variants) os << "  " << v << "\n";
+    for (const VariantRecord& v : r.variants) os << "  " << v.summary << "\n";
     return;
   }
-  // Missed as predicted already (the goals cannot be met as stated), or only as verified.
-  bool missed_as_predicted = false;
-  for (const GoalRecord& g : r.goals) missed_as_predicted = missed_as_predicted || (!g.met && !g.fails_only_on_verification);
-  if (!r.all_met) {
-    if (!missed_as_predicted)
-      os << "NOT MET on verification: the layout meets every goal as predicted, but not every goal as verified\n";
-    else if (r.objective == "min_power")
-      os << "INFEASIBLE: no layout found meets every goal; the closest found is shown\n";
-    else
-      os << "NOT MET: no layout found comes within the tolerance of every target; the closest found is shown\n";
-  }
+  print_verdict(os, r);
   os << (r.all_met ? "Optimal layout (" : "Closest layout found (") << r.objective << ", " << r.luminaires.size()
      << " luminaires";
   if (!r.arrangement.empty())
@@ -415,18 +583,10 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
   if (r.fixed_flux_lm > 0.0)
     os << "(plus " << fixed(r.fixed_flux_lm, 0) << " lm of luminaires placed in the config, not counted above)\n";
 
-  os << "\n" << std::left << std::setw(30) << "goal" << std::right << std::setw(10) << "target" << std::setw(11)
-     << "predicted" << std::setw(10) << "verified" << "  status\n";
-  for (const GoalRecord& g : r.goals) {
-    const std::string label = g.name + " " + g.metric + (g.unit.empty() ? "" : " (" + g.unit + ")");
-    std::string status = g.met ? "met" : "MISSED";
-    const double value = g.verified ? *g.verified : g.predicted;
-    if (!g.met && g.target > 0.0) status += " by " + fixed(100.0 * std::abs(value - g.target) / g.target, 1) + " %";
-    if (g.fails_only_on_verification) status += " (fails on verification only)";
-    os << std::left << std::setw(30) << label << std::right << std::setw(10) << goal_value(g, g.target) << std::setw(11)
-       << goal_value(g, g.predicted) << std::setw(10) << (g.verified ? goal_value(g, *g.verified) : std::string("-"))
-       << "  " << status << "\n";
-  }
+  os << "\n";
+  print_lines(os, r.goals, true);
+  if (!r.constraints.empty()) os << "\n";
+  print_lines(os, r.constraints, false);
   if (!r.grids.empty()) os << "\n";
   print_grid_table(os, r.grids);
   os << "\nverification: ";
@@ -436,6 +596,10 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
     os << "; every flux scaled by " << fixed(r.flux_correction, 4) << " after verification";
   if (r.flux_correction_limited)
     os << " (the flux range allowed no more: the goals wanted another scale)";
+  if (r.verification != "none" && r.margin_floor > 0.0)
+    os << "\nmargin: each average and minimum goal the flux scale meets is kept at least " << fixed(100.0 * r.margin_floor, 2)
+       << " % above its target (verification.margin), more where the verification's own error estimate (2 standard "
+          "errors) is larger";
   os << "\noperator: k = " << r.sample_size << " of " << r.population << " reflecting patches (" << r.patches
      << " patches), " << r.candidates << " candidate positions, seed " << r.seed << "\n";
   os << "search: " << r.evaluations << " evaluations in " << r.searches << (r.searches == 1 ? " round" : " rounds")
@@ -458,6 +622,7 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
        << " (global: " << a.global_stop
        << "; local: " << a.local_stop << ")\n";
   }
+  print_variants(os, r.variants);
   if (r.timings_s.empty()) return;  // a result.json without its timings.json
   os << "timings:";
   for (std::size_t k = 0; k < r.timings_s.size(); ++k)

@@ -31,19 +31,38 @@ struct BillLine {
   double total_power_w = 0.0;    // as set
 };
 
-struct GoalRecord {
-  std::string name;
+// One line of the verdict: a goal or a constraint, its target, its value and whether it
+// is met. Goals carry a predicted value (through the operator) and a verified one;
+// constraints (count, min_distance_m, ...) are facts of the layout: one value, kept in
+// `predicted`. A layout is met only when every line is.
+struct VerdictLine {
+  std::string name;         // goal: its name; constraint: the job's key (min_distance_m, count, ...)
   std::vector<std::string> surfaces;
-  std::string metric;       // average, minimum, maximum, uniformity
-  std::string unit;         // "lx", or "" for uniformity
-  double target = 0.0;      // maintained (as the job states it)
-  double predicted = 0.0;   // maintained: initial x maintenance factor (lux metrics)
+  std::string metric;       // goal: average, minimum, maximum, uniformity; constraint: what the value is
+  std::string unit;         // "lx", "m", "lm", or "" for ratios and counts
+  double target = 0.0;      // maintained (as the job states it); the lower end of a range
+  double predicted = 0.0;   // maintained: initial x maintenance factor (lux metrics); a constraint's value
   std::optional<double> verified;
   bool met = false;         // judged on the verified value when there is one
   bool fails_only_on_verification = false;
   double tolerance = 0.0;   // relative
   std::string grid;         // the calculation grid, or "" for surfaces
+  std::string kind = "goal";  // "goal" or "constraint"
+  // How the value meets the target: ">=", "<=", "in" ([target, target_max]) or "="
+  // (a target to hit within the tolerance). Empty (files before it): by the metric.
+  std::string rule = {};
+  double target_max = 0.0;  // rule "in": the upper end
+  // The verification's relative standard error of the verified value, when estimated,
+  // and the margin (relative) the flux correction kept above the target (0: none).
+  std::optional<double> relative_error = std::nullopt;
+  double margin = 0.0;
+
+  double value() const { return verified ? *verified : predicted; }
 };
+using GoalRecord = VerdictLine;
+
+// "min_distance_m 1.965 m < 2.000 m (by 0.035 m)": a line that is not met, and why.
+std::string failing_line_text(const VerdictLine& line);
 
 // Em, Emin, Emax (lx) and U0 over one set of values.
 struct GridValues {
@@ -103,6 +122,21 @@ struct AttemptRecord {
   std::string arrangement = {};  // a regular layout's ("3 x 4 field"); empty for free and array layouts
 };
 
+// One product variant (product x rotation) the run tried: its summary line and, when it
+// was searched, its layout's power and its own goal and constraint lines, so a rejected
+// alternative can be explained.
+struct VariantRecord {
+  std::string product;
+  double rotation_deg = 0.0;
+  std::string summary;          // "PRODUCT at R deg: 6 luminaires, 240.0 W, every goal met (...)"
+  bool searched = false;        // a layout was searched and verified
+  bool chosen = false;          // the layout reported
+  int luminaires = 0;
+  double power_w = 0.0;
+  bool all_met = false;
+  std::vector<VerdictLine> goals, constraints;
+};
+
 struct ResultRecord {
   std::string program_version;
   std::string config;
@@ -144,7 +178,9 @@ struct ResultRecord {
   std::vector<std::pair<std::string, double>> timings_s;  // phase, seconds, in order
   std::vector<AttemptRecord> attempts;
   std::vector<BillLine> bill_of_materials;
-  std::vector<std::string> variants;        // each product and rotation tried, with its outcome
+  std::vector<VerdictLine> constraints;     // every constraint the job states, judged on the layout
+  double margin_floor = 0.0;                // verification.margin: the least margin kept above a scaled goal
+  std::vector<VariantRecord> variants;      // each product and rotation tried, with its outcome and lines
   std::vector<std::string> files;           // the files the run writes into its output folder (names), result.json included
   std::optional<RoomRecord> room = std::nullopt;      // absent in results written before the report
   std::optional<EnergyRecord> energy = std::nullopt;  // absent without a layout

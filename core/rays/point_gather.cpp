@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -109,10 +110,13 @@ PointIlluminance exact_point_illuminance(const Scene& scene, const RayCaster& ca
   const FormFactorRows rows = compute_point_rows(scene, caster, points, row_options, progress);
   out.rays_cast = rows.rays_cast;
   const int channels = static_cast<int>(solution.radiosity_lm_per_m2.cols());
+  out.indirect_standard_error_lux = Eigen::VectorXd::Zero(Q);
+  const double rays = row_options.rays_per_patch;
   for (Eigen::Index q = 0; q < Q; ++q) {
     double kept = 0.0, struck = 0.0;
     Eigen::RowVectorXd gathered = Eigen::RowVectorXd::Zero(channels);
     double emitted = 0.0;
+    double mean = 0.0, square = 0.0;  // of a ray's photometric value (0 for a ray that gathers nothing)
     for (SparseRows::InnerIterator it(rows.F, q); it; ++it) {
       const Patch& p = scene.patches[static_cast<std::size_t>(it.col())];
       if (scene.surfaces[static_cast<std::size_t>(p.surface)].is_luminaire()) {
@@ -122,10 +126,14 @@ PointIlluminance exact_point_illuminance(const Scene& scene, const RayCaster& ca
       kept += it.value();
       gathered += it.value() * solution.radiosity_lm_per_m2.row(it.col());
       emitted += it.value() * p.exitance_lm_per_m2;
+      const double value = photometric(solution.radiosity_lm_per_m2.row(it.col()));
+      mean += it.value() * value;
+      square += it.value() * value * value;
     }
     const double scale = kept > 0.0 ? std::max(0.0, kept + struck - closed[q]) / kept : 0.0;
     out.total_lux[q] += scale * photometric(gathered);
     out.direct_lux[q] += scale * emitted;
+    out.indirect_standard_error_lux[q] = scale * std::sqrt(std::max(0.0, square - mean * mean) / rays);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -25,6 +25,11 @@ FormFactorRows compute_point_rows(const Scene& scene, const RayCaster& caster, s
 struct PointIlluminance {
   Eigen::VectorXd total_lux;   // photometric
   Eigen::VectorXd direct_lux;  // luminaires and emitting surfaces, straight
+  // The statistical error of each point's gather (lux, one standard error): the spread of
+  // its rays' values over sqrt(rays), as if they were independent (they are a stratified
+  // low-discrepancy set, whose error is smaller: an upper estimate). It leaves out the
+  // error of the radiosity gathered and of the direct light's shadow rays.
+  Eigen::VectorXd indirect_standard_error_lux;
   std::uint64_t rays_cast = 0;
   double seconds = 0.0;
 };

@@ -130,7 +130,7 @@ TEST(IlpRunGrids, WritesGridCsvAndIsoluxPlansFromTheReportedValues) {
   ASSERT_EQ(strip.size(), 8u) << "a grid without a goal is reported too\n" << r.out;
   EXPECT_EQ(plane[0], kWorkPlanePoints);
   EXPECT_EQ(strip[0], kStripPoints);
-  EXPECT_NEAR(plane[5], 200.0, 0.05) << "the verified maintained Em just meets the target";
+  EXPECT_NEAR(plane[5], 200.0 * 1.005, 0.05) << "the verified maintained Em meets the target by the 0.5 % margin";
 
   const std::map<std::string, CsvGrid> csv = read_grid_csv((fs::path(out) / "grid.csv").string());
   ASSERT_EQ(csv.size(), 2u);
@@ -156,6 +156,15 @@ TEST(IlpRunGrids, WritesGridCsvAndIsoluxPlansFromTheReportedValues) {
   for (const char* part : {"\"files\"", "\"grid.csv\"", "\"isolux_work_plane.png\"", "\"isolux_strip.svg\"", "\"grids\""})
     EXPECT_TRUE(OutputContains(json, part)) << part;
   EXPECT_TRUE(OutputContains(r.out, "wrote " + out + "/grid.csv"));
+  // Every goal is on a grid, so no goal patch: the PLY's colour scale ran 0 .. 1 lx and
+  // painted nearly every face one colour (issue 20). It spans the values it shows now.
+  const std::string ply = read_file((fs::path(out) / "scene.ply").string());
+  const std::string comment = "comment ilp illuminance, lux from 0 to ";
+  const auto at = ply.find(comment);
+  ASSERT_NE(at, std::string::npos);
+  const double top = std::stod(ply.substr(at + comment.size(), ply.find('\n', at) - at - comment.size()));
+  EXPECT_GE(top, 200.0) << "at least the work plane's level";
+  EXPECT_LE(top, 20000.0);
 }
 
 TEST(IlpRunGrids, OutputFormatsSelectTheGridFilesAndALeftOutOneIsRemoved) {

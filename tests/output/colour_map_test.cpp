@@ -115,5 +115,22 @@ TEST(ColourScale, FractionClampsKeepsNaNAndSurvivesDegenerateScales) {
   EXPECT_EQ((ColourScale{0.0, kNaN}).fraction(3.0), 0.0);
 }
 
+// A scene's scale: a hot patch (a housing under a panel) does not stretch it; the
+// quantile is by weight (area), NaN and zero-weight entries count for nothing.
+TEST(ColourScale, AQuantileByAreaLeavesAHotPatchOutOfTheScale) {
+  Eigen::VectorXd lux(101), area = Eigen::VectorXd::Ones(101);
+  for (int i = 0; i < 100; ++i) lux[i] = i + 1.0;  // 1 .. 100 lx
+  lux[100] = 14700.0;
+  area[100] = 0.001;
+  EXPECT_EQ(colour_scale_for(lux).max_lux, 20000.0) << "the largest entry: the hot patch";
+  EXPECT_EQ(colour_scale_for(lux, area, 0.99).max_lux, 100.0);
+  EXPECT_EQ(colour_scale_for(lux, area, 0.49).max_lux, 50.0) << "49 of 100.001 m2 lie at or below 49 lx";
+  area[100] = 1000.0;  // a hot patch that is most of the area is what the scene shows
+  EXPECT_EQ(colour_scale_for(lux, area, 0.99).max_lux, 20000.0);
+  lux[5] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(colour_scale_for(Eigen::VectorXd::Constant(3, std::numeric_limits<double>::quiet_NaN()),
+                             Eigen::VectorXd::Ones(3), 0.99).max_lux, 1.0);
+}
+
 }  // namespace
 }  // namespace ilp

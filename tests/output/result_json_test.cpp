@@ -168,6 +168,159 @@ TEST(ResultJson, PrintShowsLayoutGoalsAndMisses) {
     EXPECT_TRUE(test::Contains(text, part, "report")) << part;
 }
 
+// Issue 20: "NOT MET" was printed with every goal line met (a constraint had failed,
+// and constraints were no lines). Now the miss names each failing line and by how much.
+TEST(ResultJson, NotMetNamesEveryFailingLineAndMetPrintsNone) {
+  ResultRecord r = sample_record();
+  r.goals[1].verified = 100.5;
+  r.goals[1].met = true;
+  r.goals[1].fails_only_on_verification = false;
+  VerdictLine distance;
+  distance.kind = "constraint";
+  distance.name = "min_distance_m";
+  distance.metric = "least distance between centres";
+  distance.unit = "m";
+  distance.rule = ">=";
+  distance.target = 2.0;
+  distance.predicted = 1.965;
+  distance.tolerance = 1e-4;
+  VerdictLine count = distance;
+  count.name = "count";
+  count.unit = "";
+  count.rule = "in";
+  count.target = 4;
+  count.target_max = 6;
+  count.predicted = 6;
+  count.met = true;
+  r.constraints = {count, distance};
+  r.all_met = false;
+  std::ostringstream os;
+  print_result(os, r);
+  const std::string text = os.str();
+  EXPECT_TRUE(test::Contains(text, "NOT MET: min_distance_m 1.965 m < 2.000 m (by 0.035 m)\n", "report"));
+  EXPECT_TRUE(test::Contains(text, "INFEASIBLE: no layout found meets every goal and constraint", "report"));
+  EXPECT_TRUE(test::Contains(text, "count                                   4 .. 6           6  met", "report"));
+  // Every line met: no miss is printed.
+  r.constraints[1].predicted = 2.0;
+  r.constraints[1].met = true;
+  r.all_met = true;
+  std::ostringstream met;
+  print_result(met, r);
+  EXPECT_FALSE(test::Contains(met.str(), "NOT MET", "report"));
+  EXPECT_FALSE(test::Contains(met.str(), "INFEASIBLE", "report"));
+}
+
+TEST(ResultJson, FailingLinesSayWhichBoundAndByHowMuch) {
+  VerdictLine u0{"work_plane", {}, "uniformity", "", 0.6, 0.61, 0.025313, false, false, 1e-4, "work_plane"};
+  EXPECT_EQ(failing_line_text(u0), "work_plane uniformity 0.025 < 0.600 (by 0.575)");
+  VerdictLine floor{"floor", {"floor"}, "minimum", "lx", 100.0, 100.0, 88.66, false, true, 1e-4, ""};
+  EXPECT_EQ(failing_line_text(floor), "floor minimum 88.7 lx < 100.0 lx (by 11.3 lx, 11.3 %) on verification only");
+  VerdictLine glare{"desks", {}, "maximum", "lx", 2000.0, 2100.0, std::nullopt, false, false, 1e-4, ""};
+  EXPECT_EQ(failing_line_text(glare), "desks maximum 2100.0 lx > 2000.0 lx (by 100.0 lx, 5.0 %)");
+  VerdictLine flux;
+  flux.kind = "constraint";
+  flux.name = "flux_lm";
+  flux.unit = "lm";
+  flux.rule = "in";
+  flux.target = 1000.0;
+  flux.target_max = 8000.0;
+  flux.predicted = 8400.0;
+  EXPECT_EQ(failing_line_text(flux), "flux_lm 8400.0 lm > 8000.0 lm (by 400.0 lm)");
+}
+
+TEST(ResultJson, RoundTripsConstraintsMarginsAndVariantTables) {
+  test::TempDir dir;
+  ResultRecord r = sample_record();
+  r.goals[0].rule = ">=";
+  r.goals[0].relative_error = 0.0021;
+  r.goals[0].margin = 0.005;
+  r.margin_floor = 0.005;
+  VerdictLine distance;
+  distance.kind = "constraint";
+  distance.name = "min_distance_m";
+  distance.unit = "m";
+  distance.rule = ">=";
+  distance.target = 2.0;
+  distance.predicted = 2.5;
+  distance.met = true;
+  r.constraints = {distance};
+  VariantRecord chosen, rejected, skipped;
+  chosen.product = "panel";
+  chosen.summary = "panel at 0.0 deg: 6 luminaires, 191.2 W, every goal and constraint met";
+  chosen.searched = chosen.chosen = chosen.all_met = true;
+  chosen.luminaires = 6;
+  chosen.power_w = 191.2;
+  chosen.goals = r.goals;
+  rejected = chosen;
+  rejected.product = "downlight";
+  rejected.rotation_deg = 90.0;
+  rejected.summary = "downlight at 90.0 deg: 12 luminaires, 1200.0 W, not met: floor minimum";
+  rejected.chosen = rejected.all_met = false;
+  rejected.power_w = 1200.0;
+  skipped.product = "spot";
+  skipped.summary = "spot at 0.0 deg: not searched: at least 300.0 W, no less than the 191.2 W already found";
+  r.variants = {chosen, rejected, skipped};
+  write_result_json(dir.file("result.json"), r);
+  const ResultRecord back = read_result_json(dir.file("result.json"));
+  ASSERT_EQ(back.constraints.size(), 1u);
+  EXPECT_EQ(back.constraints[0].kind, "constraint");
+  EXPECT_EQ(back.constraints[0].predicted, 2.5);
+  EXPECT_EQ(back.goals[0].relative_error, 0.0021);
+  EXPECT_EQ(back.goals[0].margin, 0.005);
+  EXPECT_FALSE(back.goals[1].relative_error.has_value());
+  EXPECT_EQ(back.margin_floor, 0.005);
+  ASSERT_EQ(back.variants.size(), 3u);
+  EXPECT_EQ(back.variants[1].rotation_deg, 90.0);
+  EXPECT_EQ(back.variants[1].power_w, 1200.0);
+  ASSERT_EQ(back.variants[1].goals.size(), r.goals.size());
+  EXPECT_EQ(back.variants[1].goals[1].verified, 88.66);
+  EXPECT_FALSE(back.variants[2].searched);
+  std::ostringstream a, b;
+  print_result(a, r);
+  print_result(b, back);
+  EXPECT_EQ(a.str(), b.str());
+  // The rejected alternative is explained by its own failing line.
+  EXPECT_TRUE(test::Contains(b.str(), "downlight at 90.0 deg: 12 luminaires, 1200.0 W, not met: floor minimum\n"
+                                      "      not met: floor minimum 88.7 lx < 100.0 lx (by 11.3 lx, 11.3 %) on verification only",
+                             "report"));
+  EXPECT_TRUE(test::Contains(b.str(), "  * panel at 0.0 deg", "report"));
+  EXPECT_TRUE(test::Contains(b.str(), "0.50 %", "report")) << "the margin column";
+}
+
+// A result.json written before verdict lines (goals without kind or rule, variants as
+// one-line strings, no constraints) still reads and prints.
+TEST(ResultJson, AnOlderResultWithoutVerdictLinesStillReads) {
+  test::TempDir dir;
+  ResultRecord r = sample_record();
+  write_result_json(dir.file("new.json"), r);
+  std::string text = test::read_file(dir.file("new.json"));
+  // Drops each line holding `key`; a dropped last member takes the comma before it along.
+  auto drop_line = [&](const std::string& key) {
+    for (auto at = text.find(key); at != std::string::npos; at = text.find(key)) {
+      const auto begin = text.rfind('\n', at), end = text.find('\n', at);
+      const bool last = text[end - 1] != ',';
+      text.erase(begin, end - begin);
+      if (last && text[begin - 1] == ',') text.erase(begin - 1, 1);
+    }
+  };
+  for (const char* key : {"\"kind\"", "\"rule\"", "\"relative_error\"", "\"margin\"", "\"margin_floor\""}) drop_line(key);
+  drop_line("\"constraints\": []");
+  const auto variants = text.find("\"variants\": []");
+  ASSERT_NE(variants, std::string::npos);
+  text.replace(variants, std::string("\"variants\": []").size(), "\"variants\": [\"panel at 0.0 deg: 6 luminaires, goals missed\"]");
+  const std::string old = dir.write("old.json", text);
+  const ResultRecord back = read_result_json(old);
+  EXPECT_TRUE(back.constraints.empty());
+  ASSERT_EQ(back.variants.size(), 1u);
+  EXPECT_EQ(back.variants[0].summary, "panel at 0.0 deg: 6 luminaires, goals missed");
+  EXPECT_EQ(back.goals[1].kind, "goal");
+  std::ostringstream os;
+  print_result(os, back);
+  EXPECT_TRUE(test::Contains(os.str(), "NOT MET: floor minimum 88.7 lx < 100.0 lx (by 11.3 lx, 11.3 %) on verification only",
+                             "report"));
+  EXPECT_TRUE(test::Contains(os.str(), "panel at 0.0 deg: 6 luminaires, goals missed", "report"));
+}
+
 // A count left out before any search reads as its reason alone; it printed as
 // "infeasible as searched, 0 evaluations" though it was never searched.
 TEST(ResultJson, ACountNotSearchedSaysWhyNotThatItWasInfeasible) {
@@ -188,7 +341,8 @@ TEST(ResultJson, AnOutcomeWithoutALayoutSaysWhyAndEscapesControlCharacters) {
   ResultRecord r = sample_record();
   r.luminaires.clear();
   r.no_layout = "no luminaire count was searched (none can reach an average target at full output)";
-  r.variants = {"evil\x1b[2J at 0.0 deg: not searched"};
+  r.variants.resize(1);
+  r.variants[0].summary = "evil\x1b[2J at 0.0 deg: not searched";
   std::ostringstream os;
   print_result(os, r);
   EXPECT_TRUE(test::Contains(os.str(), "NO LAYOUT: no luminaire count was searched", "report"));

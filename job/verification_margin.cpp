@@ -1,0 +1,57 @@
+#include "job/verification_margin.h"
+
+#include <cmath>
+
+#include "optimizer/goal_metrics.h"
+
+namespace ilp {
+namespace {
+
+// The relative standard error of a goal's value from its rows' errors, or nothing when
+// a row has no estimate (a patch) or the value is 0.
+std::optional<double> relative_error(const LightingModel& model, const GoalArea& area, GoalMetric metric,
+                                     const Eigen::VectorXd& lux, const Eigen::VectorXd& point_error_lux) {
+  const auto patches = static_cast<Eigen::Index>(model.goal_patches.size());
+  if (point_error_lux.size() == 0 || area.rows.empty()) return std::nullopt;
+  double variance = 0.0, average = 0.0;
+  Eigen::Index lowest = area.rows.front();
+  for (std::size_t r = 0; r < area.rows.size(); ++r) {
+    const Eigen::Index row = area.rows[r];
+    if (row < patches) return std::nullopt;
+    const double w = area.area_weights[static_cast<Eigen::Index>(r)], se = point_error_lux[row - patches];
+    variance += w * w * se * se;
+    average += w * lux[row];
+    if (lux[row] < lux[lowest]) lowest = row;
+  }
+  const double average_error = average > 0.0 ? std::sqrt(variance) / average : 0.0;
+  const double minimum_error = lux[lowest] > 0.0 ? point_error_lux[lowest - patches] / lux[lowest] : 0.0;
+  switch (metric) {
+    case GoalMetric::average: return average > 0.0 ? std::optional(average_error) : std::nullopt;
+    case GoalMetric::minimum: return lux[lowest] > 0.0 ? std::optional(minimum_error) : std::nullopt;
+    case GoalMetric::uniformity:
+      if (!(average > 0.0 && lux[lowest] > 0.0)) return std::nullopt;
+      return std::hypot(average_error, minimum_error);
+    default: return std::nullopt;  // maximum: its highest point's; not needed for a margin
+  }
+}
+
+}  // namespace
+
+std::vector<GoalMargin> goal_margins(const LightingModel& model, const std::vector<GoalJudgement>& verified,
+                                     const Eigen::VectorXd& lux, const Eigen::VectorXd& point_error_lux,
+                                     double margin_floor, bool averages_are_targets) {
+  std::vector<GoalMargin> out;
+  for (const GoalJudgement& g : verified) {
+    GoalMargin m;
+    const int a = find_goal_area(model, g.name);
+    if (a >= 0) m.relative_error = relative_error(model, model.areas[static_cast<std::size_t>(a)], g.metric, lux, point_error_lux);
+    const MetricRule& rule = metric_rule(g.metric);
+    m.applies = rule.scale_closed_form && rule.lower_bound && g.target > 0.0 &&
+                !(averages_are_targets && g.metric == GoalMetric::average);
+    m.margin = m.applies ? std::max(margin_floor, kMarginStandardErrors * m.relative_error.value_or(0.0)) : 0.0;
+    out.push_back(m);
+  }
+  return out;
+}
+
+}  // namespace ilp

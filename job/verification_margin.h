@@ -1,0 +1,40 @@
+// The margin the verification keeps above a goal's target, so that a goal reported met
+// stays met under an independent check (another simulator, other rays). The flux
+// correction after verification scales every flux so that each lower-bound goal it can
+// scale (average, minimum) reaches target x (1 + margin), not the target itself.
+//
+// The margin of a goal is kMarginStandardErrors times the verification's own estimate of
+// its relative error, and never less than a floor (verification.margin, default 0.5 %)
+// that stands for what the estimate leaves out. The estimate: each grid point's gather
+// of the verified radiosity carries the spread of its rays (core/rays/point_gather.h);
+// an average over points carries sqrt(sum w_i^2 se_i^2), a minimum its lowest point's.
+// Goals over patches, and every goal of a sample verification, have no estimate: the
+// floor alone.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "optimizer/layout_search.h"
+#include "optimizer/lighting_model.h"
+
+namespace ilp {
+
+// How many of the estimate's standard errors the margin holds (one-sided, about 98 %
+// for a normal error).
+inline constexpr double kMarginStandardErrors = 2.0;
+
+struct GoalMargin {
+  std::optional<double> relative_error;  // the verification's relative standard error of the value, when estimated
+  double margin = 0.0;                   // relative: max(floor, kMarginStandardErrors x relative_error)
+  bool applies = false;                  // a goal the flux scale can meet (average or minimum, a lower bound)
+};
+
+// Per goal of `verified` (judged on `lux`, the model's goal rows), with `point_error_lux`
+// the standard error of each goal point's verified value (empty: no estimate).
+std::vector<GoalMargin> goal_margins(const LightingModel& model, const std::vector<GoalJudgement>& verified,
+                                     const Eigen::VectorXd& lux, const Eigen::VectorXd& point_error_lux,
+                                     double margin_floor, bool averages_are_targets);
+
+}  // namespace ilp

@@ -1,0 +1,243 @@
+// The verdict: every constraint a line with target, value and met (job/constraint_check.h),
+// and the margin the verification keeps above a scaled goal's target
+// (job/verification_margin.h), checked with rays independent of the verification's.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "job/constraint_check.h"
+#include "job/job_runner.h"
+#include "job/result_mapping.h"
+#include "job/verification_margin.h"
+#include "tests/optimizer/optimizer_test_scenes.h"
+#include "tests/test_support.h"
+
+namespace ilp {
+namespace {
+
+using V = Eigen::Vector3d;
+
+PlacedLuminaire at(double x, double y, double flux_lm = 1000.0) {
+  PlacedLuminaire l;
+  l.position_m = V(x, y, 2.4);
+  l.flux_lm = flux_lm;
+  return l;
+}
+
+SearchSpec two_panel_spec() {
+  SearchSpec spec;
+  spec.luminaire.type = LuminaireType::square_lambertian(0.3);
+  spec.luminaire.flux_min_lm = 100.0;
+  spec.luminaire.flux_max_lm = 2000.0;
+  spec.layout.count_min = 1;
+  spec.layout.count_max = 4;
+  spec.layout.min_distance_m = 2.0;
+  return spec;
+}
+
+const ConstraintOutcome* line_named(const std::vector<ConstraintOutcome>& lines, const std::string& name) {
+  auto it = std::find_if(lines.begin(), lines.end(), [&](const ConstraintOutcome& c) { return c.name == name; });
+  return it == lines.end() ? nullptr : &*it;
+}
+
+const Eigen::AlignedBox2d kRoom(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(4.0, 4.0));
+
+// Issue 20: two luminaires 1.965 m apart under min_distance_m: 2.0, every goal met,
+// exited 2 with "NOT MET" and no line saying why. The distance is now a line.
+TEST(ConstraintLines, TwoLuminaires1965ApartMissMinDistanceByTheGap) {
+  const std::vector<ConstraintOutcome> lines = check_constraints(two_panel_spec(), kRoom, 0.0, {at(1.0, 2.0), at(2.965, 2.0)});
+  const ConstraintOutcome* d = line_named(lines, "min_distance_m");
+  ASSERT_NE(d, nullptr);
+  EXPECT_FALSE(d->met);
+  EXPECT_NEAR(d->value, 1.965, 1e-12);
+  EXPECT_EQ(d->target, 2.0);
+  EXPECT_EQ(d->unit, "m");
+  // The line as the report names it.
+  JobOutcome outcome;
+  outcome.constraints = lines;
+  const VerdictLines verdict = verdict_lines(JobConfig{}, outcome);
+  EXPECT_FALSE(verdict.all_met());
+  const auto it = std::find_if(verdict.constraints.begin(), verdict.constraints.end(),
+                               [](const VerdictLine& l) { return l.name == "min_distance_m"; });
+  ASSERT_NE(it, verdict.constraints.end());
+  EXPECT_EQ(it->kind, "constraint");
+  EXPECT_EQ(failing_line_text(*it), "min_distance_m 1.965 m < 2.000 m (by 0.035 m)");
+  // 2.0 m apart, and 2.0 less the search's own round-off, are met.
+  EXPECT_TRUE(line_named(check_constraints(two_panel_spec(), kRoom, 0.0, {at(1.0, 2.0), at(3.0, 2.0)}), "min_distance_m")->met);
+  EXPECT_TRUE(line_named(check_constraints(two_panel_spec(), kRoom, 0.0, {at(1.0, 2.0), at(2.99985, 2.0)}), "min_distance_m")->met);
+  EXPECT_FALSE(line_named(check_constraints(two_panel_spec(), kRoom, 0.0, {at(1.0, 2.0), at(2.999, 2.0)}), "min_distance_m")->met);
+}
+
+TEST(ConstraintLines, CountOverlapWallDistanceAndFluxAreJudgedOnTheLayout) {
+  SearchSpec spec = two_panel_spec();
+  spec.layout.min_distance_m = 0.0;
+  // Outlines 0.3 m wide, centres 0.2 m apart along x: a third of one overlaps.
+  const std::vector<ConstraintOutcome> lines = check_constraints(spec, kRoom, 0.5, {at(0.5, 2.0, 50.0), at(0.7, 2.0, 50.0)});
+  EXPECT_EQ(line_named(lines, "min_distance_m"), nullptr) << "no line for a constraint the job does not state";
+  const ConstraintOutcome* count = line_named(lines, "count");
+  ASSERT_NE(count, nullptr);
+  EXPECT_TRUE(count->met);
+  EXPECT_EQ(count->value, 2.0);
+  EXPECT_EQ(count->target_max, 4.0);
+  const ConstraintOutcome* overlap = line_named(lines, "outline_overlap");
+  ASSERT_NE(overlap, nullptr);
+  EXPECT_NEAR(overlap->value, 1.0 / 3.0, 1e-12);
+  EXPECT_FALSE(overlap->met);
+  // The left outline's edge is at 0.35 m from the wall at x = 0: 0.15 m short of 0.5 m.
+  const ConstraintOutcome* wall = line_named(lines, "wall_distance_m");
+  ASSERT_NE(wall, nullptr);
+  EXPECT_NEAR(wall->value, 0.35, 1e-12);
+  EXPECT_FALSE(wall->met);
+  // 50 lm each, below the 100 lm the range allows.
+  const ConstraintOutcome* flux = line_named(lines, "flux_lm");
+  ASSERT_NE(flux, nullptr);
+  EXPECT_EQ(flux->rule, ConstraintRule::within);
+  EXPECT_FALSE(flux->met);
+  // Five luminaires where at most four may be.
+  std::vector<PlacedLuminaire> five;
+  for (int k = 0; k < 5; ++k) five.push_back(at(0.5 + 0.7 * k, 2.0));
+  EXPECT_FALSE(line_named(check_constraints(spec, kRoom, 0.0, five), "count")->met);
+  // Individual outputs: the lowest and the highest flux each get a line.
+  spec.luminaire.uniform_output = false;
+  const std::vector<ConstraintOutcome> own = check_constraints(spec, kRoom, 0.0, {at(1.0, 1.0, 150.0), at(3.0, 3.0, 2500.0)});
+  ASSERT_EQ(std::count_if(own.begin(), own.end(), [](const ConstraintOutcome& c) { return c.name == "flux_lm"; }), 2);
+  for (const ConstraintOutcome& c : own)
+    if (c.name == "flux_lm") {
+      EXPECT_EQ(c.met, c.rule == ConstraintRule::at_least) << c.what;
+    }
+}
+
+TEST(ConstraintLines, TheRuleHoldsUpToItsRelativeTolerance) {
+  EXPECT_TRUE(constraint_met(ConstraintRule::at_least, 2.0, 0.0, 1.9999, 1e-4));
+  EXPECT_FALSE(constraint_met(ConstraintRule::at_least, 2.0, 0.0, 1.9997, 1e-4));
+  EXPECT_TRUE(constraint_met(ConstraintRule::at_most, 0.0, 0.0, 5e-5, 1e-4)) << "absolute at a target of 0";
+  EXPECT_FALSE(constraint_met(ConstraintRule::at_most, 0.0, 0.0, 2e-4, 1e-4));
+  EXPECT_TRUE(constraint_met(ConstraintRule::within, 8.0, 8.0, 8.0, 1e-4));
+  EXPECT_FALSE(constraint_met(ConstraintRule::within, 8.0, 8.0, 9.0, 1e-4));
+  EXPECT_FALSE(constraint_met(ConstraintRule::within, 8.0, 12.0, 7.0, 1e-4));
+}
+
+// A room lit through a grid (whose points carry the gather's error estimate) and a mat
+// (a patch goal: the floor alone), verified exactly.
+std::string margin_job(const test::TempDir& dir, double margin) {
+  dir.write("room.obj", test::room_obj({{"mat", {1.3, 1.7}, 0.8}}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  count: [1, 4]\n";
+  const std::string goals =
+      "  - grid: plane\n    average_lux: 300\n    min_lux: 150\n"
+      "  - surface: mat\n    average_lux: 250\n";
+  const std::string rest = "grids:\n  - name: plane\n    over_surface: floor\n    height_m: 0.8\n    spacing_m: 0.5\n"
+                           "optimizer:\n  max_evaluations: 600\n  local_max_evaluations: 300\n";
+  std::string text = test::room_job("0.5", luminaires, goals, rest);
+  const std::string verification = "verification:\n  rays_per_patch: 256\n";
+  text.replace(text.find(verification), verification.size(),
+               verification + "  method: exact\n  margin: " + std::to_string(margin) + "\n");
+  return dir.write("job.yaml", text);
+}
+
+TEST(VerificationMargin, TheBindingGoalIsKeptAboveItsTargetAndStaysMetWithOtherRays) {
+  test::TempDir dir;
+  const JobConfig job = load_job_config(margin_job(dir, 0.01));
+  EXPECT_EQ(job.verification.margin, 0.01);
+  PreparedJob prepared = test::prepare(job);
+  const JobOutcome outcome = solve_prepared(prepared, job);
+  ASSERT_TRUE(outcome.all_met);
+  ASSERT_EQ(outcome.goals.size(), 3u);
+  // Every average and minimum goal is scaled to: at least target x (1 + margin), and
+  // the binding one exactly (the flux range is wide enough).
+  double binding = 0.0;
+  for (const GoalOutcome& g : outcome.goals) {
+    ASSERT_TRUE(g.verified);
+    EXPECT_GE(g.margin, 0.01) << g.predicted.name;
+    EXPECT_GE(g.verified->value, g.verified->target * (1.0 + g.margin) * (1.0 - 1e-9)) << g.predicted.name;
+    binding = std::max(binding, g.verified->target * (1.0 + g.margin) / g.verified->value);
+  }
+  EXPECT_NEAR(binding, 1.0, 1e-9);
+  // The grid's goals carry the verification's own error estimate, the mat's none.
+  ASSERT_TRUE(outcome.goals[0].relative_error && outcome.goals[1].relative_error);
+  EXPECT_GT(*outcome.goals[1].relative_error, 0.0);
+  EXPECT_LT(*outcome.goals[1].relative_error, 0.05);
+  EXPECT_GE(outcome.goals[1].margin, 2.0 * *outcome.goals[1].relative_error - 1e-15);
+  EXPECT_FALSE(outcome.goals[2].relative_error);
+  EXPECT_EQ(outcome.goals[2].margin, 0.01) << "no estimate: the floor";
+  // Independent check: the layout solved again with other rays still meets every goal.
+  prepared.job.form_factors.seed += 1009;
+  const Verification other = verify_layout(prepared, outcome.luminaires);
+  SearchSpec real = prepared.plan.search;
+  real.goals = goal_specs(job, prepared.plan.maintenance_factor);
+  const std::vector<GoalJudgement> judged = judge_goals(prepared.model, real, verified_goal_lux(prepared.model, other));
+  for (std::size_t g = 0; g < judged.size(); ++g) {
+    EXPECT_NE(judged[g].value, outcome.goals[g].verified->value) << "other rays, another value";
+    EXPECT_GE(judged[g].value, judged[g].target) << judged[g].name << " " << to_string(judged[g].metric);
+  }
+}
+
+// With no floor the margin is the error estimate alone: 2 standard errors on the grid's
+// goals, none on the mat's (no estimate), and the binding goal sits exactly there.
+TEST(VerificationMargin, WithoutAFloorTheMarginIsTheErrorEstimateAlone) {
+  test::TempDir dir;
+  const JobConfig job = load_job_config(margin_job(dir, 0.0));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), job);
+  double binding = 0.0;
+  for (const GoalOutcome& g : outcome.goals) {
+    EXPECT_EQ(g.margin, kMarginStandardErrors * g.relative_error.value_or(0.0)) << g.predicted.name;
+    binding = std::max(binding, g.verified->target * (1.0 + g.margin) / g.verified->value);
+  }
+  EXPECT_NEAR(binding, 1.0, 1e-9);
+  EXPECT_EQ(outcome.goals[2].margin, 0.0);
+}
+
+TEST(VerificationMargin, TheFloorIsCheckedAsAKey) {
+  test::TempDir dir;
+  const std::string path = margin_job(dir, 0.5);
+  try {
+    load_job_config(path);
+    FAIL() << "a margin of 50 % is refused";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find("verification.margin"), std::string::npos) << what;
+    EXPECT_NE(what.find("[0, 0.2]"), std::string::npos) << what;
+  }
+}
+
+// The power density's area: a rectangle grid over no floor surface gave the mounting
+// surface's plan area (38 W/m² "over 56.74 m²" for a 116 m² nave grid); it is the
+// grid's own area now, named, unless the job names its floor.
+std::string rectangle_grid_job(const test::TempDir& dir, const std::string& floor_surface) {
+  dir.write("room.obj", test::room_obj({}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  count: 1\n" + floor_surface;
+  const std::string rest = "grids:\n  - name: task\n    rectangle_m: [[0.5, 0.5], [2.5, 3.5]]\n    height_m: 0.8\n"
+                           "    border_m: 0\n    spacing_m: 0.5\n"
+                           "optimizer:\n  max_evaluations: 200\n  local_max_evaluations: 100\n";
+  return dir.write("job.yaml", test::room_job("0.4", luminaires, "  - grid: task\n    average_lux: 100\n", rest));
+}
+
+TEST(PowerDensity, ARectangleGridOverNoFloorGivesItsOwnAreaNamed) {
+  test::TempDir dir;
+  const JobConfig job = load_job_config(rectangle_grid_job(dir, ""));
+  const PreparedJob prepared = test::prepare(job);
+  const JobOutcome outcome = solve_prepared(prepared, job);
+  ASSERT_EQ(prepared.model.grids.size(), 1u);
+  EXPECT_NEAR(prepared.model.grids[0].area_m2, 6.0, 1e-9) << "2 x 3 m in 0.5 m cells";
+  EXPECT_NEAR(outcome.mounting_area_m2, 16.0, 1e-9);
+  EXPECT_NEAR(outcome.floor_area_m2, 6.0, 1e-9);
+  EXPECT_EQ(outcome.floor_area_source, "area of grid 'task' (no floor surface known)");
+  EXPECT_NEAR(outcome.power_density_w_per_m2, outcome.power_w / 6.0, 1e-12);
+}
+
+TEST(PowerDensity, TheFloorTheJobNamesIsTheArea) {
+  test::TempDir dir;
+  const JobConfig job = load_job_config(rectangle_grid_job(dir, "  floor_surface: floor\n"));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), job);
+  EXPECT_NEAR(outcome.floor_area_m2, 16.0, 1e-9);
+  EXPECT_EQ(outcome.floor_area_source, "floor 'floor' (luminaires.floor_surface)");
+}
+
+}  // namespace
+}  // namespace ilp
