@@ -304,8 +304,8 @@ void summary_page(PdfPages& pdf, const ReportInput& in) {
   answer.rows.push_back({"Maintenance factor", fixed(r.maintenance_factor, 2) + " (values below are maintained)"});
   answer.header = {"The answer", ""};
   pdf.table(answer);
-  pdf.heading("Goals", 2);
-  Table goals({"goal", "metric", "target", "predicted", "verified", "verdict"}, {0.22, 0.16, 0.14, 0.14, 0.14, 0.20},
+  pdf.heading("Goals and constraints", 2);
+  Table goals({"line", "metric", "target", "predicted", "verified", "verdict"}, {0.22, 0.16, 0.14, 0.14, 0.14, 0.20},
               {false, false, true, true, true, false});
   goals.rows = report_goal_rows(r);
   pdf.table(goals);
@@ -518,7 +518,7 @@ void verification_page(PdfPages& pdf, const ResultRecord& r) {
   for (const std::string& line : r.calibration) pdf.paragraph(line, kSmallPt);
   if (!r.variants.empty()) {
     pdf.heading("Variants tried", 2);
-    for (const std::string& v : r.variants) pdf.paragraph(v, kSmallPt);
+    for (const VariantRecord& v : r.variants) pdf.paragraph(v.summary, kSmallPt);
   }
 }
 
@@ -526,14 +526,18 @@ void verification_page(PdfPages& pdf, const ResultRecord& r) {
 
 std::vector<std::vector<std::string>> report_goal_rows(const ResultRecord& r) {
   std::vector<std::vector<std::string>> rows;
-  for (const GoalRecord& g : r.goals) {
-    std::string verdict = g.met ? "met" : "MISSED";
-    const double value = g.verified ? *g.verified : g.predicted;
+  auto add = [&](const VerdictLine& g) {
+    std::string verdict = g.met ? "met" : "NOT MET";
+    const double value = g.value();
     if (!g.met && g.target > 0.0) verdict += " by " + fixed(100.0 * std::abs(value - g.target) / g.target, 1) + " %";
     if (g.fails_only_on_verification) verdict += " (fails on verification only)";
-    rows.push_back({g.name, g.metric + (g.unit.empty() ? "" : " (" + g.unit + ")"), value_text(g, g.target),
-                    value_text(g, g.predicted), g.verified ? value_text(g, *g.verified) : "–", verdict});
-  }
+    const bool constraint = g.kind == "constraint";
+    rows.push_back({g.name, constraint ? std::string("constraint") : g.metric + (g.unit.empty() ? "" : " (" + g.unit + ")"),
+                    verdict_target_text(g), verdict_value_text(g, g.predicted),
+                    g.verified ? verdict_value_text(g, *g.verified) : "–", verdict});
+  };
+  for (const VerdictLine& g : r.goals) add(g);
+  for (const VerdictLine& c : r.constraints) add(c);
   return rows;
 }
 

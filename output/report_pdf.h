@@ -39,8 +39,9 @@ struct ReportInput {
   std::vector<ReportProduct> products;   // one data sheet each
 };
 
-// The text lines of the summary's goal table: goal, metric (unit), target, predicted,
-// verified, verdict ("met", "MISSED by 3.2 %", "fails on verification only").
+// The text lines of the summary's verdict table, each goal then each constraint: name,
+// metric (unit) or "constraint", target (">= 500.0 lx"), predicted, verified, verdict
+// ("met", "NOT MET by 3.2 %", "(fails on verification only)").
 std::vector<std::vector<std::string>> report_goal_rows(const ResultRecord& record);
 
 // Writes the report to `path` atomically (output/atomic_file.h). Throws IlpError naming

@@ -359,6 +359,13 @@ std::string target_text(const VerdictLine& g) {
 
 }  // namespace
 
+std::string verdict_value_text(const VerdictLine& line, double value) {
+  return with_unit(line, value);
+}
+std::string verdict_target_text(const VerdictLine& line) {
+  return target_text(line) + (line.unit.empty() ? "" : " " + line.unit);
+}
+
 std::string failing_line_text(const VerdictLine& g) {
   const std::string rule = rule_of(g);
   const double v = g.value();

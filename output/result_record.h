@@ -61,6 +61,11 @@ struct VerdictLine {
 };
 using GoalRecord = VerdictLine;
 
+// A line's value and target as the printout shows them: "508.6 lx", ">= 500.0 lx",
+// "8 .. 12" (lux and lumens with one decimal, metres and ratios with three, counts whole).
+std::string verdict_value_text(const VerdictLine& line, double value);
+std::string verdict_target_text(const VerdictLine& line);
+
 // "min_distance_m 1.965 m < 2.000 m (by 0.035 m)": a line that is not met, and why.
 std::string failing_line_text(const VerdictLine& line);
 
