@@ -117,14 +117,15 @@ Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification
 namespace {
 
 // The flux scale that makes the verified values meet the lower-bound goals with their
-// margins, target x (1 + margin) (min_power), or fit the average targets best
+// margins, target x (1 + margin), within what the upper-bound goals allow (min_power), or fit the average targets best
 // (closest_to_target): illuminance is linear in flux, so scaling every flux scales the
 // verified values exactly.
 double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgement>& verified,
                            const std::vector<GoalMargin>& margins, const std::vector<PlacedLuminaire>& layout,
                            bool& limited) {
   limited = false;
-  double scale = 0.0, num = 0.0, den = 0.0;
+  double scale = 0.0, least = 0.0, num = 0.0, den = 0.0;
+  double cap = std::numeric_limits<double>::infinity();  // the upper-bound goals' (UGR, maximum) largest scale
   for (std::size_t k = 0; k < verified.size(); ++k) {
     const GoalJudgement& g = verified[k];
     if (is_target_goal(spec.objective, g.metric)) {
@@ -133,10 +134,17 @@ double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgeme
     } else if (metric_rule(g.metric).scale_closed_form && g.target > 0.0) {
       if (!(g.value > 0.0)) return 1.0;
       scale = std::max(scale, g.target * (1.0 + margins[k].margin) / g.value);
+      least = std::max(least, g.target / g.value);
+    } else if (const auto largest = largest_flux_scale(g.metric, g.value, g.target)) {
+      cap = std::min(cap, *largest);
     }
   }
   if (objective_rule(spec.objective).averages_are_targets) scale = den > 0.0 ? num / den : 1.0;
   if (!(scale > 0.0)) return 1.0;
+  // Raising every flux raises the UGR by 8 log10(scale): give up margin, not a met upper
+  // bound; when even the targets themselves need more than the cap, the lower bounds win
+  // and the UGR line says by how much it is missed.
+  if (scale > cap && cap >= least) scale = cap;
   double flux_high = 0.0, flux_low = std::numeric_limits<double>::infinity();
   for (const PlacedLuminaire& l : layout) {
     flux_high = std::max(flux_high, l.flux_lm);
@@ -412,6 +420,7 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
   for (std::size_t g = 0; g < predicted.size(); ++g) {
     GoalOutcome o;
     o.predicted = predicted[g];
+    o.searched_value = as_searched[g].value;
     o.tolerance = goal_tolerance(job.objective, predicted[g].metric);
     o.relative_error = margins[g].relative_error;
     o.margin = margins[g].margin;
@@ -497,8 +506,13 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
       if (!o.fails_only_on_verification) continue;
       if (is_target_goal(job.objective, o.predicted.metric)) continue;
       GoalSetting& goal = search_job.goals[g];
+      // A lower bound's prediction and verification share the flux correction, so their
+      // ratio is the operator's error; an upper bound (UGR, maximum) may be missed by the
+      // correction itself (raising every flux raises the UGR), so its next target comes
+      // from the value as searched.
+      const double predicted_value = metric_rule(goal.metric).lower_bound ? o.predicted.value : o.searched_value;
       const std::optional<double> next =
-          next_search_target(goal.metric, job.goals[g].target, goal.target, o.predicted.value, o.verified->value);
+          next_search_target(goal.metric, job.goals[g].target, goal.target, predicted_value, o.verified->value);
       if (!next) continue;
       goal.target = *next;
       outcome.calibration.push_back(

@@ -57,7 +57,8 @@ struct GoalOutcome {
   GoalJudgement predicted;                 // through the operator
   std::optional<GoalJudgement> verified;   // through the verification solve
   bool met = false;                        // judged on the verified value (predicted if unverified)
-  bool fails_only_on_verification = false;
+  bool fails_only_on_verification = false;  // met as searched (before the flux correction), missed as verified
+  double searched_value = 0.0;             // the value as searched, before the flux correction
   double tolerance = 0.0;                  // relative violation accepted as met
   // The verification's relative standard error of the verified value, when it has an
   // estimate, and the margin the flux correction kept above the target (relative; 0

@@ -166,6 +166,19 @@ double least_flux_scale(GoalMetric metric, const GoalArea& area, const Eigen::Ve
   return scale;
 }
 
+std::optional<double> largest_flux_scale(GoalMetric metric, double value, double target) {
+  switch (metric) {
+    case GoalMetric::maximum:
+      if (value > 0.0) return target / value;
+      return std::nullopt;
+    case GoalMetric::ugr:
+      // Below 10 no source counts (0) and at kUgrWithoutBackground nothing scales.
+      if (value > 0.0 && value < kUgrWithoutBackground) return std::pow(10.0, (target - value) / 8.0);
+      return std::nullopt;
+    default: return std::nullopt;
+  }
+}
+
 double relative_violation(GoalMetric metric, double value, double target, bool two_sided_average) {
   if (!(target > 0.0)) return 0.0;
   if (two_sided_average && metric == GoalMetric::average) return std::abs(value - target) / target;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string_view>
 
 #include "optimizer/goal_spec.h"
@@ -46,6 +47,13 @@ double goal_value(GoalMetric metric, const GoalArea& area, const GoalLight& ligh
 // scale_closed_form: 0 when met already, infinity when no scale meets it.
 double least_flux_scale(GoalMetric metric, const GoalArea& area, const Eigen::VectorXd& fixed,
                         const Eigen::VectorXd& gain, double target);
+
+// The largest common scale s of every flux (no fixed sources) at which an upper-bound
+// goal whose value is `value` at s = 1 still meets `target`: a maximum scales with s
+// (target / value), a UGR rises by 8 log10(s) (both the sources' luminance and the
+// background's scale with s). Nothing for lower bounds and scale-free ratios, or a UGR
+// without background light (kUgrWithoutBackground does not scale).
+std::optional<double> largest_flux_scale(GoalMetric metric, double value, double target);
 
 // Relative violation of `target` by `value` under the metric's rule (>= 0); for an average
 // goal with objective closest_to_target, the relative deviation |value - target| / target.

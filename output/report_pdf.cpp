@@ -271,7 +271,11 @@ std::string products_text(const ResultRecord& r) {
 std::string verdict_text(const ResultRecord& r) {
   if (!r.no_layout.empty()) return "No layout: " + r.no_layout;
   if (r.all_met) return std::string("Every goal is met") + (r.verification != "none" ? " as verified." : " as predicted.");
-  return "NOT MET: the lines marked MISSED below fail.";
+  std::string failing;
+  for (const std::vector<VerdictLine>* lines : {&r.goals, &r.constraints})
+    for (const VerdictLine& l : *lines)
+      if (!l.met) failing += (failing.empty() ? "" : "; ") + failing_line_text(l);
+  return "NOT MET: " + (failing.empty() ? std::string("the lines marked NOT MET below fail") : failing) + ".";
 }
 
 void summary_page(PdfPages& pdf, const ReportInput& in) {
@@ -305,7 +309,7 @@ void summary_page(PdfPages& pdf, const ReportInput& in) {
   answer.header = {"The answer", ""};
   pdf.table(answer);
   pdf.heading("Goals and constraints", 2);
-  Table goals({"line", "metric", "target", "predicted", "verified", "verdict"}, {0.22, 0.16, 0.14, 0.14, 0.14, 0.20},
+  Table goals({"line", "metric", "target", "predicted", "verified", "verdict"}, {0.19, 0.15, 0.20, 0.12, 0.12, 0.22},
               {false, false, true, true, true, false});
   goals.rows = report_goal_rows(r);
   pdf.table(goals);

@@ -102,7 +102,7 @@ TEST(IlpReport, OfficeProductsPdfHoldsTheVerifiedNumbers) {
   EXPECT_TRUE(OutputContains(text, "Model office.obj"));
   EXPECT_TRUE(OutputContains(text, "walls"));
   // The plan (its own title, as text) and each grid's isolux plan, statistics and values.
-  EXPECT_TRUE(OutputContains(text, std::to_string(rec.luminaires.size()) + " luminaires, " + fixed(rec.power_w, 1) + " W, verified illuminance"));
+  EXPECT_TRUE(OutputContains(text, std::to_string(rec.luminaires.size()) + " luminaires, " + fixed(rec.power_w, 1) + " W, verified maintained illuminance"));
   const std::vector<ilp::GridCsvGrid> csv =
       ilp::parse_grid_csv(read_file(dir.file("out/grid.csv")), dir.file("out/grid.csv"));
   ASSERT_EQ(csv.size(), rec.grids.size());

@@ -37,6 +37,27 @@ TEST(GlareGoal, UgrValueIsCie117FromTheGlareSumAndTheEyesIndirectLight) {
   EXPECT_THROW(goal_value(GoalMetric::average, area, {lux, eye, glare}), std::invalid_argument);
 }
 
+// The flux correction after verification scales every flux by s: a UGR rises by
+// 8 log10(s), so the largest s that keeps a UGR limit is 10^((limit - UGR) / 8), and at
+// that s the UGR computed from the scaled terms (glare x s^2, eye light x s) is the limit.
+// (The merged verdict margin pushed the office's UGR 18.99 to 19.05 before this cap.)
+TEST(GlareGoal, LargestFluxScaleKeepsAUgrLimitAndAMaximum) {
+  const double glare = 6924.6, eye = 40.0 * std::numbers::pi;
+  const double ugr = ugr_value(glare, eye);
+  const auto s = largest_flux_scale(GoalMetric::ugr, ugr, 19.0);
+  ASSERT_TRUE(s.has_value());
+  EXPECT_NEAR(ugr_value(glare * *s * *s, eye * *s), 19.0, 1e-9);
+  EXPECT_GT(*s, 1.0) << "13.09 is under the limit: room to raise the flux";
+  const auto lower = largest_flux_scale(GoalMetric::ugr, 19.5, 19.0);
+  ASSERT_TRUE(lower.has_value());
+  EXPECT_NEAR(8.0 * std::log10(*lower), -0.5, 1e-12) << "over the limit: the flux must fall";
+  EXPECT_FALSE(largest_flux_scale(GoalMetric::ugr, kUgrWithoutBackground, 19.0)) << "no background: nothing scales";
+  EXPECT_FALSE(largest_flux_scale(GoalMetric::ugr, 0.0, 19.0)) << "no luminaire in view";
+  EXPECT_DOUBLE_EQ(*largest_flux_scale(GoalMetric::maximum, 800.0, 1000.0), 1.25);
+  EXPECT_FALSE(largest_flux_scale(GoalMetric::average, 400.0, 500.0)) << "a lower bound has no largest scale";
+  EXPECT_FALSE(largest_flux_scale(GoalMetric::uniformity, 0.5, 0.6)) << "a ratio does not scale";
+}
+
 TEST(GlareGoal, CylindricalStatisticsPerPointAndModelling) {
   // Two points, each kCylinderPlanes vertical rows then one up row.
   GoalArea area;

@@ -47,6 +47,10 @@ ilp::ResultRecord record() {
   r.goals.push_back({"work_plane", {}, "average", "lx", 500.0, 503.21, 500.04, true, false, 0.0, "work_plane"});
   r.goals.push_back({"work_plane", {}, "uniformity", "", 0.6, 0.712, 0.6843, true, false, 0.0, "work_plane"});
   r.goals.push_back({"floor", {"floor"}, "minimum", "lx", 100.0, 104.0, 96.5, false, true, 0.0, ""});
+  ilp::VerdictLine distance{"min_distance_m", {}, "distance between neighbours", "m", 1.0, 1.5, std::nullopt, true, false, 0.0, ""};
+  distance.kind = "constraint";
+  distance.rule = ">=";
+  r.constraints.push_back(distance);
   r.power_w = 98.0;
   r.floor_area_m2 = 12.0;
   r.floor_area_source = "floor";
@@ -112,9 +116,11 @@ TEST(ReportPdf, TextHoldsTheRecordsNumbersWithUnits) {
   EXPECT_TRUE(Contains(text, "8.17 W/m² over 12.00 m² (floor)"));
   EXPECT_TRUE(Contains(text, "1.63 W/m²/100 lx"));
   EXPECT_TRUE(Contains(text, "24.38 kWh/(m²·a)"));
-  EXPECT_TRUE(Contains(text, "work_plane average (lx) 500.0 lx 503.2 lx 500.0 lx met"));
-  EXPECT_TRUE(Contains(text, "work_plane uniformity 0.600 0.712 0.684 met"));
-  EXPECT_TRUE(Contains(text, "floor minimum (lx) 100.0 lx 104.0 lx 96.5 lx MISSED by 3.5 %"));
+  EXPECT_TRUE(Contains(text, "work_plane average (lx) >= 500.0 lx 503.2 lx 500.0 lx met"));
+  EXPECT_TRUE(Contains(text, "work_plane uniformity >= 0.600 0.712 0.684 met"));
+  EXPECT_TRUE(Contains(text, "floor minimum (lx) >= 100.0 lx 104.0 lx 96.5 lx NOT MET by 3.5 %"));
+  EXPECT_TRUE(Contains(text, "min_distance_m constraint >= 1.000 m 1.500 m – met")) << "constraints too";
+  EXPECT_TRUE(Contains(text, "NOT MET: floor minimum 96.5 lx < 100.0 lx (by 3.5 lx, 3.5 %)")) << "the failing line named";
   // Room: dimensions, reflectances, heights, schedule.
   EXPECT_TRUE(Contains(text, "4.00 m × 3.00 m × 3.00 m"));
   EXPECT_TRUE(Contains(text, "walls 42.00 m² 0.50 0.00 m 3.00 m"));

@@ -261,6 +261,7 @@ TEST(ResultJson, RoundTripsConstraintsMarginsAndVariantTables) {
   skipped.summary = "spot at 0.0 deg: not searched: at least 300.0 W, no less than the 191.2 W already found";
   r.variants = {chosen, rejected, skipped};
   write_result_json(dir.file("result.json"), r);
+  write_timings_json(dir.file("timings.json"), r);  // the times print_result shows
   const ResultRecord back = read_result_json(dir.file("result.json"));
   ASSERT_EQ(back.constraints.size(), 1u);
   EXPECT_EQ(back.constraints[0].kind, "constraint");
