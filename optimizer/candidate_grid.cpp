@@ -17,8 +17,11 @@ constexpr double kMaxGridNodes = 4e6;  // nodes of the candidate grid (each cand
 
 // Height of the mounting surface above (x, y): the patch whose top-view triangle
 // holds the point, if any.
+// The height of the highest of `patches` over xy: a shell surface faces down both at its
+// ceiling and under its floor slab, and a luminaire hangs from the ceiling.
 std::optional<double> surface_height(const Scene& scene, const std::vector<int>& patches, const Eigen::Vector2d& xy) {
   constexpr double kInsideTolerance = 1e-9;
+  std::optional<double> highest;
   for (int index : patches) {
     const Patch& p = scene.patches[static_cast<std::size_t>(index)];
     const Eigen::Vector2d a = p.vertices_m[0].head<2>(), b = p.vertices_m[1].head<2>(), c = p.vertices_m[2].head<2>();
@@ -27,10 +30,12 @@ std::optional<double> surface_height(const Scene& scene, const std::vector<int>&
     const double l1 = ((b - xy).x() * (c - xy).y() - (b - xy).y() * (c - xy).x()) / area2;
     const double l2 = ((c - xy).x() * (a - xy).y() - (c - xy).y() * (a - xy).x()) / area2;
     const double l3 = 1.0 - l1 - l2;
-    if (l1 >= -kInsideTolerance && l2 >= -kInsideTolerance && l3 >= -kInsideTolerance)
-      return l1 * p.vertices_m[0].z() + l2 * p.vertices_m[1].z() + l3 * p.vertices_m[2].z();
+    if (l1 >= -kInsideTolerance && l2 >= -kInsideTolerance && l3 >= -kInsideTolerance) {
+      const double z = l1 * p.vertices_m[0].z() + l2 * p.vertices_m[1].z() + l3 * p.vertices_m[2].z();
+      highest = std::max(highest.value_or(z), z);
+    }
   }
-  return std::nullopt;
+  return highest;
 }
 
 }  // namespace
@@ -108,24 +113,36 @@ CandidateGrid::CandidateGrid(const Scene& scene, int mounting_surface, const Can
   // inside, with the wall distance) all lie over the surface.
   candidate_of_node_.assign(static_cast<std::size_t>((nx_ + 1) * (ny_ + 1)), -1);
   const Eigen::Vector2d corner = 0.999 * half;
+  std::optional<double> under_floor_z;  // the first surface height a luminaire would hang under the floor from
+  const double lowest_z = scene.bounds_m.min().z();
+  auto hangs_under_floor = [&](double z) { return lowest_z < z && z - options.mount_offset_m <= lowest_z; };
   for (int j = 0; j <= ny_; ++j)
     for (int i = 0; i <= nx_; ++i) {
       const Eigen::Vector2d xy = lower_ + Eigen::Vector2d(i * step_.x(), j * step_.y());
       const std::optional<double> z = surface_height(scene, mounting_patches_, xy);
-      bool fits = z.has_value();
+      if (!z) continue;
+      // Where the surface is only a slab's underside (a hole in a shell's ceiling), the
+      // luminaire would hang under the floor: no position there, nor a footprint reaching it.
+      if (hangs_under_floor(*z)) {
+        if (!under_floor_z) under_floor_z = *z;
+        continue;
+      }
+      bool fits = true;
       for (const Eigen::Vector2d& d : {Eigen::Vector2d(-corner.x(), -corner.y()), Eigen::Vector2d(corner.x(), -corner.y()),
-                                      Eigen::Vector2d(-corner.x(), corner.y()), Eigen::Vector2d(corner.x(), corner.y())})
-        fits = fits && surface_height(scene, mounting_patches_, xy + d).has_value();
+                                      Eigen::Vector2d(-corner.x(), corner.y()), Eigen::Vector2d(corner.x(), corner.y())}) {
+        const std::optional<double> at = surface_height(scene, mounting_patches_, xy + d);
+        fits = fits && at.has_value() && !hangs_under_floor(*at);
+      }
       if (!fits) continue;
       candidate_of_node_[static_cast<std::size_t>(j * (nx_ + 1) + i)] = static_cast<int>(positions_.size());
-      if (scene.bounds_m.min().z() < *z && *z - options.mount_offset_m <= scene.bounds_m.min().z())
-        throw std::out_of_range((std::ostringstream() << options.mount_offset_m << " m below mounting surface '"
-                                                      << name << "' (at z = " << *z << " m) is at or below the "
-                                                      << "scene's lowest point (z = " << scene.bounds_m.min().z()
-                                                      << " m): luminaires would hang under the floor")
-                                    .str());
       positions_.emplace_back(xy.x(), xy.y(), *z - options.mount_offset_m);
     }
+  if (positions_.empty() && under_floor_z)
+    throw std::out_of_range((std::ostringstream() << options.mount_offset_m << " m below mounting surface '" << name
+                                                  << "' (at z = " << *under_floor_z << " m) is at or below the "
+                                                  << "scene's lowest point (z = " << scene.bounds_m.min().z()
+                                                  << " m): luminaires would hang under the floor")
+                                .str());
   if (positions_.empty())
     throw std::invalid_argument("mounting surface '" + name + "': no position where a whole " +
                                 (std::ostringstream() << 2.0 * options.half_footprint_m.x() << " x "

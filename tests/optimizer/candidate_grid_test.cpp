@@ -51,6 +51,44 @@ TEST(CandidateGrid, CoversARectangleEvenly) {
   EXPECT_EQ(grid.ignored_patches(), 0u);
 }
 
+// A shell surface (the classroom's Mesh042) faces down at its ceiling and under its floor
+// slab: luminaires hang from the ceiling wherever the slab's patches come first (the
+// first patch over a point was taken), and where the ceiling has a hole and only the
+// slab is over a point there is no position (it threw "would hang under the floor"
+// for the whole job). With no ceiling at all that is still the error.
+Scene shell_scene(bool ceiling) {
+  TriangleMesh mesh;
+  mesh.surface_names = {"shell", "ground"};
+  auto add = [&](double x1, double z, int surface, bool down) {  // [0, x1] x [0, 4] at z
+    const int base = static_cast<int>(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), {Eigen::Vector3d(0, 0, z), Eigen::Vector3d(x1, 0, z),
+                                                 Eigen::Vector3d(x1, 4, z), Eigen::Vector3d(0, 4, z)});
+    for (Eigen::Vector3i t : {Eigen::Vector3i(base, base + 1, base + 2), Eigen::Vector3i(base, base + 2, base + 3)}) {
+      if (down) std::swap(t[1], t[2]);
+      mesh.triangles.push_back(t);
+      mesh.triangle_surface.push_back(surface);
+      mesh.triangle_material.push_back(-1);
+    }
+  };
+  add(6.0, 0.0, 0, true);             // under the slab, first in the mesh
+  if (ceiling) add(3.0, 3.0, 0, true);  // a ceiling over half the room: a hole over x > 3
+  add(6.0, -0.02, 1, false);          // the ground, the scene's lowest point
+  return make_scene(mesh, TriangleReflectance(mesh.triangles.size(), Eigen::Vector3d::Constant(0.5)),
+                    {.max_patch_edge_m = 0.5});
+}
+
+TEST(CandidateGrid, AShellSurfaceMountsAtItsCeilingNotUnderItsSlab) {
+  const CandidateGridOptions linear{.spacing_m = 0.5, .half_footprint_m = Eigen::Vector2d(0.63, 0.03), .mount_offset_m = 0.05};
+  const Scene scene = shell_scene(true);
+  const CandidateGrid grid(scene, 0, linear);
+  ASSERT_GT(grid.size(), 0u);
+  for (const Eigen::Vector3d& p : grid.positions_m()) {
+    EXPECT_NEAR(p.z(), 2.95, 1e-12);
+    EXPECT_LE(p.x() + 0.63, 3.0 + 1e-9) << "only under the ceiling";
+  }
+  EXPECT_THROW(CandidateGrid(shell_scene(false), 0, linear), std::out_of_range) << "no ceiling: under the floor";
+}
+
 TEST(CandidateGrid, BlendReproducesNodesAndLinearFunctions) {
   const Scene scene = ceiling_scene({Eigen::Vector4d(0, 6, 0, 4)});
   const CandidateGrid grid(scene, 0, {.spacing_m = 0.5, .half_footprint_m = Eigen::Vector2d::Constant(0.3), .mount_offset_m = 0.05});
