@@ -271,10 +271,7 @@ std::string products_text(const ResultRecord& r) {
 std::string verdict_text(const ResultRecord& r) {
   if (!r.no_layout.empty()) return "No layout: " + r.no_layout;
   if (r.all_met) return std::string("Every goal is met") + (r.verification != "none" ? " as verified." : " as predicted.");
-  std::string failing;
-  for (const std::vector<VerdictLine>* lines : {&r.goals, &r.constraints})
-    for (const VerdictLine& l : *lines)
-      if (!l.met) failing += (failing.empty() ? "" : "; ") + failing_line_text(l);
+  const std::string failing = failing_lines_text(r);
   return "NOT MET: " + (failing.empty() ? std::string("the lines marked NOT MET below fail") : failing) + ".";
 }
 

@@ -387,6 +387,14 @@ std::string failing_line_text(const VerdictLine& g) {
   return text;
 }
 
+std::string failing_lines_text(const ResultRecord& r) {
+  std::string out;
+  for (const std::vector<VerdictLine>* lines : {&r.goals, &r.constraints})
+    for (const VerdictLine& l : *lines)
+      if (!l.met) out += (out.empty() ? "" : "; ") + failing_line_text(l);
+  return out;
+}
+
 void write_result_json(const std::string& path, const ResultRecord& result) {
   const json j = to_json(result);
   // Invalid UTF-8 (a name from a file) is replaced, not a throw after the whole run.
@@ -466,18 +474,13 @@ void print_arrangements(std::ostream& os, const std::vector<AttemptRecord>& atte
 // Met exactly when every line is (result_mapping), so a "NOT MET" always names a line.
 void print_verdict(std::ostream& os, const ResultRecord& r) {
   if (r.all_met) return;
-  std::vector<const VerdictLine*> failing;
   bool missed_as_predicted = false;
   for (const std::vector<VerdictLine>* lines : {&r.goals, &r.constraints})
-    for (const VerdictLine& l : *lines)
-      if (!l.met) {
-        failing.push_back(&l);
-        missed_as_predicted = missed_as_predicted || !l.fails_only_on_verification;
-      }
-  os << "NOT MET: ";
-  if (failing.empty()) os << "the result says not met, but every line is met (a result written by an older ilp?)";
-  for (std::size_t k = 0; k < failing.size(); ++k) os << (k ? "; " : "") << failing_line_text(*failing[k]);
-  os << "\n";
+    for (const VerdictLine& l : *lines) missed_as_predicted = missed_as_predicted || (!l.met && !l.fails_only_on_verification);
+  const std::string failing = failing_lines_text(r);
+  os << "NOT MET: "
+     << (failing.empty() ? "the result says not met, but every line is met (a result written by an older ilp?)" : failing)
+     << "\n";
   if (!missed_as_predicted)
     os << "NOT MET on verification: the layout meets every goal as predicted, but not every goal as verified\n";
   else if (r.objective == "min_power")

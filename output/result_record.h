@@ -68,6 +68,10 @@ std::string verdict_target_text(const VerdictLine& line);
 
 // "min_distance_m 1.965 m < 2.000 m (by 0.035 m)": a line that is not met, and why.
 std::string failing_line_text(const VerdictLine& line);
+struct ResultRecord;
+// Every goal and constraint line of `record` that is not met, as failing_line_text
+// gives them, joined by "; " ("" when every line is met).
+std::string failing_lines_text(const ResultRecord& record);
 
 // Em, Emin, Emax (lx) and U0 over one set of values.
 struct GridValues {
