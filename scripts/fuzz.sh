@@ -43,6 +43,8 @@ done
 cmake --build build-fuzz -j"$(nproc)" --target "${harnesses[@]}"
 
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:allocator_may_return_null=1"
+# Leaks inside uninstrumented Debian libraries that are not ours, as the sanitizer job has them.
+export LSAN_OPTIONS="suppressions=$(pwd)/scripts/sanitizers/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 # One harness: fuzz for $seconds, then print its figures; returns non-zero on a finding.
 run_one() {
