@@ -13,6 +13,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include "core/energy/leni.h"
@@ -176,37 +177,38 @@ std::string goal_bound_rule(const std::vector<GoalSetting>& others, const std::s
 // performanceinlighting.com/ww/us/en-12464-1; the other rows as EN 12464-1 tabulates them
 // (2011 numbering), not checked against the printed 2021 standard. Walls 50 lx and
 // ceiling 30 lx (U0 >= 0.10) are the general requirement where a row gives none.
-//  key, row, building type, Em, Em modified, U0, UGR_L, Ra, Ez,m, Em wall, Em ceiling
+//  key, row, building type, Em, Em modified, U0, UGR_L, Ra, Ez,m, Em wall, Em ceiling, a task area with an
+//  immediate surrounding area (rows of whole rooms and circulation areas have none)
 constexpr GoalPreset kPresets[] = {
-    {"office_filing", "Filing, copying, etc.", "offices", 300, 500, 0.40, 19, 80, 100, 100, 75},
-    {"office_writing", "Writing, typing, reading, data processing", "offices", 500, 1000, 0.60, 19, 80, 150, 150, 100},
-    {"office_technical_drawing", "Technical drawing", "offices", 750, 1500, 0.70, 16, 80, 150, 150, 100},
-    {"office_cad", "CAD work stations", "offices", 500, 1000, 0.60, 19, 80, 150, 150, 100},
-    {"office_conference", "Conference and meeting rooms", "offices", 500, 1000, 0.60, 19, 80, 150, 150, 100},
-    {"office_reception", "Reception desk", "offices", 300, 500, 0.60, 22, 80, 100, 100, 75},
-    {"office_archives", "Archives", "offices", 200, 300, 0.40, 25, 80, 75, 75, 50},
-    {"classroom", "Classrooms, tutorial rooms", "education", 300, 500, 0.60, 19, 80, 0, 50, 30},
-    {"classroom_adult", "Classrooms for evening classes and adult education", "education", 500, 750, 0.60, 19, 80, 0, 50, 30},
-    {"lecture_hall", "Lecture hall", "education", 500, 750, 0.60, 19, 80, 0, 50, 30},
-    {"board", "Black, green and white boards", "education", 500, 0, 0.70, 19, 80, 0, 50, 30},
-    {"stairs_education", "Stairs (educational buildings)", "education", 150, 200, 0.40, 25, 80, 0, 50, 30},
-    {"entrance_hall_education", "Entrance halls (educational buildings)", "education", 200, 300, 0.40, 22, 80, 0, 50, 30},
-    {"toilets", "Toilets, cloakrooms", "education", 200, 0, 0.40, 25, 80, 0, 50, 30},
-    {"health_waiting_room", "Waiting rooms", "health care", 200, 0, 0.40, 22, 80, 0, 50, 30},
-    {"health_ward", "Wards: general lighting", "health care", 100, 0, 0.40, 19, 80, 0, 50, 30},
-    {"health_examination", "Examination rooms: general lighting", "health care", 500, 0, 0.60, 19, 90, 0, 50, 30},
-    {"health_treatment", "Examination and treatment", "health care", 1000, 0, 0.70, 19, 90, 0, 50, 30},
-    {"retail_sales", "Sales area", "retail", 300, 0, 0.40, 22, 80, 0, 50, 30},
-    {"retail_till", "Till area", "retail", 500, 0, 0.60, 19, 80, 0, 50, 30},
-    {"industry_assembly_rough", "Assembly work: rough", "industry", 200, 0, 0.60, 25, 80, 0, 50, 30},
-    {"industry_assembly_medium", "Assembly work: medium", "industry", 300, 0, 0.60, 25, 80, 0, 50, 30},
-    {"industry_assembly_fine", "Assembly work: fine", "industry", 500, 0, 0.60, 22, 80, 0, 50, 30},
-    {"industry_assembly_precision", "Assembly work: precision", "industry", 750, 0, 0.70, 19, 80, 0, 50, 30},
-    {"industry_storage", "Store and stockrooms", "industry", 100, 0, 0.40, 25, 60, 0, 50, 30},
-    {"corridor", "Corridors and circulation areas", "circulation", 100, 150, 0.40, 28, 40, 0, 50, 30},
-    {"stairs", "Stairs, escalators, travolators", "circulation", 100, 150, 0.40, 25, 40, 0, 50, 30},
-    {"worship_body", "Body of place of worship", "places of worship", 100, 0, 0.40, 25, 80, 0, 50, 30},
-    {"worship_altar", "Chair, altar, pulpit", "places of worship", 300, 0, 0.60, 22, 80, 0, 50, 30},
+    {"office_filing", "Filing, copying, etc.", "offices", 300, 500, 0.40, 19, 80, 100, 100, 75, true},
+    {"office_writing", "Writing, typing, reading, data processing", "offices", 500, 1000, 0.60, 19, 80, 150, 150, 100, true},
+    {"office_technical_drawing", "Technical drawing", "offices", 750, 1500, 0.70, 16, 80, 150, 150, 100, true},
+    {"office_cad", "CAD work stations", "offices", 500, 1000, 0.60, 19, 80, 150, 150, 100, true},
+    {"office_conference", "Conference and meeting rooms", "offices", 500, 1000, 0.60, 19, 80, 150, 150, 100, true},
+    {"office_reception", "Reception desk", "offices", 300, 500, 0.60, 22, 80, 100, 100, 75, true},
+    {"office_archives", "Archives", "offices", 200, 300, 0.40, 25, 80, 75, 75, 50, false},
+    {"classroom", "Classrooms, tutorial rooms", "education", 300, 500, 0.60, 19, 80, 0, 50, 30, true},
+    {"classroom_adult", "Classrooms for evening classes and adult education", "education", 500, 750, 0.60, 19, 80, 0, 50, 30, true},
+    {"lecture_hall", "Lecture hall", "education", 500, 750, 0.60, 19, 80, 0, 50, 30, true},
+    {"board", "Black, green and white boards", "education", 500, 0, 0.70, 19, 80, 0, 50, 30, true},
+    {"stairs_education", "Stairs (educational buildings)", "education", 150, 200, 0.40, 25, 80, 0, 50, 30, false},
+    {"entrance_hall_education", "Entrance halls (educational buildings)", "education", 200, 300, 0.40, 22, 80, 0, 50, 30, false},
+    {"toilets", "Toilets, cloakrooms", "education", 200, 0, 0.40, 25, 80, 0, 50, 30, false},
+    {"health_waiting_room", "Waiting rooms", "health care", 200, 0, 0.40, 22, 80, 0, 50, 30, false},
+    {"health_ward", "Wards: general lighting", "health care", 100, 0, 0.40, 19, 80, 0, 50, 30, false},
+    {"health_examination", "Examination rooms: general lighting", "health care", 500, 0, 0.60, 19, 90, 0, 50, 30, false},
+    {"health_treatment", "Examination and treatment", "health care", 1000, 0, 0.70, 19, 90, 0, 50, 30, true},
+    {"retail_sales", "Sales area", "retail", 300, 0, 0.40, 22, 80, 0, 50, 30, false},
+    {"retail_till", "Till area", "retail", 500, 0, 0.60, 19, 80, 0, 50, 30, true},
+    {"industry_assembly_rough", "Assembly work: rough", "industry", 200, 0, 0.60, 25, 80, 0, 50, 30, true},
+    {"industry_assembly_medium", "Assembly work: medium", "industry", 300, 0, 0.60, 25, 80, 0, 50, 30, true},
+    {"industry_assembly_fine", "Assembly work: fine", "industry", 500, 0, 0.60, 22, 80, 0, 50, 30, true},
+    {"industry_assembly_precision", "Assembly work: precision", "industry", 750, 0, 0.70, 19, 80, 0, 50, 30, true},
+    {"industry_storage", "Store and stockrooms", "industry", 100, 0, 0.40, 25, 60, 0, 50, 30, false},
+    {"corridor", "Corridors and circulation areas", "circulation", 100, 150, 0.40, 28, 40, 0, 50, 30, false},
+    {"stairs", "Stairs, escalators, travolators", "circulation", 100, 150, 0.40, 25, 40, 0, 50, 30, false},
+    {"worship_body", "Body of place of worship", "places of worship", 100, 0, 0.40, 25, 80, 0, 50, 30, false},
+    {"worship_altar", "Chair, altar, pulpit", "places of worship", 300, 0, 0.60, 22, 80, 0, 50, 30, true},
 };
 
 
@@ -302,7 +304,7 @@ void read_grids(const Value& section, JobConfig& job) {
 // then one per metric (optimizer/goal_spec.h).
 std::vector<std::string> goal_entry_keys() {
   std::vector<std::string> keys{"name", "surface", "grid", "facing", "preset", "em", "walls", "ceiling",
-                                "eye_height_m", "observers"};
+                                "surrounding", "eye_height_m", "observers"};
   for (const MetricRule& rule : metric_rules()) keys.emplace_back(rule.key);
   return keys;
 }
@@ -417,6 +419,86 @@ void add_room_surface_goal(const Map& entry, const std::string& key, double aver
   goals.push_back(g);
 }
 
+// surrounding: of a goals entry on a task area (a grid drawn as rectangle_m or polygon_m):
+// EN 12464-1's immediate surrounding area, as a band grid "<grid>_surrounding" (the
+// task's outline grown by width_m less the outline, at its height; core/grid/calc_grid.h)
+// and a goal "<goal>_surrounding" on it with its Em (given, or the task's Em one step
+// down the standard's scale) and U0 (given, or 0.40). `surrounding: false` leaves out
+// what the entry's preset would add; a preset adds it for rows with a task area when the
+// entry's grid is a rectangle or polygon (a grid over a floor is the whole room: the
+// standard's "task area unknown" case, with no band inside the room).
+void add_surrounding(const Map& entry, const GoalSetting& base, const GoalPreset* preset,
+                     const std::optional<Value>& preset_value, const std::vector<GoalSetting>& task_goals, JobConfig& job) {
+  const std::optional<Value> v = entry.get("surrounding");
+  const int task_index = base.grid.empty() ? -1 : find_grid(job, base.grid);
+  const bool drawn = task_index >= 0 && job.grids[static_cast<std::size_t>(task_index)].kind == GridKind::horizontal &&
+                     !job.grids[static_cast<std::size_t>(task_index)].polygon_m.empty();
+  double width_m = kSurroundingWidthM;
+  std::optional<FileLoc> width_loc;
+  std::optional<std::pair<double, FileLoc>> average, uniformity;
+  if (v) {
+    if (v->node().IsScalar()) {
+      const std::string flag = v->text();
+      if (flag == "false") return;
+      if (flag != "true") v->fail("must be true, false or a map {width_m, average_lux, uniformity}");
+    } else {
+      const Map m(*v, {"width_m", "average_lux", "uniformity"});
+      if (auto w = m.get("width_m")) {
+        width_m = w->bounded(1e-6, kMaxLength_m, " m");
+        width_loc = w->loc();
+      }
+      for (auto [key, metric, out] : {std::tuple{"average_lux", GoalMetric::average, &average},
+                                      std::tuple{"uniformity", GoalMetric::uniformity, &uniformity}})
+        if (auto t = m.get(key)) {
+          const double target = t->number();
+          if (const std::string rule = target_rule(metric, target); !rule.empty()) t->fail(rule);
+          *out = std::pair(target, t->loc());
+        }
+    }
+    if (base.grid.empty())
+      v->fail("applies to a goal on a grid (the task area, drawn as rectangle_m or polygon_m)");
+    if (!drawn)
+      v->fail("needs the task area's grid '" + base.grid +
+              "' drawn as rectangle_m or polygon_m (a grid over a floor covers the room: no band around it)");
+  } else if (!(preset && preset->surrounding && drawn)) {
+    return;
+  }
+  const Value& at = v ? *v : *preset_value;  // where the band comes from, for errors
+  const FileLoc loc = at.loc();
+  const CalcGridSetting& task = job.grids[static_cast<std::size_t>(task_index)];
+  if (!average) {
+    const auto em = std::find_if(task_goals.begin(), task_goals.end(),
+                                 [](const GoalSetting& g) { return g.metric == GoalMetric::average; });
+    if (em == task_goals.end())
+      at.fail("needs average_lux, here or on the task (its Em gives the surrounding's by EN 12464-1's table)");
+    average = std::pair(surrounding_average_lux(em->target), loc);
+  }
+  if (!uniformity) uniformity = std::pair(kSurroundingUniformity, loc);
+  CalcGridSetting band = task;
+  band.name = task.name + kSurroundingSuffix;
+  band.loc = band.shape_loc = band.border_loc = loc;
+  band.band_width_m = width_m;
+  band.band_loc = width_loc.value_or(loc);
+  band.border_m = 0.0;
+  band.spacing_m.reset();  // the standard's, for the band's own outline
+  if (band.name.size() > kMaxGridNameChars || find_grid(job, band.name) >= 0)
+    at.fail("the band's grid '" + band.name + "' " +
+            (band.name.size() > kMaxGridNameChars ? "has too long a name" : "is already defined"));
+  GoalSetting goal;
+  goal.name = base.name + kSurroundingSuffix;
+  goal.grid = band.name;
+  goal.surfaces_loc = loc;
+  for (const GoalSetting& g : job.goals)
+    if (g.name == goal.name) at.fail("the band's goal '" + goal.name + "' is already defined");
+  job.grids.push_back(band);
+  for (const auto& [metric, target] : {std::pair{GoalMetric::average, *average}, std::pair{GoalMetric::uniformity, *uniformity}}) {
+    goal.metric = metric;
+    goal.target = target.first;
+    goal.loc = target.second;
+    job.goals.push_back(goal);
+  }
+}
+
 void read_goals(const Value& section, JobConfig& job) {
   const std::vector<Value> entries = section.list();
   if (entries.empty()) section.fail("must list at least one goal");
@@ -525,6 +607,7 @@ void read_goals(const Value& section, JobConfig& job) {
       add_room_surface_goal(entry, "walls", preset->wall_lux, job.goals);
       add_room_surface_goal(entry, "ceiling", preset->ceiling_lux, job.goals);
     }
+    add_surrounding(entry, base, preset, preset_value, here, job);
   }
 }
 
@@ -575,6 +658,10 @@ void read_constraints(const Map& constraints, JobConfig& job) {
   }
   if (auto v = constraints.get("min_distance_m")) {
     job.constraints.min_distance_m = v->bounded(0.0, kMaxLength_m, " m");
+  }
+  if (auto v = constraints.get("max_power_density_w_per_m2")) {
+    job.constraints.max_power_density_w_per_m2 = v->bounded(1e-6, 1e6, " W/m²");
+    job.constraints.max_power_density_loc = v->loc();
   }
 }
 
@@ -806,6 +893,14 @@ void read_solver(const Map& solver, JobConfig& job) {
 
 std::span<const GoalPreset> goal_presets() { return kPresets; }
 
+double surrounding_average_lux(double task_average_lux) {
+  // EN 12464-1:2021 (task Em -> immediate surrounding Em); below 200 lx the task's own.
+  constexpr std::pair<double, double> kSteps[] = {{750, 500}, {500, 300}, {300, 200}, {200, 150}};
+  for (const auto& [task, surrounding] : kSteps)
+    if (task_average_lux >= task) return surrounding;
+  return task_average_lux;
+}
+
 double initial_target(const JobConfig& job, const GoalSetting& goal) {
   return metric_rule(goal.metric).lux ? goal.target / job.maintenance_factor : goal.target;
 }
@@ -880,7 +975,7 @@ JobConfig load_job_config(const std::string& path) {
       job.maintenance_loc = v->loc();
     }
     if (auto v = top.get("goals")) read_goals(*v, job);
-    if (auto v = top.get("constraints")) read_constraints(Map(*v, {"max_luminaires", "min_distance_m"}), job);
+    if (auto v = top.get("constraints")) read_constraints(Map(*v, {"max_luminaires", "min_distance_m", "max_power_density_w_per_m2"}), job);
     if (auto v = top.get("objective")) read_objective(*v, job);
     if (auto v = top.get("solver"))
       read_solver(Map(*v, {"method", "rays_per_patch", "seed", "threads", "relative_residual", "max_iterations",

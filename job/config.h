@@ -185,8 +185,9 @@ struct GoalSetting {
 // EN 12464-1:2021 rows (docs/config.md gives the sources): `preset: office_writing` on a
 // task area gives the row's Em (required, or modified with `em: modified`) as average_lux,
 // U0 as uniformity, UGR_L as ugr_max, Ez,m as cylindrical_lux (with Ez U0 >= 0.10) and,
-// on the surfaces the entry names as `walls` and `ceiling`, their Em and U0 >= 0.10.
-// Products must state Ra (`ra`) at least the row's. 0: the row gives no value.
+// on the surfaces the entry names as `walls` and `ceiling`, their Em and U0 >= 0.10; on a
+// task area drawn as a rectangle or polygon, for rows with one, the immediate surrounding
+// area (`surrounding: false` leaves it out). Products must state Ra (`ra`) at least the row's. 0: the row gives no value.
 struct GoalPreset {
   const char* key;         // office_writing, ...
   const char* standard;    // the row as the standard names it
@@ -199,14 +200,30 @@ struct GoalPreset {
   double cylindrical_lux;  // Ez,m (0: none)
   double wall_lux;         // Em,wall (the general 50 lx when the row gives none)
   double ceiling_lux;      // Em,ceiling (the general 30 lx when the row gives none)
+  bool surrounding;        // a task area with an immediate surrounding area (not a whole room: corridor, store, ...)
 };
 std::span<const GoalPreset> goal_presets();
 inline constexpr double kRoomSurfaceUniformity = 0.10;  // EN 12464-1:2021: walls, ceiling and Ez
+
+// The immediate surrounding area (EN 12464-1:2021, 5.3.3): a band at least 0.5 m wide
+// around the task area, U0 >= 0.40, its Em one step of the illuminance scale below the
+// task's: task >= 750 lx -> 500, 500 -> 300, 300 -> 200, 200 -> 150, <= 150 -> the task's
+// own (a task Em between rows takes the row at or below it). docs/config.md gives the sources.
+inline constexpr double kSurroundingWidthM = 0.5;
+inline constexpr double kSurroundingUniformity = 0.40;
+double surrounding_average_lux(double task_average_lux);
+// The band's grid and goal are named after the task's: "<grid>_surrounding", "<goal>_surrounding".
+inline constexpr const char* kSurroundingSuffix = "_surrounding";
 
 struct SearchConstraints {
   std::optional<int> max_luminaires;    // caps luminaires.count (free) or rows x columns (array: error if more)
   FileLoc max_luminaires_loc;
   double min_distance_m = 0.0;          // between luminaire centres, >= 0
+  // max_power_density_w_per_m2: the layout's electric power over the power density's
+  // area (JobOutcome::floor_area_m2: the floor, or a grid's own area, named) at most
+  // this; > 0. The search takes it as a cap on the total power, cap x that area.
+  std::optional<double> max_power_density_w_per_m2;
+  FileLoc max_power_density_loc;
 };
 
 enum class VerificationMethod { automatic, exact, sample, none };

@@ -49,6 +49,10 @@ double least_wall_distance_m(const std::vector<PlacedLuminaire>& layout, const E
 
 }  // namespace
 
+double PowerDensityCap::max_power_w() const {
+  return max_w_per_m2 && area_m2 > 0.0 ? *max_w_per_m2 * area_m2 : std::numeric_limits<double>::infinity();
+}
+
 bool constraint_met(ConstraintRule rule, double target, double target_max, double value, double tolerance) {
   auto slack = [&](double bound) { return tolerance * (bound != 0.0 ? std::abs(bound) : 1.0); };
   switch (rule) {
@@ -60,7 +64,8 @@ bool constraint_met(ConstraintRule rule, double target, double target_max, doubl
 }
 
 std::vector<ConstraintOutcome> check_constraints(const SearchSpec& spec, const Eigen::AlignedBox2d& surface_box_m,
-                                                 double wall_distance_m, const std::vector<PlacedLuminaire>& layout) {
+                                                 double wall_distance_m, const std::vector<PlacedLuminaire>& layout,
+                                                 const PowerDensityCap& power) {
   const LayoutSpec& l = spec.layout;
   const SearchLuminaire& s = spec.luminaire;
   std::vector<ConstraintOutcome> out;
@@ -96,6 +101,13 @@ std::vector<ConstraintOutcome> check_constraints(const SearchSpec& spec, const E
                           .rule = ConstraintRule::at_least, .target = s.flux_min_lm, .value = low}));
     out.push_back(judged({.name = "flux_lm", .what = "highest flux of a luminaire", .unit = "lm",
                           .rule = ConstraintRule::at_most, .target = s.flux_max_lm, .value = high}));
+  }
+  if (power.max_w_per_m2 && power.area_m2 > 0.0) {
+    double power_w = 0.0;
+    for (const PlacedLuminaire& p : layout) power_w += p.power_w;
+    out.push_back(judged({.name = "max_power_density_w_per_m2", .what = "power density over the " + power.area_source,
+                          .unit = "W/m²", .rule = ConstraintRule::at_most, .target = *power.max_w_per_m2,
+                          .value = power_w / power.area_m2}));
   }
   return out;
 }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "core/base/error.h"
@@ -276,39 +277,29 @@ std::pair<double, double> upward_area_m2(const Scene& scene, int surface) {
 // named as such) of the first horizontal grid drawn as a rectangle or polygon (a grid
 // over a raised surface, a table top, is a task area and gives none); else the
 // mounting surface's plan area.
-void set_floor_area(JobOutcome& out, const PreparedJob& prepared) {
+std::pair<double, std::string> power_density_area(const PreparedJob& prepared) {
   const Scene& scene = prepared.loaded.scene;
   const CandidateSpec& c = prepared.plan.model.candidates;
   if (!c.floor_surface.empty()) {
     const double area = upward_area_m2(scene, scene.find_surface(c.floor_surface)).first;
-    if (area > 0.0) {
-      out.floor_area_m2 = area;
-      out.floor_area_source = "floor '" + c.floor_surface + "' (luminaires.floor_surface)";
-      return;
-    }
+    if (area > 0.0) return {area, "floor '" + c.floor_surface + "' (luminaires.floor_surface)"};
   }
   constexpr double kFloorLevelTolerance_m = 0.2;
   for (const CalcGridSetting& g : prepared.plan.model.grids)
     if (g.kind == GridKind::horizontal && !g.over_surface.empty()) {
       const auto [area, highest_m] = upward_area_m2(scene, scene.find_surface(g.over_surface));
-      if (area > 0.0 && highest_m <= scene.bounds_m.min().z() + kFloorLevelTolerance_m) {
-        out.floor_area_m2 = area;
-        out.floor_area_source = "floor '" + g.over_surface + "' (under grid '" + g.name + "')";
-        return;
-      }
+      if (area > 0.0 && highest_m <= scene.bounds_m.min().z() + kFloorLevelTolerance_m)
+        return {area, "floor '" + g.over_surface + "' (under grid '" + g.name + "')"};
       break;
     }
   for (std::size_t k = 0; k < prepared.model.grids.size(); ++k) {
     const CalcGrid& g = prepared.model.grids[k];
-    if (g.kind == GridKind::horizontal && prepared.plan.model.grids[k].over_surface.empty() && g.area_m2 > 0.0) {
-      out.floor_area_m2 = g.area_m2;
-      out.floor_area_source = "area of grid '" + g.name + "' (no floor surface known)";
-      return;
-    }
+    if (g.kind == GridKind::horizontal && prepared.plan.model.grids[k].over_surface.empty() && g.area_m2 > 0.0)
+      return {g.area_m2, "area of grid '" + g.name + "' (no floor surface known)"};
   }
-  out.floor_area_m2 = out.mounting_area_m2;
-  out.floor_area_source = c.suspended_height_m ? std::string("plan area of the suspension zone")
-                                               : "plan area of the mounting surface '" + c.mounting_surface + "'";
+  return {prepared.model.grid.mounting_area_m2(),
+          c.suspended_height_m ? std::string("plan area of the suspension zone")
+                               : "plan area of the mounting surface '" + c.mounting_surface + "'"};
 }
 
 // The glare side of a layout's light (GoalLight): per observer, the indirect illuminance at
@@ -361,7 +352,8 @@ Eigen::VectorXd predicted_direct_lux(const LightingModel& model, const LayoutEva
 // One search (at the targets of `searched`) and its verification, judged against the
 // real targets of `real`.
 JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real, const SearchSpec& searched,
-                             const ProgressCallback& progress, const SearchBounds& bounds) {
+                             const PowerDensityCap& power_cap, const ProgressCallback& progress,
+                             const SearchBounds& bounds) {
   const LightingModel& model = prepared.model;
   const SearchSpec& job = real;
   JobOutcome out;
@@ -411,11 +403,14 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
   out.fixed_flux_lm = model.fixed_flux_lm;
   out.mounting_area_m2 = model.grid.mounting_area_m2();
   out.maintenance_factor = prepared.plan.maintenance_factor;
-  set_floor_area(out, prepared);
+  out.floor_area_m2 = power_cap.area_m2;
+  out.floor_area_source = power_cap.area_source;
   out.power_density_w_per_m2 = out.floor_area_m2 > 0.0 ? out.power_w / out.floor_area_m2 : 0.0;
-  // Feasible as predicted: against the real targets, with the distance constraint.
-  out.feasible = best.distance_violation <= 1e-4;
-  out.constraints = check_constraints(job, model.grid.surface_box_m(), prepared.plan.model.candidates.wall_distance_m, out.luminaires);
+  // Feasible as predicted: against the real targets, with the distance constraint and the power cap.
+  out.feasible = best.distance_violation <= 1e-4 &&
+                 constraint_met(ConstraintRule::at_most, job.layout.max_power_w, 0.0, best.power_w, kConstraintLineTolerance);
+  out.constraints = check_constraints(job, model.grid.surface_box_m(), prepared.plan.model.candidates.wall_distance_m,
+                                      out.luminaires, power_cap);
   out.all_met = std::all_of(out.constraints.begin(), out.constraints.end(), [](const ConstraintOutcome& c) { return c.met; });
   for (std::size_t g = 0; g < predicted.size(); ++g) {
     GoalOutcome o;
@@ -475,10 +470,14 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
   const double mf = prepared.plan.maintenance_factor;
   SearchSpec real = prepared.plan.search;
   real.goals = goal_specs(job, mf);
+  PowerDensityCap power_cap;
+  std::tie(power_cap.area_m2, power_cap.area_source) = power_density_area(prepared);
+  power_cap.max_w_per_m2 = job.constraints.max_power_density_w_per_m2;
+  real.layout.max_power_w = power_cap.max_power_w();
   for (int round = 0; round < rounds; ++round) {
     SearchSpec searched = real;
     searched.goals = goal_specs(search_job, mf);
-    JobOutcome outcome = search_and_verify(prepared, real, searched, progress, bounds);
+    JobOutcome outcome = search_and_verify(prepared, real, searched, power_cap, progress, bounds);
     if (outcome.search.beaten) {
       if (!best) return outcome;  // nothing could beat the power given: nothing searched
       // A later round whose every count drew no less at the easier targets than the

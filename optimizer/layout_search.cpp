@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <numeric>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -249,7 +250,12 @@ class Evaluator {
     const Eigen::VectorXd& f = model_.fixed_lux;
     const double w_max = n ? *std::max_element(w.begin(), w.end()) : 0.0;
     const double w_min = n ? *std::min_element(w.begin(), w.end()) : 0.0;
-    const double scale_hi = w_max > 0.0 ? s.flux_max_lm / w_max : 0.0;
+    double scale_hi = w_max > 0.0 ? s.flux_max_lm / w_max : 0.0;
+    const double w_sum = std::accumulate(w.begin(), w.end(), 0.0);
+    const double max_power_w = spec_.layout.max_power_w;
+    // closest_to_target: the fit is held to the power cap (power is linear in the scale).
+    if (!objective_rule(spec_.objective).minimises_power && std::isfinite(max_power_w) && w_sum > 0.0)
+      scale_hi = std::min(scale_hi, max_power_w * s.efficacy_lm_per_w / w_sum);
     const double scale_lo = w_min > 0.0 ? std::min(scale_hi, s.flux_min_lm / w_min) : 0.0;
     double scale = 0.0;
     if (objective_rule(spec_.objective).minimises_power) {
@@ -293,6 +299,13 @@ class Evaluator {
       }
     double penalty = out.distance_violation, deviation = 0.0;
     out.feasible = out.distance_violation <= kConstraintTolerance;
+    // Over the power cap: infeasible, by the relative excess (min_power keeps the scale
+    // the goals want, so the closest layout shows what the goals cost).
+    if (std::isfinite(max_power_w) && out.power_w > max_power_w) {
+      const double excess = (out.power_w - max_power_w) / std::max(max_power_w, 1e-300);
+      penalty += excess;
+      out.feasible = out.feasible && excess <= kConstraintTolerance;
+    }
     for (const GoalJudgement& g : out.goals) {
       if (is_target_goal(spec_.objective, g.metric)) {
         deviation += g.violation * g.violation;

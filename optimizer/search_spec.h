@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -77,6 +78,10 @@ struct LayoutSpec {
   RegularLayoutParams regular;       // field, rows, bays
   double ceiling_module_m = 0.0;     // > 0: the layout found snaps to the module's cell centres
   double min_distance_m = 0.0;       // between luminaire centres
+  // The layout's electric power at most this (W): a power-density cap times its area.
+  // A layout above it is infeasible (its excess, relative, is a penalty); under
+  // closest_to_target the flux scale is held to it.
+  double max_power_w = std::numeric_limits<double>::infinity();
   std::string mounting_surface;      // for messages
   FileLoc loc;                       // of the layout settings, for a refusal
 };

@@ -58,6 +58,7 @@ std::vector<std::vector<Eigen::Vector2d>> grid_room_outline_m(const CalcGrid& gr
     const double top = bottom + 2.0 * grid.border_m + grid.cells_v * grid.cell_v_m;
     return {{V2(0.0, bottom), V2(length, bottom), V2(length, top), V2(0.0, top)}};
   }
+  if (!grid.outline_hole_m.empty()) return {grid.outline_polygon_m, grid.outline_hole_m};  // a band and its task area
   if (!grid.outline_polygon_m.empty()) return {grid.outline_polygon_m};
   return union_outline(grid.outline_triangles_m, kOutlineRasterCells);
 }

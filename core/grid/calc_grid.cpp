@@ -55,12 +55,14 @@ bool inside_triangle(const std::array<Eigen::Vector2d, 3>& t, const Eigen::Vecto
 }
 
 // The area a horizontal grid covers: a polygon, or the union of a surface's patches facing up.
+// A band's polygon has a hole (its task area).
 struct Outline {
   std::vector<Eigen::Vector2d> polygon;
+  std::vector<Eigen::Vector2d> hole;
   std::vector<std::array<Eigen::Vector2d, 3>> triangles;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = Eigen::Vector2d::Constant(-INFINITY);
   bool contains(const Eigen::Vector2d& p) const {
-    if (!polygon.empty()) return inside_polygon(polygon, p);
+    if (!polygon.empty()) return inside_polygon(polygon, p) && (hole.empty() || !inside_polygon(hole, p));
     return std::any_of(triangles.begin(), triangles.end(), [&](const auto& t) { return inside_triangle(t, p); });
   }
   void extend(const Eigen::Vector2d& p) {
@@ -80,7 +82,46 @@ bool inside_less_band(const Outline& outline, const Eigen::Vector2d& p, double b
   return true;
 }
 
+// The part of a polygon inside the box (Sutherland-Hodgman, one side of the box at a time).
+std::vector<Eigen::Vector2d> clip_to_box(std::vector<Eigen::Vector2d> poly, const Eigen::Vector2d& lo,
+                                         const Eigen::Vector2d& hi) {
+  for (int side = 0; side < 4 && !poly.empty(); ++side) {
+    const int axis = side % 2;
+    const bool low = side < 2;
+    const double bound = low ? lo[axis] : hi[axis];
+    auto inside = [&](const Eigen::Vector2d& p) { return low ? p[axis] >= bound : p[axis] <= bound; };
+    std::vector<Eigen::Vector2d> out;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Eigen::Vector2d& a = poly[i];
+      const Eigen::Vector2d& b = poly[(i + 1) % poly.size()];
+      if (inside(a)) out.push_back(a);
+      if (inside(a) != inside(b)) out.push_back(a + (b - a) * ((bound - a[axis]) / (b[axis] - a[axis])));
+    }
+    poly = std::move(out);
+  }
+  return poly;
+}
+
 }  // namespace
+
+std::vector<Eigen::Vector2d> grow_polygon(const std::vector<Eigen::Vector2d>& poly, double width_m) {
+  const std::size_t n = poly.size();
+  double area2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) area2 += cross2(poly[i], poly[(i + 1) % n]);
+  const double side = area2 >= 0.0 ? 1.0 : -1.0;  // counter-clockwise: the outward normal is the edge turned -90 degrees
+  auto outward = [&](std::size_t i) {
+    const Eigen::Vector2d d = (poly[(i + 1) % n] - poly[i]).normalized();
+    return Eigen::Vector2d(side * d.y(), -side * d.x());
+  };
+  std::vector<Eigen::Vector2d> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d n1 = outward((i + n - 1) % n), n2 = outward(i);
+    // The mitre: the point width_m from both moved edges, (n1 + n2) / (1 + n1.n2) x width.
+    const double c = 1.0 + n1.dot(n2);
+    out.push_back(poly[i] + width_m * (c > 1e-9 ? Eigen::Vector2d((n1 + n2) / c) : n1));
+  }
+  return out;
+}
 
 // A point inside a solid object sees the backs of its faces: the first hit is a back
 // face in at least 4 of the 6 axis directions.
@@ -173,6 +214,21 @@ GridLattice lay_lattice(const Scene& scene, const CalcGridSetting& s) {
         throw ConfigError(located(s.shape_loc, label + ".over_surface: '" + s.over_surface +
                                                    "' has no patch facing up to lay a work plane over"));
       z += weighted_z / area;
+    } else if (s.band_width_m > 0.0) {
+      // The band: the task outline grown, less the outline, clipped to the room. The
+      // lattice spans the grown outline before clipping, so that its cells keep their
+      // alignment with the task outline.
+      const Eigen::Vector2d room = bounds.sizes().head<2>();
+      if (s.band_width_m > room.maxCoeff())
+        throw ConfigError(located(s.band_loc, label + ": a surrounding band " + metres(s.band_width_m) +
+                                                  " wide is wider than the room (" + metres(room.x()) + " x " +
+                                                  metres(room.y()) + ")"));
+      const std::vector<Eigen::Vector2d> grown = grow_polygon(s.polygon_m, s.band_width_m);
+      for (const auto& p : grown) outline.extend(p);
+      outline.polygon = clip_to_box(grown, bounds.min().head<2>(), bounds.max().head<2>());
+      outline.hole = s.polygon_m;
+      if (outline.polygon.size() < 3)
+        throw ConfigError(located(s.band_loc, label + ": the surrounding band lies outside the scene"));
     } else {
       outline.polygon = s.polygon_m;
       for (const auto& p : s.polygon_m) outline.extend(p);
@@ -215,7 +271,13 @@ GridLattice lay_lattice(const Scene& scene, const CalcGridSetting& s) {
     throw ConfigError(located(s.border_loc, label + ".border_m: a band of " + metres(s.border_m) +
                                                 " leaves nothing of the grid's area (the band is wider than the room)"));
   grid.spacing_m = s.spacing_m ? *s.spacing_m : en12464_grid_spacing_m(std::max(lu, lv));
-  const Eigen::Vector2i n = grid_cell_counts(lu, lv, grid.spacing_m);
+  Eigen::Vector2i n = grid_cell_counts(lu, lv, grid.spacing_m);
+  double band_cell_m = 0.0;
+  if (s.band_width_m > 0.0) {  // square cells, a whole number of them across the band
+    band_cell_m = s.band_width_m / std::ceil(s.band_width_m / grid.spacing_m - 1e-9);
+    n = Eigen::Vector2i(static_cast<int>(std::ceil(lu / band_cell_m - 1e-9)),
+                        static_cast<int>(std::ceil(lv / band_cell_m - 1e-9)));
+  }
   const double cells = static_cast<double>(n.x()) * static_cast<double>(n.y());
   if (cells > s.max_points)
     throw ConfigError(located(s.spacing_m ? s.spacing_loc : s.loc,
@@ -224,8 +286,8 @@ GridLattice lay_lattice(const Scene& scene, const CalcGridSetting& s) {
                                   " points, more than max_points (" + std::to_string(s.max_points) + ")"));
   grid.cells_u = n.x();
   grid.cells_v = n.y();
-  grid.cell_u_m = lu / n.x();
-  grid.cell_v_m = lv / n.y();
+  grid.cell_u_m = band_cell_m > 0.0 ? band_cell_m : lu / n.x();
+  grid.cell_v_m = band_cell_m > 0.0 ? band_cell_m : lv / n.y();
   return lattice;
 }
 
@@ -253,6 +315,12 @@ CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcG
         ++grid.outside_outline;
         continue;
       }
+      const bool band = s.band_width_m > 0.0;
+      if (band && caster.first_hit(p, -Eigen::Vector3d::UnitZ()).patch < 0 &&
+          caster.first_hit(p + Eigen::Vector3d(0.37e-3, 0.61e-3, 0.0), -Eigen::Vector3d::UnitZ()).patch < 0) {
+        ++grid.outside_room;  // a band is clipped to the room: no floor under it, no point
+        continue;
+      }
       if (inside_solid(caster, p + normal * caster.ray_offset_m())) {
         ++grid.inside_solid;
         continue;
@@ -271,24 +339,26 @@ CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcG
                                          std::to_string(grid.points.size()) +
                                          " points have no floor under them (the grid lies outside the room)"));
   if (grid.points.empty())
-    throw ConfigError(located(s.loc, label + ": no point is left (" + std::to_string(grid.outside_outline) +
-                                         " outside the outline less its band, " + std::to_string(grid.inside_solid) +
-                                         " inside solid objects)"));
+    throw ConfigError(located(s.band_width_m > 0.0 ? s.band_loc : s.loc,
+                              label + ": no point is left (" + std::to_string(grid.outside_outline) +
+                                  " outside the outline less its band, " + std::to_string(grid.inside_solid) +
+                                  " inside solid objects, " + std::to_string(grid.outside_room) + " outside the room)"));
   grid.area_m2 = static_cast<double>(grid.points.size()) * grid.cell_u_m * grid.cell_v_m;
   grid.border_m = s.border_m;
   grid.outline_polygon_m = std::move(lattice.outline.polygon);
+  grid.outline_hole_m = std::move(lattice.outline.hole);
   grid.outline_triangles_m = std::move(lattice.outline.triangles);
   return std::move(grid);
 }
 
-static_assert(field_count<CalcGridSetting>() == 19, "CalcGridSetting changed: hash the new field here (or say why not)");
+static_assert(field_count<CalcGridSetting>() == 21, "CalcGridSetting changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const CalcGridSetting& s) {
   k.field("name", s.name).field("kind", s.kind).field("over_surface", s.over_surface).field("polygon_m", s.polygon_m);
   k.field("height_m", s.height_m).field("from_m", s.from_m).field("to_m", s.to_m).field("bottom_m", s.bottom_m);
   k.field("top_m", s.top_m).field("facing_left", s.facing_left).field("border_m", s.border_m);
-  k.field("spacing_m", s.spacing_m);
+  k.field("spacing_m", s.spacing_m).field("band_width_m", s.band_width_m);
   // Not max_points (it refuses a grid, never changes one), nor loc, shape_loc,
-  // height_loc, border_loc, spacing_loc, max_points_loc (where the values were written).
+  // height_loc, border_loc, spacing_loc, max_points_loc, band_loc (where the values were written).
 }
 
 }  // namespace ilp

@@ -47,6 +47,15 @@ struct CalcGridSetting {
   FileLoc spacing_loc;
   int max_points = 20000;
   FileLoc max_points_loc;
+  // > 0: this grid is the band of this width around polygon_m (EN 12464-1's immediate
+  // surrounding area of a task area): the polygon grown by band_width_m (edges moved
+  // out, corners mitred) less the polygon, clipped to the scene's plan bounds, at
+  // height_m. Its cells are squares of band_width_m / ceil(band_width_m / p) (p the
+  // spacing: given, or EN 12464-1's for the grown outline's longer side), laid from
+  // the grown outline's lower corner, so the band's inner edges on that side fall on
+  // cell edges; points over no floor are dropped (outside_room), not an error.
+  double band_width_m = 0.0;
+  FileLoc band_loc;
 };
 
 // The operator cache's key (core/base/key_hash.h): every value that places the points
@@ -66,6 +75,11 @@ double en12464_grid_spacing_m(double longer_side_m);
 // that the cell aspect is in [0.5, 2].
 Eigen::Vector2i grid_cell_counts(double side_u_m, double side_v_m, double spacing_m);
 
+// The polygon grown by width_m (> 0): each edge moved out by width_m along its normal,
+// neighbours meeting at mitred corners (a rectangle stays a rectangle). Counter-clockwise
+// or not; for a concave polygon much narrower than 2 x width_m the result may cross itself.
+std::vector<Eigen::Vector2d> grow_polygon(const std::vector<Eigen::Vector2d>& polygon, double width_m);
+
 // True when no two non-adjacent edges of the closed polygon meet and no adjacent edges
 // overlap (at least 3 distinct vertices, non-zero area).
 bool polygon_is_simple(const std::vector<Eigen::Vector2d>& polygon);
@@ -83,12 +97,14 @@ struct CalcGrid {
   std::vector<Eigen::Vector2i> cell_of_point;  // (i, j) per kept point
   std::size_t outside_outline = 0;       // cells whose centre is outside the outline less its band
   std::size_t inside_solid = 0;          // dropped: inside a solid object
+  std::size_t outside_room = 0;          // a band's cells dropped: outside the scene's bounds or over no floor
   double area_m2 = 0.0;                  // kept points x cell area
   double border_m = 0.0;                 // the band left out at the edges
   // What the grid lies over, for drawing (x, y in the scene frame): a horizontal grid's
-  // polygon (rectangle_m, polygon_m) or the over_surface's triangles facing up; empty
+  // polygon (rectangle_m, polygon_m; a band's grown outline, its hole in outline_hole_m) or the over_surface's triangles facing up; empty
   // for a vertical grid (its plane is the rectangle from_m .. to_m, bottom_m .. top_m).
   std::vector<Eigen::Vector2d> outline_polygon_m;
+  std::vector<Eigen::Vector2d> outline_hole_m;  // a band's task outline (not part of the grid)
   std::vector<std::array<Eigen::Vector2d, 3>> outline_triangles_m;
 };
 
@@ -105,6 +121,7 @@ CalcGridSize calc_grid_size(const Scene& scene, const CalcGridSetting& setting);
 // surface is unknown or has no patch facing up, the band leaves nothing, the grid would
 // have more than max_points points, the height is outside the scene, the grid lies
 // outside the scene's bounds or over no floor (a ray straight down from a point escapes),
+// a band is wider than the room (band_width_m above the scene's longer plan side),
 // or every point is dropped.
 CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcGridSetting& setting);
 

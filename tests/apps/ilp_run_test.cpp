@@ -154,6 +154,40 @@ TEST(IlpRun, AConstraintMissedWithEveryGoalMetIsNamedWithItsGap) {
   EXPECT_TRUE(OutputContains(printed.out, "NOT MET: min_distance_m 1.965 m < 2.000 m (by 0.035 m)")) << printed.out;
 }
 
+// A job whose only failing line is the power-density cap: every goal met, the cap named
+// with its value and by how much, exit 2; a cap of 0 is a config error (exit 1, nothing written).
+TEST(IlpRun, APowerDensityCapMissedWithEveryGoalMetIsNamedWithItsExcess) {
+  TempDir dir;
+  const std::string job = mat_job(dir);
+  const std::string text = read_file(job);
+  // The mat's 200 lx draw about 0.6 W/m² over the ceiling's 16 m² (no floor or grid named).
+  dir.write("job.yaml", text + "constraints:\n  max_power_density_w_per_m2: 0.05\n");
+  const std::string out = dir.file("out");
+  const RunResult r = run_ilp(dir, {"run", job, "--out", out, "-q"});
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  const std::size_t at = r.out.find("NOT MET: ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string first = r.out.substr(at, r.out.find('\n', at) - at);
+  EXPECT_EQ(first.rfind("NOT MET: max_power_density_w_per_m2 ", 0), 0u) << first;
+  EXPECT_TRUE(OutputContains(first, " W/m² > 0.050 W/m² (by ")) << first;
+  EXPECT_EQ(count_of(r.out, "MISSED"), 1u) << "the goal is met, the cap missed: " << r.out;
+  EXPECT_TRUE(OutputContains(r.out, "max_power_density_w_per_m2 (W/m²)")) << r.out;
+  const std::string json = read_file((fs::path(out) / "result.json").string());
+  EXPECT_TRUE(OutputContains(json, "\"name\": \"max_power_density_w_per_m2\"")) << json;
+  EXPECT_TRUE(OutputContains(json, "power density over the plan area of the mounting surface 'ceiling'")) << json;
+  // A cap the layout keeps: met, exit 0.
+  dir.write("job.yaml", text + "constraints:\n  max_power_density_w_per_m2: 50\n");
+  const RunResult ok = run_ilp(dir, {"run", job, "--out", dir.file("ok"), "-q"});
+  EXPECT_EQ(ok.exit_code, 0) << ok.out << ok.err;
+  EXPECT_FALSE(OutputContains(ok.out, "NOT MET"));
+  // A cap of 0: refused before any work.
+  dir.write("job.yaml", text + "constraints:\n  max_power_density_w_per_m2: 0\n");
+  const RunResult bad = run_ilp(dir, {"run", job, "--out", dir.file("bad"), "-q"});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_TRUE(OutputContains(bad.err, "constraints.max_power_density_w_per_m2 = 0: must be > 0")) << bad.err;
+  EXPECT_FALSE(fs::exists(dir.file("bad")));
+}
+
 // Every line met: exit 0 and no "NOT MET" anywhere.
 TEST(IlpRun, EveryLineMetPrintsNoMiss) {
   TempDir dir;

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <numbers>
@@ -172,6 +173,131 @@ TEST(CalcGrid, GridOverNoFloorIsAnError) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("have no floor under them"), std::string::npos) << e.what();
   }
+}
+
+// EN 12464-1's immediate surrounding area: the band around a task area, its points in
+// the ring between the task outline and that outline grown by the width, and nowhere else.
+CalcGridSetting task_band(const std::vector<V2>& task, double width_m) {
+  CalcGridSetting s;
+  s.name = "desk_surrounding";
+  s.polygon_m = task;
+  s.height_m = 0.8;
+  s.border_m = 0.0;
+  s.band_width_m = width_m;
+  s.band_loc = {"job.yaml", 12, 30};
+  return s;
+}
+
+bool in_rectangle(const V& p, const V2& lo, const V2& hi) {
+  return p.x() > lo.x() && p.x() < hi.x() && p.y() > lo.y() && p.y() < hi.y();
+}
+
+TEST(CalcGridBand, TheBandAroundARectangleTaskAreaLiesInTheRingOnly) {
+  const Scene scene = reference::make_closed_box(V::Zero(), V(6, 4, 3), 0.5, 0.5);
+  const RayCaster caster(scene);
+  // A 2 x 2 m task area, a 0.5 m band: the grown outline is 3 x 3 m, p = 0.2 x 5^log10(3)
+  // = 0.431 m, so 2 cells of 0.25 m across the band: 12 x 12 cells less the task's 8 x 8.
+  const CalcGrid grid = make_calc_grid(scene, caster, task_band({V2(2, 1), V2(4, 1), V2(4, 3), V2(2, 3)}, 0.5));
+  EXPECT_NEAR(grid.spacing_m, 0.2 * std::pow(5.0, std::log10(3.0)), 1e-12);
+  EXPECT_DOUBLE_EQ(grid.cell_u_m, 0.25);
+  EXPECT_DOUBLE_EQ(grid.cell_v_m, 0.25);
+  EXPECT_EQ(grid.cells_u, 12);
+  EXPECT_EQ(grid.cells_v, 12);
+  ASSERT_EQ(grid.points.size(), 144u - 64u);
+  EXPECT_EQ(grid.outside_outline, 64u) << "the task area's own cells";
+  EXPECT_EQ(grid.outside_room, 0u);
+  EXPECT_NEAR(grid.area_m2, 9.0 - 4.0, 1e-9);
+  int left = 0, right = 0, below = 0, above = 0;
+  for (const ReceiverPoint& p : grid.points) {
+    EXPECT_NEAR(p.position_m.z(), 0.8, 1e-12);
+    EXPECT_TRUE(in_rectangle(p.position_m, V2(1.5, 0.5), V2(4.5, 3.5))) << p.position_m.transpose();
+    EXPECT_FALSE(in_rectangle(p.position_m, V2(2, 1), V2(4, 3))) << p.position_m.transpose();
+    // Cell centres: 0.125 m and 0.375 m from the task's edge.
+    const double fx = (p.position_m.x() - 1.5) / 0.25 - 0.5, fy = (p.position_m.y() - 0.5) / 0.25 - 0.5;
+    EXPECT_NEAR(fx, std::round(fx), 1e-9);
+    EXPECT_NEAR(fy, std::round(fy), 1e-9);
+    left += p.position_m.x() < 2.0;
+    right += p.position_m.x() > 4.0;
+    below += p.position_m.y() < 1.0;
+    above += p.position_m.y() > 3.0;
+  }
+  EXPECT_EQ(left, 2 * 12);
+  EXPECT_EQ(right, 2 * 12);
+  EXPECT_EQ(below, 2 * 12);
+  EXPECT_EQ(above, 2 * 12);
+  // Drawn as the grown outline with the task area as its hole.
+  EXPECT_EQ(grid.outline_polygon_m.size(), 4u);
+  EXPECT_EQ(grid.outline_hole_m.size(), 4u);
+}
+
+TEST(CalcGridBand, ABandReachingPastAWallIsClippedToTheRoom) {
+  const Scene scene = reference::make_closed_box(V::Zero(), V(6, 4, 3), 0.5, 0.5);
+  const RayCaster caster(scene);
+  // A 1 x 1 m task 0.2 m from the wall x = 0: the grown outline reaches x = -0.3. Its
+  // 2 x 2 m lattice at p(2 m) = 0.325 m: 0.25 m cells, 8 x 8; the column at x < 0 is
+  // outside the room, the task's 4 x 4 cells are not the band.
+  const CalcGrid grid = make_calc_grid(scene, caster, task_band({V2(0.2, 1), V2(1.2, 1), V2(1.2, 2), V2(0.2, 2)}, 0.5));
+  EXPECT_EQ(grid.cells_u, 8);
+  EXPECT_EQ(grid.cells_v, 8);
+  EXPECT_EQ(grid.points.size(), 64u - 8u - 16u);
+  for (const ReceiverPoint& p : grid.points) {
+    EXPECT_GT(p.position_m.x(), 0.0);
+    EXPECT_FALSE(in_rectangle(p.position_m, V2(0.2, 1), V2(1.2, 2)));
+  }
+}
+
+TEST(CalcGridBand, ABandWiderThanTheRoomIsAConfigError) {
+  const Scene scene = reference::make_closed_box(V::Zero(), V(6, 4, 3), 0.5, 0.5);
+  const RayCaster caster(scene);
+  try {
+    make_calc_grid(scene, caster, task_band({V2(2, 1), V2(4, 1), V2(4, 3), V2(2, 3)}, 7.0));
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("job.yaml:12:30: grids.desk_surrounding: a surrounding band 7 m wide is wider than the room", 0),
+              0u) << what;
+  }
+}
+
+// The band's average under an isotropic point source of intensity I at height h over the
+// task's centre, against the closed form: the flux a rectangle centred under the source
+// receives is I x its solid angle, 4 atan(a b / (h sqrt(h^2 + a^2 + b^2))) for half sides
+// a, b, so the ring's average is I (omega(grown) - omega(task)) / (its area).
+TEST(CalcGridBand, TheBandsAverageUnderAPointSourceMatchesTheClosedForm) {
+  const Scene scene = reference::make_closed_box(V::Zero(), V(6, 4, 3), 0.5, 0.5);
+  const RayCaster caster(scene);
+  CalcGridSetting s = task_band({V2(2, 1), V2(4, 1), V2(4, 3), V2(2, 3)}, 0.5);
+  s.spacing_m = 0.05;
+  const CalcGrid grid = make_calc_grid(scene, caster, s);
+  ASSERT_EQ(grid.points.size(), 60u * 60u - 40u * 40u);
+  const double I = 1000.0, h = 1.5;
+  const V source(3.0, 2.0, 0.8 + h);
+  double sum = 0.0;
+  for (const ReceiverPoint& p : grid.points) {
+    const double d = (source - p.position_m).norm();
+    sum += I * h / (d * d * d);  // E = I cos(theta) / d^2
+  }
+  auto omega = [&](double a, double b) { return 4.0 * std::atan(a * b / (h * std::sqrt(h * h + a * a + b * b))); };
+  const double closed = I * (omega(1.5, 1.5) - omega(1.0, 1.0)) / (9.0 - 4.0);
+  // The midpoint rule on 5 cm cells: about (c^2 / 24) |E''| / E, a few 1e-4.
+  constexpr double kMidpointRuleTolerance = 1e-3;
+  EXPECT_NEAR(sum / grid.points.size(), closed, kMidpointRuleTolerance * closed);
+}
+
+TEST(CalcGridBand, GrowingAPolygonMovesEveryEdgeOut) {
+  // Clockwise or not, a rectangle grows into a rectangle.
+  for (const bool clockwise : {false, true}) {
+    std::vector<V2> r{V2(0, 0), V2(2, 0), V2(2, 1), V2(0, 1)};
+    if (clockwise) std::reverse(r.begin(), r.end());
+    const std::vector<V2> g = grow_polygon(r, 0.5);
+    Eigen::AlignedBox2d box;
+    for (const V2& p : g) box.extend(p);
+    EXPECT_TRUE(box.min().isApprox(V2(-0.5, -0.5))) << box.min().transpose();
+    EXPECT_TRUE(box.max().isApprox(V2(2.5, 1.5))) << box.max().transpose();
+  }
+  // An L: its inner corner moves out along both edges (to (1.5, 1.5) from (1, 1)).
+  const std::vector<V2> l = grow_polygon({V2(0, 0), V2(2, 0), V2(2, 1), V2(1, 1), V2(1, 2), V2(0, 2)}, 0.5);
+  EXPECT_TRUE(l[3].isApprox(V2(1.5, 1.5))) << l[3].transpose();
 }
 
 TEST(CalcGrid, VerticalGridFacesItsSide) {

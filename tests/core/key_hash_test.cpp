@@ -192,6 +192,8 @@ TEST(KeyHash, CalcGridSettingCoversEveryField) {
       left_out<CalcGridSetting>("spacing_loc", [&](CalcGridSetting& s) { s.spacing_loc = at; }),
       left_out<CalcGridSetting>("max_points", [](CalcGridSetting& s) { s.max_points = 500; }),
       left_out<CalcGridSetting>("max_points_loc", [&](CalcGridSetting& s) { s.max_points_loc = at; }),
+      {"band_width_m", [](CalcGridSetting& s) { s.band_width_m = 0.5; }},
+      left_out<CalcGridSetting>("band_loc", [&](CalcGridSetting& s) { s.band_loc = at; }),
   });
 }
 

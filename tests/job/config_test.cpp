@@ -1816,3 +1816,99 @@ TEST(JobConfigGrids, BadGridsNameFileLineAndKey) {
     }
   }
 }
+
+// ---------------------------------------------------------------------------------
+// The immediate surrounding area (EN 12464-1:2021) and the power-density cap
+
+TEST(JobConfigSurrounding, TheStandardsTableRelatesTheSurroundingToTheTask) {
+  const std::pair<double, double> rows[] = {{1500, 500}, {1000, 500}, {750, 500}, {500, 300}, {400, 200},
+                                            {300, 200},  {200, 150},  {150, 150}, {100, 100}, {50, 50}};
+  for (const auto& [task, surrounding] : rows) EXPECT_DOUBLE_EQ(ilp::surrounding_average_lux(task), surrounding) << task;
+}
+
+// A preset on a task area drawn as a rectangle turns into the band's lines too: its grid
+// (the task's outline grown by 0.5 m less the outline, at the task's height) and its
+// goal (Em one step down, U0 0.40); `surrounding: false` leaves them out; a preset on a
+// grid over the floor (the whole room as task area) adds none.
+TEST(JobConfigSurrounding, APresetOnATaskAreaTurnsIntoTheSurroundingLines) {
+  TempDir dir;
+  const std::string head =
+      "scene:\n  mesh: room.obj\n"                                                          // 1-2
+      "grids:\n  - {name: desk, rectangle_m: [[1, 1], [2.6, 1.8]], height_m: 0.75, border_m: 0}\n"  // 3-4
+      "  - {name: floor_plane, over_surface: floor}\n"                                      // 5
+      "goals:\n";                                                                          // 6
+  const ilp::JobConfig job = ilp::load_job_config(dir.write("job.yaml", head + "  - {grid: desk, preset: office_writing}\n"));
+  ASSERT_EQ(job.grids.size(), 3u);
+  const ilp::CalcGridSetting& band = job.grids[2];
+  EXPECT_EQ(band.name, "desk_surrounding");
+  EXPECT_DOUBLE_EQ(band.band_width_m, 0.5);
+  EXPECT_EQ(band.polygon_m, job.grids[0].polygon_m) << "the band is laid around the task's outline";
+  EXPECT_DOUBLE_EQ(band.height_m, 0.75);
+  EXPECT_DOUBLE_EQ(band.border_m, 0.0);
+  EXPECT_EQ(band.loc.line, 7);
+  std::vector<std::tuple<std::string, ilp::GoalMetric, double>> surrounding;
+  for (const ilp::GoalSetting& g : job.goals)
+    if (g.grid == "desk_surrounding") surrounding.emplace_back(g.name, g.metric, g.target);
+  using M = ilp::GoalMetric;
+  const std::vector<std::tuple<std::string, M, double>> expected{{"desk_surrounding", M::average, 300.0},
+                                                                  {"desk_surrounding", M::uniformity, 0.40}};
+  EXPECT_EQ(surrounding, expected);
+  // The modified Em (1000 lx) gives 500 lx around it.
+  const ilp::JobConfig modified =
+      ilp::load_job_config(dir.write("job.yaml", head + "  - {grid: desk, preset: office_writing, em: modified}\n"));
+  EXPECT_DOUBLE_EQ(modified.goals[modified.goals.size() - 2].target, 500.0);
+  // Turned off, or on the whole floor: no band.
+  for (const char* entry : {"  - {grid: desk, preset: office_writing, surrounding: false}\n",
+                            "  - {grid: floor_plane, preset: office_writing}\n",
+                            "  - {grid: desk, preset: corridor}\n"}) {
+    const ilp::JobConfig none = ilp::load_job_config(dir.write("job.yaml", head + entry));
+    EXPECT_EQ(none.grids.size(), 2u) << entry;
+    for (const ilp::GoalSetting& g : none.goals) EXPECT_EQ(g.name.find("_surrounding"), std::string::npos) << entry;
+  }
+  // Given explicitly: its width and targets; without a preset, from the task's average_lux.
+  const ilp::JobConfig given = ilp::load_job_config(dir.write(
+      "job.yaml", head + "  - {grid: desk, average_lux: 750, surrounding: {width_m: 0.8, uniformity: 0.5}}\n"));
+  ASSERT_EQ(given.grids.size(), 3u);
+  EXPECT_DOUBLE_EQ(given.grids[2].band_width_m, 0.8);
+  EXPECT_EQ(given.grids[2].band_loc.line, 7);
+  ASSERT_EQ(given.goals.size(), 3u);
+  EXPECT_DOUBLE_EQ(given.goals[1].target, 500.0);
+  EXPECT_DOUBLE_EQ(given.goals[2].target, 0.5);
+  const ilp::JobConfig own = ilp::load_job_config(
+      dir.write("job.yaml", head + "  - {grid: desk, preset: office_writing, surrounding: {average_lux: 400}}\n"));
+  EXPECT_DOUBLE_EQ(own.goals[own.goals.size() - 2].target, 400.0);
+}
+
+TEST(JobConfigSurrounding, BadSurroundingsAndPowerCapsNameFileLineAndKey) {
+  const std::string head =
+      "scene:\n  mesh: room.obj\n"                                                   // 1-2
+      "grids:\n  - {name: desk, rectangle_m: [[1, 1], [2.6, 1.8]], border_m: 0}\n"   // 3-4
+      "  - {name: g, over_surface: floor}\n"                                         // 5
+      "goals:\n";                                                                   // 6
+  expect_config_error(head + "  - {grid: desk, average_lux: 500, surrounding: {width_m: 0}}\n", 7,
+                      {"goals[0].surrounding.width_m = 0", "must be > 0"});
+  expect_config_error(head + "  - {grid: desk, average_lux: 500, surrounding: {width_m: -0.5}}\n", 7,
+                      {"goals[0].surrounding.width_m = -0.5", "must be > 0"});
+  expect_config_error(head + "  - {grid: desk, average_lux: 500, surrounding: {widht_m: 0.5}}\n", 7,
+                      {"widht_m"});
+  expect_config_error(head + "  - {grid: desk, average_lux: 500, surrounding: {uniformity: 1.5}}\n", 7,
+                      {"goals[0].surrounding.uniformity = 1.5", "must be in (0, 1]"});
+  expect_config_error(head + "  - {grid: desk, average_lux: 500, surrounding: maybe}\n", 7,
+                      {"goals[0].surrounding = maybe", "must be true, false or a map"});
+  expect_config_error(head + "  - {grid: g, average_lux: 500, surrounding: true}\n", 7,
+                      {"goals[0].surrounding", "drawn as rectangle_m or polygon_m"});
+  expect_config_error(head + "  - {surface: floor, average_lux: 500, surrounding: true}\n", 7,
+                      {"goals[0].surrounding", "applies to a goal on a grid"});
+  expect_config_error(head + "  - {grid: desk, min_lux: 300, surrounding: true}\n", 7,
+                      {"goals[0].surrounding", "needs average_lux"});
+  expect_config_error(head + "  - {grid: desk, average_lux: 500}\nconstraints:\n  max_power_density_w_per_m2: 0\n", 9,
+                      {"constraints.max_power_density_w_per_m2 = 0", "must be > 0"}, 31);
+  expect_config_error(head + "  - {grid: desk, average_lux: 500}\nconstraints:\n  max_power_density_w_per_m2: -3\n", 9,
+                      {"constraints.max_power_density_w_per_m2 = -3", "must be > 0"});
+  TempDir dir;
+  const ilp::JobConfig job = ilp::load_job_config(
+      dir.write("job.yaml", head + "  - {grid: desk, average_lux: 500}\nconstraints:\n  max_power_density_w_per_m2: 8.5\n"));
+  ASSERT_TRUE(job.constraints.max_power_density_w_per_m2.has_value());
+  EXPECT_DOUBLE_EQ(*job.constraints.max_power_density_w_per_m2, 8.5);
+  EXPECT_EQ(job.constraints.max_power_density_loc.line, 9);
+}

@@ -239,5 +239,83 @@ TEST(PowerDensity, TheFloorTheJobNamesIsTheArea) {
   EXPECT_EQ(outcome.floor_area_source, "floor 'floor' (luminaires.floor_surface)");
 }
 
+// The immediate surrounding area as a goal the search honours: a 1 x 1 m task area at
+// 500 lx under one panel; its band (1 m wide, 450 lx, U0 0.40) needs the light spread
+// wider, so the layout found without it does not do and more power is drawn with it.
+std::string task_job(const test::TempDir& dir, const std::string& surrounding, const std::string& constraints = "") {
+  dir.write("room.obj", test::room_obj({}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [10, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  count: [1, 4]\n";
+  const std::string rest = "grids:\n  - name: task\n    rectangle_m: [[1.5, 1.5], [2.5, 2.5]]\n    height_m: 0.8\n"
+                           "    border_m: 0\n    spacing_m: 0.25\n"
+                           "optimizer:\n  max_evaluations: 600\n  local_max_evaluations: 300\n" + constraints;
+  return dir.write("job.yaml", test::room_job("0.4", luminaires, "  - grid: task\n    average_lux: 500\n" + surrounding, rest));
+}
+
+TEST(Surrounding, TheBandsGoalBindsAndTheSearchMeetsIt) {
+  test::TempDir dir;
+  const JobConfig plain = load_job_config(task_job(dir, ""));
+  const JobOutcome without = solve_prepared(test::prepare(plain), plain);
+  ASSERT_TRUE(without.all_met);
+  const JobConfig banded = load_job_config(task_job(dir, "    surrounding: {width_m: 1.0, average_lux: 450}\n"));
+  ASSERT_EQ(banded.goals.size(), 3u);
+  const PreparedJob prepared = test::prepare(banded);
+  const JobOutcome with = solve_prepared(prepared, banded);
+  // The band's points: the 3 x 3 m grown square less the task, in cells of 1/3 m (p(3 m) = 0.431 m).
+  ASSERT_EQ(prepared.model.grids.size(), 2u);
+  EXPECT_EQ(prepared.model.grids[1].name, "task_surrounding");
+  EXPECT_EQ(prepared.model.grids[1].points.size(), 81u - 9u);
+  ASSERT_EQ(with.goals.size(), 3u);
+  for (const GoalOutcome& g : with.goals) EXPECT_TRUE(g.met) << g.predicted.name << " " << to_string(g.predicted.metric);
+  EXPECT_TRUE(with.all_met);
+  ASSERT_TRUE(with.goals[1].verified.has_value());
+  EXPECT_GE(with.goals[1].verified->value, 450.0) << "the band's Em as verified (initial = maintained, MF 1)";
+  EXPECT_GT(with.power_w, 1.05 * without.power_w) << "the band binds: " << with.power_w << " W against " << without.power_w;
+}
+
+// The power-density cap: a cap on the layout's power (cap x the area the power density is
+// taken over) that the search honours, judged as a line of its own.
+TEST(PowerDensityCap, ALayoutOverTheCapIsInfeasibleAndItsLineSaysByHowMuch) {
+  test::TempDir dir;
+  const JobConfig plain = load_job_config(task_job(dir, ""));
+  const PreparedJob prepared = test::prepare(plain);
+  const JobOutcome unlimited = solve_prepared(prepared, plain);
+  ASSERT_TRUE(unlimited.all_met);
+  EXPECT_EQ(unlimited.floor_area_source, "area of grid 'task' (no floor surface known)");
+  const double density = unlimited.power_density_w_per_m2;
+  // Half the density the goals need: every goal still met, the cap's line missed.
+  JobConfig capped = plain;
+  capped.constraints.max_power_density_w_per_m2 = 0.5 * density;
+  const JobOutcome over = solve_prepared(prepared, capped);
+  EXPECT_FALSE(over.all_met);
+  EXPECT_FALSE(over.feasible);
+  const auto line = std::find_if(over.constraints.begin(), over.constraints.end(),
+                                 [](const ConstraintOutcome& c) { return c.name == "max_power_density_w_per_m2"; });
+  ASSERT_NE(line, over.constraints.end());
+  EXPECT_FALSE(line->met);
+  EXPECT_EQ(line->unit, "W/m²");
+  EXPECT_NEAR(line->value, over.power_w / over.floor_area_m2, 1e-12);
+  EXPECT_EQ(line->what, "power density over the area of grid 'task' (no floor surface known)");
+  for (const ConstraintOutcome& c : over.constraints) EXPECT_EQ(c.met, c.name != "max_power_density_w_per_m2") << c.name;
+  for (const GoalOutcome& g : over.goals) EXPECT_TRUE(g.met);
+  // Above what the layout draws: met, and the same layout.
+  capped.constraints.max_power_density_w_per_m2 = 2.0 * density;
+  const JobOutcome under = solve_prepared(prepared, capped);
+  EXPECT_TRUE(under.all_met);
+  EXPECT_NEAR(under.power_w, unlimited.power_w, 1e-9 * unlimited.power_w);
+  // The search: a layout above the cap is infeasible; closest_to_target holds the scale to it.
+  SearchSpec spec = prepared.plan.search;
+  spec.goals = goal_specs(plain, 1.0);
+  spec.layout.max_power_w = 0.5 * unlimited.power_w;
+  const std::vector<Eigen::Vector2d> xy{Eigen::Vector2d(2.0, 2.0)};
+  const LayoutEvaluation capped_eval = evaluate_layout(prepared.model, spec, xy, {1.0});
+  EXPECT_FALSE(capped_eval.feasible);
+  EXPECT_GT(capped_eval.power_w, spec.layout.max_power_w);
+  spec.objective = Objective::closest_to_target;
+  const LayoutEvaluation fit = evaluate_layout(prepared.model, spec, xy, {1.0});
+  EXPECT_LE(fit.power_w, spec.layout.max_power_w * (1.0 + 1e-12));
+}
+
 }  // namespace
 }  // namespace ilp
