@@ -425,6 +425,11 @@ TEST(MeshImport, TheChildsMessageRefusesTruncatedAndDamagedBytes) {
   const MeshMessage error = decode_mesh_message(encode_error_message("x.glb: no"));
   EXPECT_TRUE(error.is_error);
   EXPECT_EQ(error.error, "x.glb: no");
+  // The seeds of fuzz/import_message_fuzz.cpp (written by hand from the format) decode.
+  const MeshMessage seed = decode_mesh_message(test::read_file(kSource + "/fuzz/corpus/import_message/triangle"));
+  EXPECT_EQ(seed.mesh.triangles.size(), 1u);
+  EXPECT_EQ(seed.mesh.surface_names, std::vector<std::string>{"floor"});
+  EXPECT_TRUE(decode_mesh_message(test::read_file(kSource + "/fuzz/corpus/import_message/error")).is_error);
 
   auto refusal = [](const std::string& b) { return test::error_of<MeshMessageError>([&] { (void)decode_mesh_message(b); }); };
   EXPECT_NE(refusal("").find("truncated in the header"), std::string::npos);
