@@ -49,7 +49,8 @@ TriangleMesh load_with_assimp(const std::string& path, const std::string& extens
 //  - out of the memory options.import_limits.max_memory_bytes allows (RLIMIT_AS in the
 //    child): assimp's allocation fails, "FILE: out of memory reading the model", or it
 //    aborts (a crash as above);
-//  - exited with a status other than 0, or sent a truncated or malformed message.
+//  - exited with a status other than 0, or sent a truncated or malformed message;
+//  - a time limit outside (0, 1e7] s is refused before anything starts.
 // The child calls only load_with_assimp (assimp, the standard library, Eigen) and then
 // write(2) and _exit(2): no atexit handlers, no flush of the parent's stdio buffers, no
 // TBB. After fork in a program with threads (TBB's pools) only async-signal-safe calls

@@ -32,6 +32,8 @@ constexpr const char* kAssimp = "assimp 5.2.5";
 
 constexpr const char* kLimitReached = " (the import's memory limit was reached)";
 
+constexpr double kMaxTime_s = 1e7;  // about 4 months: a deadline the steady clock can hold
+
 // Exit statuses of the child other than 0 (the message was written).
 constexpr int kChildWriteFailed = 70;
 
@@ -77,6 +79,10 @@ bool write_all(int fd, const std::string& bytes) {
 [[noreturn]] void run_child(int read_fd, int write_fd, const std::string& path, const std::string& ext,
                             const MeshReadOptions& options, std::optional<rlim_t> cap) {
   ::close(read_fd);
+  // Only our end of the pipe stays open beside stdin, stdout and stderr: a copy of
+  // another pipe's write end held here would keep that pipe's reader waiting.
+  if (write_fd > 3) ::close_range(3, static_cast<unsigned>(write_fd) - 1, 0);
+  ::close_range(static_cast<unsigned>(write_fd) + 1, ~0U, 0);
   // A crash ends the child with its signal, whatever handler the parent installed (a
   // sanitizer's or a debugger's would report or loop instead).
   for (int sig : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL}) ::signal(sig, SIG_DFL);
@@ -159,8 +165,9 @@ std::string seconds_text(double s) {
 
 TriangleMesh load_with_assimp_isolated(const std::string& path, const std::string& ext, const MeshReadOptions& options) {
   const ImportLimits& limits = options.import_limits;
-  if (!(limits.max_time_s > 0.0) || !std::isfinite(limits.max_time_s))
-    throw SceneError(path + ": the import's time limit " + seconds_text(limits.max_time_s) + " s must be > 0");
+  if (!(limits.max_time_s > 0.0 && limits.max_time_s <= kMaxTime_s))
+    throw SceneError(path + ": the import's time limit " + seconds_text(limits.max_time_s) + " s must be in (0, " +
+                     seconds_text(kMaxTime_s) + "]");
   const std::optional<rlim_t> cap = address_space_cap(limits);
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0)
