@@ -40,9 +40,15 @@ JobConfig job_for(const InspectArgs& args) {
     job.ignore_material_kd = true;
   }
   // Command-line options override the file.
-  if (args.scale > 0.0) job.scene.scale_to_m = args.scale;
-  if (args.up == "y") job.scene.up_axis = UpAxis::y;
-  else if (args.up == "z") job.scene.up_axis = UpAxis::z;
+  // (Set, they override what an imported file states, as the job's keys do.)
+  if (args.scale > 0.0) {
+    job.scene.scale_to_m = args.scale;
+    job.scale_to_m_loc = {"--scale", 0, 0};
+  }
+  if (args.up == "y" || args.up == "z") {
+    job.scene.up_axis = args.up == "y" ? UpAxis::y : UpAxis::z;
+    job.up_axis_loc = {"--up", 0, 0};
+  }
   if (args.patch_edge_m > 0.0) job.scene.max_patch_edge_m = args.patch_edge_m;
   if (args.connected) job.surface_split.connected = true;
   if (args.weld_m > 0.0) job.surface_split.weld_tolerance_m = args.weld_m;

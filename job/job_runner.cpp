@@ -194,6 +194,8 @@ PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const Run
   const std::optional<MemoryBudget> memory = memory_budget(run.max_memory_bytes);
   JobConfig scene_job = job;
   if (memory) scene_job.scene.max_patches = std::min(job.scene.max_patches, static_cast<std::size_t>(memory->bytes / 1024.0));
+  // A model read through assimp: its reading process may use no more than the job may.
+  if (memory) scene_job.mesh_read.import_limits.max_memory_bytes = memory->bytes;
   try {
     out.loaded = load_job_scene(scene_job);
   } catch (const ConfigError& e) {

@@ -46,7 +46,10 @@ std::string placed_product_line(const LuminaireSetting& l) {
 
 // The frame the mesh is read in: the job's up_axis and scale_to_m where it sets them,
 // else what an imported file states, else the defaults (metres, z up). For imported
-// formats the log says which and why.
+// formats the log says which and why, and a unit neither the file nor the job states is
+// an error (issue 22: a 3DS file in millimetres would otherwise be read as metres,
+// a thousand times too large, without a word but the log's). OBJ, PLY and OFF never
+// state one and keep the default; every shipped job sets scale_to_m.
 SceneOptions scene_frame(const JobConfig& job, const TriangleMesh& mesh, std::vector<std::string>& log) {
   SceneOptions o = job.scene;
   if (!is_imported_format(lower_extension(job.mesh_path))) return o;
@@ -59,8 +62,12 @@ SceneOptions scene_frame(const JobConfig& job, const TriangleMesh& mesh, std::ve
     o.scale_to_m = *stated.scale_to_m;
     unit << "unit: " << stated.unit_note;
   } else {
-    unit << "unit: the file does not state its unit: taken as " << o.scale_to_m
-         << " m per unit (set scene.scale_to_m if it is not)";
+    throw ConfigError(located(job.mesh_loc, "scene.mesh: " + job.mesh_path +
+                                                ": the file does not state its unit (" +
+                                                (lower_extension(job.mesh_path) == ".3ds" ? "3DS files carry none"
+                                                                                          : "no unit in the file") +
+                                                "): set scene.scale_to_m, the metres per file unit (1 for metres, "
+                                                "0.001 for millimetres; `ilp inspect --scale`)"));
   }
   if (!job.up_axis_loc.file.empty()) {
     up << "up axis: scene.up_axis = " << (o.up_axis == UpAxis::y ? "y" : "z") << ", as the job sets it";

@@ -57,11 +57,23 @@ struct TriangleMesh {
   std::vector<std::string> notes = {};
 };
 
-struct MeshReadOptions {
-  SurfaceNaming surface_naming = SurfaceNaming::group;
+// Limits on the child process that reads a model through assimp (mesh_import.h). They
+// decide only whether a file gives its mesh, never which mesh, so the cache key leaves
+// them out.
+struct ImportLimits {
+  double max_time_s = 600.0;  // wall time, > 0; then the child is killed and the file refused
+  // Memory the child may map beyond what the parent had mapped when it forked
+  // (RLIMIT_AS; memory the parent's allocator held free is reused without counting);
+  // none: the system's limits only. The job runner sets the job's budget.
+  std::optional<double> max_memory_bytes = std::nullopt;
 };
 
-// The operator cache's key (core/base/key_hash.h): every field.
+struct MeshReadOptions {
+  SurfaceNaming surface_naming = SurfaceNaming::group;
+  ImportLimits import_limits = {};
+};
+
+// The operator cache's key (core/base/key_hash.h): every field but import_limits.
 void hash_fields(KeyWriter& k, const MeshReadOptions& o);
 
 // Reads .obj (with its mtllib), or .ply / .off through OpenMesh (one surface named

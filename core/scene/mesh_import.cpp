@@ -297,6 +297,8 @@ TriangleMesh load_with_assimp(const std::string& path, const std::string& ext_in
   }
   if (!scene) {
     std::string why = importer.GetErrorString();
+    // assimp catches an allocation failure itself and says only this.
+    if (why == "std::bad_alloc") throw SceneError(path + ": out of memory reading the model");
     if (ext == ".ifc") {
       const std::string schema = ifc_schema(path);
       if (!schema.empty() && lower(schema) != "ifc2x3")

@@ -624,14 +624,15 @@ TriangleMesh load_mesh(const std::string& path_string, const MeshReadOptions& op
   TriangleMesh mesh;
   if (ext == ".obj") mesh = load_obj(path, options);
   else if (ext == ".ply" || ext == ".off") mesh = load_with_openmesh(path, ext);
-  else if (is_imported_format(ext)) mesh = load_with_assimp(path_string, ext, options);
+  else if (is_imported_format(ext)) mesh = load_with_assimp_isolated(path_string, ext, options);
   else throw SceneError(path_string + ": unsupported mesh format '" + ext +
                         "' (use .obj, .ply, .off, .gltf, .glb, .3ds, .dae, .fbx or .ifc)");
   if (mesh.triangles.empty()) throw SceneError(path_string + ": the mesh has no faces");
   return mesh;
 }
 
-static_assert(field_count<MeshReadOptions>() == 1, "MeshReadOptions changed: hash the new field here (or say why not)");
+// import_limits is left out: a limit decides whether a file is read, not what it gives.
+static_assert(field_count<MeshReadOptions>() == 2, "MeshReadOptions changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const MeshReadOptions& o) { k.field("surface_naming", o.surface_naming); }
 
 }  // namespace ilp

@@ -531,6 +531,45 @@ TEST(IlpRun, AModelAssimpCannotReadExitsOneAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A model that crashes assimp (SIGSEGV inside assimp 5.2.5: a COLLADA array without its
+// count, the pre-check misled by " count=" in another attribute). Regression: `ilp run`
+// died by the signal; the import now runs in a child process, and the run exits 1 with
+// the file, the signal and the reason, writing nothing.
+TEST(IlpRun, AModelThatCrashesAssimpExitsOneAndWritesNothing) {
+  TempDir dir;
+  std::string dae = read_file(std::string(ILP_SOURCE_DIR) + "/tests/data/import/office.dae");
+  const std::string with = "<float_array id=\"floor_2-positions-array\" count=\"12\">";
+  ASSERT_NE(dae.find(with), std::string::npos);
+  dae.replace(dae.find(with), with.size(), "<float_array id=\"floor_2-positions-array\" name=\" count=\">");
+  const std::string model = dir.write("crash.dae", dae);
+  std::string job = read_file(mat_job(dir));
+  job.replace(job.find("room.obj"), 8, model);
+  const std::string out = dir.file("out");
+  const RunResult r = run_ilp(dir, {"run", dir.write("job.yaml", job), "--out", out, "-q"});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_TRUE(OutputContains(r.err, "scene.mesh: " + model +
+                                        ": assimp crashed reading it (signal 11, SIGSEGV); the file is malformed or "
+                                        "uses a feature assimp 5.2.5 cannot read"))
+      << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// A 3DS model states no unit: without scene.scale_to_m the run is refused (exit 1,
+// nothing written), naming the file and the key to set.
+TEST(IlpRun, AModelWithoutAStatedUnitNeedsScaleToM) {
+  TempDir dir;
+  const std::string tds = std::string(ILP_SOURCE_DIR) + "/tests/data/import/office.3ds";
+  std::string job = read_file(mat_job(dir));
+  job.replace(job.find("room.obj"), 8, tds);
+  const std::string out = dir.file("out");
+  const RunResult r = run_ilp(dir, {"run", dir.write("job.yaml", job), "--out", out, "-q"});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_TRUE(OutputContains(r.err, tds + ": the file does not state its unit (3DS files carry none): set "
+                                          "scene.scale_to_m"))
+      << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(IlpRunProducts, AProductsOwnMountOffsetHangsItAndABadOneNamesTheKey) {
   TempDir dir;
   const std::string file = std::string(ILP_SOURCE_DIR) + "/data/photometry/erco_iku_downlight.ldt";

@@ -107,6 +107,7 @@ TEST(KeyWriter, KindsAndNamesAreDistinct) {
 TEST(KeyHash, MeshReadOptionsCoverEveryField) {
   expect_key_covers_fields<MeshReadOptions>("MeshReadOptions", {}, {
       {"surface_naming", [](MeshReadOptions& o) { o.surface_naming = SurfaceNaming::material; }},
+      left_out<MeshReadOptions>("import_limits", [](MeshReadOptions& o) { o.import_limits.max_time_s = 1.0; }),
   });
 }
 
