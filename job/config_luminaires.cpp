@@ -301,24 +301,8 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
     search.candidate_spacing_m = v->bounded(kMinSpacing_m, kMaxLength_m, " m");
     search.spacing_loc = v->loc();
   }
-  if (search.on_wall && !luminaires.get("layout")) {  // a wall holds a row along it
-    search.layout = LayoutFamily::rows;
-    search.regular.rows = CountRange{1, 1};
-    search.regular.columns = CountRange{1, 20};
-    if (auto v = luminaires.get("rows")) v->fail("needs luminaires.layout: rows");
-    if (auto v = luminaires.get("count")) {
-      const CountRange r = count_range(*v, 1, kMaxRegularCount);
-      search.count_min = r.min;
-      search.count_max = r.max;
-      search.count_loc = v->loc();
-    } else {
-      search.count_max = kMaxRegularCount;
-    }
-    for (const char* key : {"field", "bays", "array"})
-      if (auto v = luminaires.get(key)) v->fail("needs luminaires.layout: " + std::string(key));
-  } else {
-    read_layout(luminaires, search);
-  }
+  if (search.on_wall && !luminaires.get("layout")) search.layout = LayoutFamily::rows;  // a row along the wall
+  read_layout(luminaires, search);
   if (search.on_wall && search.layout != LayoutFamily::rows && search.layout != LayoutFamily::field)
     luminaires.get("layout")->fail("must be rows or field with on_wall (a line along the wall)");
   if (auto v = luminaires.get("zone")) read_zone(*v, search);

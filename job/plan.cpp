@@ -166,7 +166,7 @@ std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
     }
     plan.listed = listed;
     plan.maintenance_factor = product.maintenance_factor.value_or(job.maintenance_factor);
-    plan.model = model_spec(job, product, run);
+    plan.model = model_spec(job, plan.product, run);
     plan.search = search_spec(job, plan, run);
     out.push_back(std::move(plan));
   }
