@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
@@ -147,6 +148,39 @@ TEST(IlpLayouts, OfficeWallWashIsAWallRowAimedAtTheFeatureWallThatMeetsEveryGoal
     }
   }
   EXPECT_TRUE(wall_goal) << "the feature wall's average is a goal line";
+}
+
+// The shipped wall job with one key changed: each refusal names the file, line and key,
+// exits 1 and writes nothing.
+TEST(IlpLayouts, BadWallMountingExitsOneNamingFileLineAndKeyAndWritesNothing) {
+  const std::string shipped = ilp::test::read_file(ILP_SOURCE_DIR "/configs/office_wallwash.yaml");
+  struct Case {
+    std::string from, to, expected;
+  };
+  const std::vector<Case> cases = {
+      {"height_m: 2.6, facing: +y}", "height_m: 3.2, facing: +y}",
+       "luminaires.on_wall.height_m = 3.2: at z = 3.2 m, at or above the top of the scene"},
+      {"height_m: 2.6, facing: +y}", "height_m: 2.6, facing: up}", "luminaires.on_wall.facing = up: must be +x"},
+      {"on_wall: {surface: walls,", "on_wall: {surface: floor,", "luminaires.on_wall.surface: wall 'floor' has no patch facing +y"},
+      {"  layout: rows ", "  zone: {rectangle_m: [[7, 0], [9, 4]]}\n  layout: rows ",
+       "luminaires.zone: wall 'walls': the mounting zone x [7, 9] m holds no luminaire position along it"},
+      {"tilt_deg: 65 ", "tilt_deg: 95 ", "tilt_deg = 95: must be in [0, 90] degrees"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.to);
+    TempDir dir;
+    std::string text = shipped;
+    for (std::size_t at; (at = text.find("../data/")) != std::string::npos;) text.replace(at, 8, ILP_SOURCE_DIR "/data/");
+    const std::size_t at = text.find(c.from);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, c.from.size(), c.to);
+    const std::string job = dir.write("job.yaml", text);
+    const RunResult r = run_ilp(dir, {"run", job, "--out", dir.file("out"), "--cache", dir.file("cache"), "-q"});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find(job + ":"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out"))) << "nothing written";
+  }
 }
 
 }  // namespace
