@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iomanip>
 #include <memory>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -14,7 +15,7 @@
 namespace ilp {
 
 double wall_facing_deg(const Eigen::Vector2d& facing) {
-  return std::atan2(facing.y(), facing.x()) * 180.0 / 3.14159265358979323846;
+  return std::atan2(facing.y(), facing.x()) * 180.0 / std::numbers::pi;
 }
 
 int find_goal_area(const LightingModel& model, const std::string& name, AreaKind kind) {
@@ -265,8 +266,9 @@ void log_candidates(LightingModel& model, const CandidateSpec& spec) {
   if (spec.suspended_height_m)
     where << "a plane " << *spec.suspended_height_m << " m above the floor '" << model.floor_surface << "'";
   else if (spec.wall)
-    where << "wall '" << spec.mounting_surface << "' (facing " << (spec.wall->facing.x() > 0.5 ? "+x" : spec.wall->facing.x() < -0.5 ? "-x" : spec.wall->facing.y() > 0 ? "+y" : "-y")
-          << ") " << spec.wall->height_m << " m above the floor '" << model.floor_surface << "'";
+    where << "wall '" << spec.mounting_surface << "' (facing " << (spec.wall->facing.sum() > 0.0 ? "+" : "-")
+          << (std::abs(spec.wall->facing.x()) > 0.5 ? "x" : "y") << ") " << spec.wall->height_m
+          << " m above the floor '" << model.floor_surface << "'";
   else
     where << "'" << spec.mounting_surface << "'";
   grid << std::fixed << std::setprecision(3) << "candidates: " << model.grid.size() << " positions on "
