@@ -136,6 +136,8 @@ TEST(IlpLayouts, OfficeWallWashIsAWallRowAimedAtTheFeatureWallThatMeetsEveryGoal
     ASSERT_TRUE(l.above_floor_m.has_value()) << l.id;
     EXPECT_NEAR(*l.above_floor_m, 2.6, 1e-9) << l.id;
     EXPECT_EQ(l.flux_lm, result.luminaires[0].flux_lm) << l.id << ": one output";
+    EXPECT_EQ(l.tilt_deg, 65.0) << l.id << ": aimed as the product says";
+    EXPECT_EQ(l.rotation_deg, 90.0) << l.id << ": C0 along +y, into the room";
   }
   EXPECT_TRUE(result.all_met);
   bool wall_goal = false;
