@@ -967,7 +967,7 @@ JobConfig load_job_config(const std::string& path) {
       read_luminaires(Map(*v, {"size_m", "placed", "model", "flux_lm", "efficacy_lm_per_w", "mounting_surface",
                                "mount_offset_m", "candidate_spacing_m", "count", "layout", "array", "products",
                                "wall_distance_m", "ceiling_module_m", "field", "rows", "bays", "zone", "output",
-                               "suspended", "floor_surface"}),
+                               "suspended", "on_wall", "floor_surface"}),
                       job);
     if (auto v = top.get("grids")) read_grids(*v, job);
     if (auto v = top.get("maintenance_factor")) {

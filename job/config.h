@@ -157,6 +157,10 @@ struct LuminaireSearch {
   // far above the floor over the zone (pendants, high-bays).
   std::optional<double> suspended_height_m;
   FileLoc suspended_loc;
+  // on_wall: {surface, height_m, facing}: instead of mounting_surface (which then holds
+  // the wall's surface name), luminaires on a wall's faces facing into the room that way,
+  // at a height above the floor, their C0 into the room (a tilt aims them).
+  std::optional<WallMountSpec> on_wall;
   // floor_surface: the finished floor heights are given and reported above (default:
   // the first grid's over_surface).
   std::string floor_surface;

@@ -253,11 +253,27 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
     search.suspended_height_m = block.require("height_m").bounded(0.1, 1000.0, " m");
     search.suspended_loc = block.require("height_m").loc();
     if (auto v = luminaires.get("mount_offset_m")) v->fail("not with suspended (the height places the luminaires)");
+  } else if (mounting.key() == "luminaires.on_wall") {  // a wall's faces facing one way, at a height
+    const Map block(mounting, {"surface", "height_m", "facing"});
+    WallMountSpec& wall = search.on_wall.emplace();
+    const Value surface = block.require("surface");
+    search.mounting_surface = surface.text();
+    if (search.mounting_surface.empty()) surface.fail("must name a surface");
+    wall.height_m = block.require("height_m").bounded(0.01, 1000.0, " m");
+    wall.height_loc = block.require("height_m").loc();
+    const Value facing = block.require("facing");
+    const std::string f = facing.text();
+    if (f == "+x" || f == "-x") wall.facing = Eigen::Vector2d(f[0] == '+' ? 1.0 : -1.0, 0.0);
+    else if (f == "+y" || f == "-y") wall.facing = Eigen::Vector2d(0.0, f[0] == '+' ? 1.0 : -1.0);
+    else facing.fail("must be +x, -x, +y or -y (the way the wall faces into the room)");
+    wall.facing_loc = facing.loc();
+    if (auto v = luminaires.get("ceiling_module_m")) v->fail("not with on_wall (a ceiling's module)");
+    search.mounting_loc = surface.loc();
   } else {
     search.mounting_surface = mounting.text();
     if (search.mounting_surface.empty()) mounting.fail("must name a surface");
   }
-  search.mounting_loc = mounting.loc();
+  if (!search.on_wall) search.mounting_loc = mounting.loc();
   if (auto v = luminaires.get("floor_surface")) {
     search.floor_surface = v->text();
     if (search.floor_surface.empty()) v->fail("must name a surface");
@@ -285,7 +301,10 @@ void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
     search.candidate_spacing_m = v->bounded(kMinSpacing_m, kMaxLength_m, " m");
     search.spacing_loc = v->loc();
   }
+  if (search.on_wall && !luminaires.get("layout")) search.layout = LayoutFamily::rows;  // a row along the wall
   read_layout(luminaires, search);
+  if (search.on_wall && search.layout != LayoutFamily::rows && search.layout != LayoutFamily::field)
+    luminaires.get("layout")->fail("must be rows or field with on_wall (a line along the wall)");
   if (auto v = luminaires.get("zone")) read_zone(*v, search);
   if (auto v = luminaires.get("output")) {
     const std::string t = v->text();
@@ -383,10 +402,13 @@ void read_luminaires(const Map& luminaires, JobConfig& job) {
       job.luminaires.push_back(std::move(setting));
     }
   }
-  const auto mounting = luminaires.get("mounting_surface"), suspended = luminaires.get("suspended");
+  const auto mounting = luminaires.get("mounting_surface"), suspended = luminaires.get("suspended"),
+             on_wall = luminaires.get("on_wall");
   if (mounting && suspended) suspended->fail("not with mounting_surface (one or the other)");
-  if (mounting || suspended) {
-    read_search(luminaires, mounting ? *mounting : *suspended, job);
+  if (on_wall && (mounting || suspended))
+    on_wall->fail(std::string("not with ") + (mounting ? "mounting_surface" : "suspended") + " (one of them)");
+  if (mounting || suspended || on_wall) {
+    read_search(luminaires, mounting ? *mounting : suspended ? *suspended : *on_wall, job);
   } else {
     // The first search key in the file, so the error points where the reader looks.
     for (const auto& item : luminaires.value().node())

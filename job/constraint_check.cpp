@@ -35,14 +35,17 @@ double largest_outline_overlap(const std::vector<PlacedLuminaire>& layout, const
 }
 
 // The least distance from an outline to the edges of the mounting surface's plan box
-// (the candidates keep the wall distance from that box).
+// (the candidates keep the wall distance from that box). On a wall the box is a line:
+// only its ends count (across it, the luminaires stand in front of the wall).
 double least_wall_distance_m(const std::vector<PlacedLuminaire>& layout, const Eigen::AlignedBox2d& box,
                              const Eigen::Vector2d& half_m) {
+  constexpr double kLineM = 1e-6;
   double least = std::numeric_limits<double>::infinity();
   for (const PlacedLuminaire& l : layout) {
     const Eigen::Vector2d xy = l.position_m.head<2>();
     const Eigen::Vector2d low = xy - half_m - box.min(), high = box.max() - xy - half_m;
-    least = std::min({least, low.minCoeff(), high.minCoeff()});
+    for (int axis = 0; axis < 2; ++axis)
+      if (box.max()[axis] - box.min()[axis] > kLineM) least = std::min({least, low[axis], high[axis]});
   }
   return least;
 }

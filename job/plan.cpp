@@ -43,6 +43,7 @@ CandidateSpec candidate_spec(const LuminaireSearch& s, const ProductVariant& pro
   c.zone_loc = s.zone_loc;
   c.suspended_height_m = s.suspended_height_m;
   c.suspended_loc = s.suspended_loc;
+  c.wall = s.on_wall;
   c.floor_surface = s.floor_surface;
   c.floor_loc = s.floor_loc;
   return c;
@@ -150,14 +151,22 @@ std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
                                  "go (see docs/user-guide.md)");
   if (job.goals.empty()) throw ConfigError(job.path + ": goals are missing: an inverse job says what surfaces must receive");
   const bool listed = !job.products.empty();
-  const std::vector<ProductVariant> products = listed ? product_variants(job.products) : std::vector{plain_panel(job)};
+  const bool on_wall = job.search->on_wall.has_value();
+  const std::vector<ProductVariant> products =
+      listed ? product_variants(job.products, on_wall) : std::vector{plain_panel(job)};
   std::vector<VariantPlan> out;
   for (const ProductVariant& product : products) {
     VariantPlan plan;
     plan.product = product;
+    if (on_wall) {  // C0 into the room, the product's rotation added to the wall's facing
+      double r = product.rotation_deg + wall_facing_deg(job.search->on_wall->facing);
+      while (r > 180.0) r -= 360.0;
+      while (r <= -180.0) r += 360.0;
+      plan.product.rotation_deg = r;
+    }
     plan.listed = listed;
     plan.maintenance_factor = product.maintenance_factor.value_or(job.maintenance_factor);
-    plan.model = model_spec(job, product, run);
+    plan.model = model_spec(job, plan.product, run);
     plan.search = search_spec(job, plan, run);
     out.push_back(std::move(plan));
   }

@@ -90,12 +90,13 @@ ProductVariant product_base(const ProductSetting& p) {
   return base;
 }
 
-std::vector<ProductVariant> product_variants(const std::vector<ProductSetting>& products) {
+std::vector<ProductVariant> product_variants(const std::vector<ProductSetting>& products, bool wall_mounted) {
   std::vector<ProductVariant> out;
   for (const ProductSetting& p : products) {
     const ProductVariant base = product_base(p);
     std::vector<double> rotations = p.rotations_deg;
-    if (rotations.empty()) rotations = rotationally_symmetric(base.type) ? std::vector<double>{0.0} : std::vector<double>{0.0, 90.0};
+    if (rotations.empty())
+      rotations = rotationally_symmetric(base.type) || wall_mounted ? std::vector<double>{0.0} : std::vector<double>{0.0, 90.0};
     for (double r : rotations) {
       ProductVariant v = base;
       v.rotation_deg = r;

@@ -17,7 +17,8 @@ namespace ilp {
 ProductVariant product_base(const ProductSetting& product);
 
 // Every product at every rotation, in the job's order (product_base, then each
-// rotation). Throws as product_base.
-std::vector<ProductVariant> product_variants(const std::vector<ProductSetting>& products);
+// rotation). A product without rotations_deg gets [0] when rotationally symmetric or
+// wall_mounted (C0 into the room), else [0, 90]. Throws as product_base.
+std::vector<ProductVariant> product_variants(const std::vector<ProductSetting>& products, bool wall_mounted = false);
 
 }  // namespace ilp

@@ -178,7 +178,8 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
     const std::optional<double> floor_z = prepared.model.floor_z_m;
     r.luminaires.push_back({luminaire_name(j), l.position_m.x(), l.position_m.y(), l.position_m.z(), l.flux_lm, l.power_w,
                             luminaire.product, luminaire.rotation_deg,
-                            floor_z ? std::optional<double>(l.position_m.z() - *floor_z) : std::nullopt});
+                            floor_z ? std::optional<double>(l.position_m.z() - *floor_z) : std::nullopt,
+                            luminaire.tilt_deg});
   }
   const VerdictLines lines = verdict_lines(job, outcome);
   r.goals = lines.goals;

@@ -171,6 +171,129 @@ CandidateGrid::CandidateGrid(const Eigen::AlignedBox2d& plane_m, double z_m, con
 
 namespace {
 
+// Whether (t, z) lies on one of the patches seen along the wall's normal (t: the
+// coordinate along the wall, axis `t` of the scene).
+bool on_wall_patches(const Scene& scene, const std::vector<int>& patches, int t, const Eigen::Vector2d& tz) {
+  constexpr double kInsideTolerance = 1e-9;
+  for (int index : patches) {
+    const Patch& p = scene.patches[static_cast<std::size_t>(index)];
+    const Eigen::Vector2d a(p.vertices_m[0][t], p.vertices_m[0].z()), b(p.vertices_m[1][t], p.vertices_m[1].z()),
+        c(p.vertices_m[2][t], p.vertices_m[2].z());
+    const double area2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    if (std::abs(area2) <= 0.0) continue;
+    const double l1 = ((b - tz).x() * (c - tz).y() - (b - tz).y() * (c - tz).x()) / area2;
+    const double l2 = ((c - tz).x() * (a - tz).y() - (c - tz).y() * (a - tz).x()) / area2;
+    if (l1 >= -kInsideTolerance && l2 >= -kInsideTolerance && 1.0 - l1 - l2 >= -kInsideTolerance) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+CandidateGrid::CandidateGrid(const Scene& scene, int wall_surface, const Eigen::Vector2d& facing, double z_m,
+                             const CandidateGridOptions& options) {
+  if (wall_surface < 0 || wall_surface >= static_cast<int>(scene.surfaces.size()))
+    throw std::invalid_argument("wall: no surface with index " + std::to_string(wall_surface));
+  const std::string& name = scene.surfaces[static_cast<std::size_t>(wall_surface)].name;
+  const int a = std::abs(facing.x()) > 0.5 ? 0 : 1, t = 1 - a;  // across the wall, along it
+  const double sign = facing[a] > 0.0 ? 1.0 : -1.0;
+  const std::string facing_text = std::string(sign > 0.0 ? "+" : "-") + (a == 0 ? "x" : "y");
+  if (!(std::abs(std::abs(facing[a]) - 1.0) < 1e-9 && facing[t] == 0.0) || !std::isfinite(z_m))
+    throw std::invalid_argument("wall '" + name + "': facing must be +x, -x, +y or -y and the height finite");
+  if (!(options.spacing_m > 0.0) || !(options.half_footprint_m.minCoeff() >= 0.0) || !(options.mount_offset_m > 0.0) ||
+      !(options.wall_distance_m >= 0.0))
+    throw std::invalid_argument("wall '" + name + "': spacing and offset must be > 0");
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  normal[a] = sign;
+  double plane_sum = 0.0, lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+  double t_min = lowest, t_max = -lowest;
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& p = scene.patches[i];
+    if (p.surface != wall_surface) continue;
+    if (p.normal.dot(normal) < kFacingDownCos) {
+      ++ignored_patches_;
+      continue;
+    }
+    mounting_patches_.push_back(static_cast<int>(i));
+    mounting_area_m2_ += p.area_m2;
+    plane_sum += p.area_m2 * p.centroid_m[a];
+    for (const auto& v : p.vertices_m) {
+      t_min = std::min(t_min, v[t]);
+      t_max = std::max(t_max, v[t]);
+      lowest = std::min(lowest, v.z());
+      highest = std::max(highest, v.z());
+    }
+  }
+  if (mounting_patches_.empty())
+    throw std::invalid_argument("wall '" + name + "' has no patch facing " + facing_text +
+                                " (a vertical face whose normal points into the room that way)");
+  const double plane = plane_sum / mounting_area_m2_;
+  constexpr double kPlaneToleranceM = 0.05;  // one wall: its faces within this of their mean plane
+  for (int index : mounting_patches_) {
+    const double d = scene.patches[static_cast<std::size_t>(index)].centroid_m[a] - plane;
+    if (std::abs(d) > kPlaneToleranceM)
+      throw std::invalid_argument((std::ostringstream() << "wall '" << name << "': its faces facing " << facing_text
+                                                        << " lie in more than one plane (" << (a == 0 ? "x" : "y")
+                                                        << " = " << plane << " and " << plane + d
+                                                        << " m): name one wall (scene.regions, or surfaces_from: "
+                                                           "connected)").str());
+  }
+  if (!(z_m > lowest && z_m < highest))
+    throw std::out_of_range((std::ostringstream() << "at z = " << z_m << " m, outside wall '" << name << "' (z from "
+                                                  << lowest << " to " << highest << " m)").str());
+  const Eigen::Vector2d half = options.half_footprint_m;
+  double lo = t_min + half[t] + options.wall_distance_m, hi = t_max - half[t] - options.wall_distance_m;
+  if (!options.zone_m.isEmpty()) {
+    lo = std::max(lo, options.zone_m.min()[t]);
+    hi = std::min(hi, options.zone_m.max()[t]);
+    if (hi < lo)
+      throw std::invalid_argument((std::ostringstream() << "wall '" << name << "': the mounting zone "
+                                                        << (t == 0 ? "x" : "y") << " [" << options.zone_m.min()[t]
+                                                        << ", " << options.zone_m.max()[t]
+                                                        << "] m holds no luminaire position along it").str());
+  }
+  if (hi < lo) throw std::invalid_argument("wall '" + name + "' is shorter than one luminaire");
+  const double across = plane + sign * (options.mount_offset_m + half[a]);
+  const double n = std::max(1.0, std::ceil((hi - lo) / options.spacing_m - 1e-9));
+  if (!(n + 1 <= kMaxGridNodes)) throw std::length_error("wall '" + name + "': too many candidates; use a larger spacing");
+  const int along_nodes = static_cast<int>(n);
+  lower_[a] = upper_[a] = across;
+  lower_[t] = lo;
+  upper_[t] = hi;
+  step_[a] = 0.0;
+  step_[t] = (hi - lo) / along_nodes;
+  surface_box_ = Eigen::AlignedBox2d(lower_, upper_);
+  surface_box_.min()[t] = t_min;
+  surface_box_.max()[t] = t_max;
+  // One line of nodes along the wall, doubled across it (the blend needs a cell): both
+  // copies of a node hold the same candidate.
+  nx_ = a == 0 ? 1 : along_nodes;
+  ny_ = a == 0 ? along_nodes : 1;
+  candidate_of_node_.assign(static_cast<std::size_t>((nx_ + 1) * (ny_ + 1)), -1);
+  for (int k = 0; k <= along_nodes; ++k) {
+    const double at = lo + k * step_[t];
+    bool fits = true;
+    for (const double d : {0.0, -0.999 * half[t], 0.999 * half[t]})
+      fits = fits && on_wall_patches(scene, mounting_patches_, t, Eigen::Vector2d(at + d, z_m));
+    if (!fits) continue;
+    const int c = static_cast<int>(positions_.size());
+    Eigen::Vector3d position(0.0, 0.0, z_m);
+    position[a] = across;
+    position[t] = at;
+    positions_.push_back(position);
+    for (int side = 0; side <= 1; ++side) {
+      const int i = a == 0 ? side : k, j = a == 0 ? k : side;
+      candidate_of_node_[static_cast<std::size_t>(j * (nx_ + 1) + i)] = c;
+    }
+  }
+  if (positions_.empty())
+    throw std::invalid_argument((std::ostringstream() << "wall '" << name << "': no position at z = " << z_m
+                                                      << " m where a whole luminaire fits on its faces facing "
+                                                      << facing_text).str());
+}
+
+namespace {
+
 // Catmull-Rom weights of the four nodes around a point at fraction t of its cell.
 std::array<double, 4> catmull_rom(double t) {
   const double t2 = t * t, t3 = t2 * t;

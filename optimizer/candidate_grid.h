@@ -56,6 +56,17 @@ class CandidateGrid {
   // luminaire's half footprint and the wall distance, within options.zone_m) holds
   // one, its emitting face at height z_m; no surface is needed.
   CandidateGrid(const Eigen::AlignedBox2d& plane_m, double z_m, const CandidateGridOptions& options);
+  // Wall-mounted luminaires: a line of candidates along the patches of wall_surface that
+  // face `facing` (a horizontal axis, +-x or +-y, within about 8 degrees), their centres
+  // at height z_m, options.mount_offset_m plus the luminaire's half extent across the
+  // wall in front of it, options.spacing_m apart along the wall (within options.zone_m
+  // along the wall; the zone's extent across it is ignored). A candidate exists where
+  // the centre and both ends of the outline along the wall lie on those patches. The
+  // grid is one column (or row) of nodes: its extent across the wall is a line.
+  // Throws std::invalid_argument naming the surface when it has no patch facing that
+  // way or no position at that height where a luminaire fits.
+  CandidateGrid(const Scene& scene, int wall_surface, const Eigen::Vector2d& facing, double z_m,
+                const CandidateGridOptions& options);
   CandidateGrid() = default;  // empty: no candidates
 
   std::size_t size() const { return positions_.size(); }

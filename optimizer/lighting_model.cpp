@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iomanip>
 #include <memory>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,6 +13,10 @@
 #include "optimizer/area_points.h"
 
 namespace ilp {
+
+double wall_facing_deg(const Eigen::Vector2d& facing) {
+  return std::atan2(facing.y(), facing.x()) * 180.0 / std::numbers::pi;
+}
 
 int find_goal_area(const LightingModel& model, const std::string& name, AreaKind kind) {
   for (std::size_t a = 0; a < model.areas.size(); ++a)
@@ -51,9 +57,46 @@ CandidateGrid suspension_grid(const Scene& scene, const CandidateSpec& search, c
   }
 }
 
+// Wall-mounted luminaires: a line along the wall's faces facing into the room, at the
+// height above the floor, below the top of the scene.
+CandidateGrid wall_grid(const Scene& scene, int surface, const CandidateSpec& search, const Eigen::AlignedBox2d& zone,
+                        std::optional<double> floor_z_m) {
+  const WallMountSpec& wall = *search.wall;
+  const std::string key = "luminaires.on_wall.height_m";
+  if (!floor_z_m)
+    throw ConfigError(located(wall.height_loc, key + ": no floor to measure from: name luminaires.floor_surface "
+                                                     "(or lay a grid over_surface the floor)"));
+  const double z = *floor_z_m + wall.height_m;
+  if (!(z < scene.bounds_m.max().z()))
+    throw ConfigError(located(wall.height_loc, (std::ostringstream() << key << " = " << wall.height_m << ": at z = " << z
+                                                 << " m, at or above the top of the scene (z = "
+                                                 << scene.bounds_m.max().z() << " m, the ceiling)").str()));
+  try {
+    return CandidateGrid(scene, surface, wall.facing, z, grid_options(search, zone));
+  } catch (const std::out_of_range& e) {
+    throw ConfigError(located(wall.height_loc, key + " = " + (std::ostringstream() << wall.height_m).str() + ": " + e.what()));
+  } catch (const std::invalid_argument& e) {
+    if (search.zone_m && std::string_view(e.what()).find("zone") != std::string_view::npos)
+      throw ConfigError(located(search.zone_loc, std::string("luminaires.zone: ") + e.what()));
+    if (std::string_view(e.what()).find("facing must be") != std::string_view::npos)
+      throw ConfigError(located(wall.facing_loc, std::string("luminaires.on_wall.facing: ") + e.what()));
+    throw ConfigError(located(search.mounting_loc, std::string("luminaires.on_wall.surface: ") + e.what()));
+  } catch (const std::length_error& e) {
+    const FileLoc& at = search.spacing_loc.file.empty() ? search.mounting_loc : search.spacing_loc;
+    throw ConfigError(located(at, std::string("luminaires.candidate_spacing_m: ") + e.what()));
+  }
+}
+
 CandidateGrid make_grid(const Scene& scene, const CandidateSpec& search, const Eigen::AlignedBox2d& zone,
                         std::optional<double> floor_z_m) {
   if (search.suspended_height_m) return suspension_grid(scene, search, zone, floor_z_m);
+  if (search.wall) {
+    const int surface = scene.find_surface(search.mounting_surface);
+    if (surface < 0)
+      throw ConfigError(located(search.mounting_loc, "luminaires.on_wall.surface: unknown surface '" +
+                                                         search.mounting_surface + "'"));
+    return wall_grid(scene, surface, search, zone, floor_z_m);
+  }
   const int surface = scene.find_surface(search.mounting_surface);
   if (surface < 0)
     throw ConfigError(located(search.mounting_loc, "luminaires.mounting_surface: unknown surface '" +
@@ -222,6 +265,10 @@ void log_candidates(LightingModel& model, const CandidateSpec& spec) {
   std::ostringstream where;
   if (spec.suspended_height_m)
     where << "a plane " << *spec.suspended_height_m << " m above the floor '" << model.floor_surface << "'";
+  else if (spec.wall)
+    where << "wall '" << spec.mounting_surface << "' (facing " << (spec.wall->facing.sum() > 0.0 ? "+" : "-")
+          << (std::abs(spec.wall->facing.x()) > 0.5 ? "x" : "y") << ") " << spec.wall->height_m
+          << " m above the floor '" << model.floor_surface << "'";
   else
     where << "'" << spec.mounting_surface << "'";
   grid << std::fixed << std::setprecision(3) << "candidates: " << model.grid.size() << " positions on "
@@ -239,7 +286,8 @@ void log_candidates(LightingModel& model, const CandidateSpec& spec) {
   }
   if (model.grid.ignored_patches() > 0)
     model.log.push_back("candidates: " + std::to_string(model.grid.ignored_patches()) + " patches of '" +
-                        spec.mounting_surface + "' do not face down and hold no luminaire");
+                        spec.mounting_surface + (spec.wall ? "' do not face the way given and hold no luminaire"
+                                                                   : "' do not face down and hold no luminaire"));
 }
 
 // The rows of the cylindrical and glare areas, after every grid's points: a grid's
@@ -318,6 +366,11 @@ LightingModel lighting_model_geometry(const Scene& job_scene, const ModelSpec& s
   model.floor_z_m = floor_height_m(job_scene, spec, model.floor_surface);
   lay_area_points(model, job_scene, spec, caster);
   model.grid = make_grid(job_scene, spec.candidates, model.zone_m, model.floor_z_m);
+  if (spec.candidates.wall && !model.zone_m.isEmpty()) {
+    // On a wall the zone bounds the line along it only: across, it is the line itself.
+    const int across = std::abs(spec.candidates.wall->facing.x()) > 0.5 ? 0 : 1;
+    model.zone_m.min()[across] = model.zone_m.max()[across] = model.grid.lower_m()[across];
+  }
   add_candidates(model, job_scene, spec.candidates);
   compute_glare_terms(model, job_scene, spec.candidates);
   log_candidates(model, spec.candidates);

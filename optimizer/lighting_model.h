@@ -32,6 +32,22 @@ namespace ilp {
 
 class KeyWriter;  // core/base/key_hash.h
 
+// Wall mounting: the mounting surface is a wall; luminaires hang on its faces that face
+// `facing` (into the room: +x, -x, +y or -y), their openings' centres height_m above
+// the floor, each turned so that its C0 points along `facing` (so a tilt aims it into
+// the room; the rotation is added to that).
+struct WallMountSpec {
+  Eigen::Vector2d facing = Eigen::Vector2d::UnitX();
+  double height_m = 2.5;
+  FileLoc height_loc, facing_loc;
+};
+
+// The operator cache's key: every field but the FileLocs.
+void hash_fields(KeyWriter& k, const WallMountSpec& w);
+
+// The wall's facing as a rotation about z, degrees (+x: 0, +y: 90, -x: 180, -y: -90).
+double wall_facing_deg(const Eigen::Vector2d& facing);
+
 // Where the candidates go: one luminaire type at one rotation on a mounting surface.
 // The locations point a refusal (a surface that holds no luminaire) at the job's key.
 struct CandidateSpec {
@@ -53,6 +69,7 @@ struct CandidateSpec {
   // is empty the floor of the first grid laid over a surface; heights are reported
   // above it.
   std::optional<double> suspended_height_m;
+  std::optional<WallMountSpec> wall;  // mounting_surface is a wall: luminaires on it at a height
   std::string floor_surface;
   FileLoc mounting_loc, spacing_loc, offset_loc, zone_loc, suspended_loc, floor_loc;
 };

@@ -6,14 +6,19 @@
 
 namespace ilp {
 
-static_assert(field_count<CandidateSpec>() == 18, "CandidateSpec changed: hash the new field here (or say why not)");
+static_assert(field_count<WallMountSpec>() == 4, "WallMountSpec changed: hash the new field here (or say why not)");
+void hash_fields(KeyWriter& k, const WallMountSpec& w) {
+  k.field("facing", w.facing).field("height_m", w.height_m);  // not the FileLocs
+}
+
+static_assert(field_count<CandidateSpec>() == 19, "CandidateSpec changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const CandidateSpec& c) {
   k.field("mounting_surface", c.mounting_surface).field("type", c.type).field("rotation_deg", c.rotation_deg);
   k.field("tilt_deg", c.tilt_deg);
   k.field("spacing_m", c.spacing_m).field("wall_distance_m", c.wall_distance_m);
   k.field("ceiling_module_m", c.ceiling_module_m).field("mount_offset_m", c.mount_offset_m);
   k.field("zone_m", c.zone_m).field("zone_margin_m", c.zone_margin_m);
-  k.field("suspended_height_m", c.suspended_height_m).field("floor_surface", c.floor_surface);
+  k.field("suspended_height_m", c.suspended_height_m).field("wall", c.wall).field("floor_surface", c.floor_surface);
   // Not the FileLocs: where the values were written.
 }
 

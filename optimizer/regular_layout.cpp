@@ -10,6 +10,9 @@ namespace ilp {
 namespace {
 
 constexpr int kMaxBays = 10000;
+// A zone narrower than this along an axis is a line (wall-mounted luminaires): one
+// row or column across it.
+constexpr double kLineM = 1e-6;
 // What one search may enumerate: arrangements, and their members in all (memory).
 constexpr std::size_t kMaxArrangements = 100000;
 constexpr std::size_t kMaxMembers = 20000000;
@@ -83,12 +86,15 @@ void add_fields(const LayoutSpec& layout, const ArrangementFrame& frame, std::ve
   const RegularLayoutParams& p = layout.regular;
   const Eigen::Vector2d lo = frame.zone_m.min(), hi = frame.zone_m.max(), size = hi - lo;
   const std::vector<double> ratios = edge_ratios(p);
+  // A zone that is a line (luminaires on a wall) holds one row or column across it.
+  const bool line_x = size.x() <= kLineM, line_y = size.y() <= kLineM;
   for (int r = p.rows.min; r <= p.rows.max; ++r)
     for (int c = p.columns.min; c <= p.columns.max; ++c) {
       if (!count_allowed(layout, static_cast<long>(r) * c)) continue;
+      if ((line_x && c > 1) || (line_y && r > 1)) continue;
       // Square-ish cells at the preferred edges: the spacings along x and y within the ratio allowed.
       const double sx = even_spacing(size.x(), c, p.edge_ratio_max), sy = even_spacing(size.y(), r, p.edge_ratio_max);
-      if (std::max(sx, sy) > p.max_spacing_ratio * std::min(sx, sy)) continue;
+      if (!line_x && !line_y && std::max(sx, sy) > p.max_spacing_ratio * std::min(sx, sy)) continue;
       for (double rx : c > 1 ? ratios : std::vector<double>{0.5})
         for (double ry : r > 1 ? ratios : std::vector<double>{0.5}) {
           std::vector<double> xs = even_positions(lo.x(), hi.x(), c, rx);
@@ -105,13 +111,17 @@ void add_fields(const LayoutSpec& layout, const ArrangementFrame& frame, std::ve
 void add_rows(const LayoutSpec& layout, const ArrangementFrame& frame, std::vector<Arrangement>& out,
               std::size_t& members) {
   const RegularLayoutParams& p = layout.regular;
-  const int along = frame.luminaire_extent_m.x() >= frame.luminaire_extent_m.y() ? 0 : 1, across = 1 - along;
   const Eigen::Vector2d lo = frame.zone_m.min(), hi = frame.zone_m.max();
+  // Along the luminaires' length; on a zone that is a line (a wall), along the line.
+  int along = frame.luminaire_extent_m.x() >= frame.luminaire_extent_m.y() ? 0 : 1;
+  if (hi[along] - lo[along] <= kLineM && hi[1 - along] - lo[1 - along] > kLineM) along = 1 - along;
+  const int across = 1 - along;
+  const bool line = hi[across] - lo[across] <= kLineM;
   const double unit_m = frame.luminaire_extent_m[along];
   const std::vector<double> ratios = edge_ratios(p);
   for (int r = p.rows.min; r <= p.rows.max; ++r)
     for (int n = p.columns.min; n <= p.columns.max; ++n) {
-      if (!count_allowed(layout, static_cast<long>(r) * n)) continue;
+      if (!count_allowed(layout, static_cast<long>(r) * n) || (line && r > 1)) continue;
       for (double r_along : p.continuous || n == 1 ? std::vector<double>{0.5} : ratios)
         for (double r_across : r > 1 ? ratios : std::vector<double>{0.5}) {
           std::vector<double> in_row;

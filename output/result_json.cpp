@@ -60,6 +60,7 @@ json to_json(const ResultRecord& r) {
                                {"y_m", l.y_m},
                                {"z_m", l.z_m},
                                {"rotation_deg", l.rotation_deg},
+                               {"tilt_deg", l.tilt_deg},
                                {"flux_lm", l.flux_lm},
                                {"power_w", l.power_w},
                                {"above_floor_m", l.above_floor_m ? json(*l.above_floor_m) : json(nullptr)}});
@@ -239,7 +240,8 @@ ResultRecord from_json(const json& j) {
                             l.value("product", std::string()), l.value("rotation_deg", 0.0),
                             l.contains("above_floor_m") && l.at("above_floor_m").is_number()
                                 ? std::optional<double>(l.at("above_floor_m").get<double>())
-                                : std::nullopt});
+                                : std::nullopt,
+                            l.value("tilt_deg", 0.0)});
   if (j.contains("bill_of_materials"))
     for (const json& b : j.at("bill_of_materials"))
       r.bill_of_materials.push_back({b.at("product").get<std::string>(), b.at("source").get<std::string>(),

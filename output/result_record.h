@@ -18,6 +18,7 @@ struct LuminaireRecord {
   std::string product;      // the product's name ("" for the plain panel)
   double rotation_deg = 0.0;
   std::optional<double> above_floor_m = std::nullopt;  // the emitting face's height above the finished floor, when known
+  double tilt_deg = 0.0;    // aim: the nadir swung toward C0 by this, [0, 90] (core/light/luminaire.h)
 };
 
 // One line of the bill of materials: a product and how many of it the layout uses.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
@@ -108,6 +109,80 @@ TEST(IlpLayouts, OfficeProductsIsACentredFieldAtOneOutputThatMeetsEveryGoal) {
   EXPECT_EQ(free.layout_family, "free");
   EXPECT_TRUE(free.all_met);
   EXPECT_LE(result.power_w, 1.03 * free.power_w) << "field " << result.power_w << " W, free " << free.power_w << " W";
+}
+
+// Issue 19, items 4 and 5: the shipped two-group job. The ceiling field is placed, the
+// wall row searched: every luminaire it places stands on the south wall (y = 0) at 2.6 m
+// above the floor, one row at one output of the tilted product, and the feature wall's
+// grid and the work plane meet their goals as verified. Verification at 256 rays (the
+// job's 1024 take longer; the figures in docs/layouts.md are at 1024).
+TEST(IlpLayouts, OfficeWallWashIsAWallRowAimedAtTheFeatureWallThatMeetsEveryGoal) {
+  TempDir dir;
+  std::string text = ilp::test::read_file(ILP_SOURCE_DIR "/configs/office_wallwash.yaml");
+  for (std::size_t at; (at = text.find("../data/")) != std::string::npos;) text.replace(at, 8, ILP_SOURCE_DIR "/data/");
+  const std::size_t rays = text.find("  rays_per_patch: 1024");
+  ASSERT_NE(rays, std::string::npos);
+  text.replace(rays, 22, "  rays_per_patch: 256");
+  const std::string job = dir.write("office_wallwash.yaml", text);
+  const RunResult r = run_ilp(dir, {"run", job, "--out", dir.file("out"), "--cache", dir.file("cache"), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const ilp::ResultRecord result = ilp::read_result_json(dir.file("out/result.json"));
+  EXPECT_EQ(result.layout_family, "rows");
+  ASSERT_GE(result.luminaires.size(), 1u);
+  for (const ilp::LuminaireRecord& l : result.luminaires) {
+    EXPECT_EQ(l.product, "wall linear LED") << l.id << ": the tilted product";
+    EXPECT_LT(l.y_m, 0.1) << l.id << ": on the south wall";
+    EXPECT_NEAR(l.y_m, result.luminaires[0].y_m, 1e-9) << l.id << ": one line";
+    ASSERT_TRUE(l.above_floor_m.has_value()) << l.id;
+    EXPECT_NEAR(*l.above_floor_m, 2.6, 1e-9) << l.id;
+    EXPECT_EQ(l.flux_lm, result.luminaires[0].flux_lm) << l.id << ": one output";
+    EXPECT_EQ(l.tilt_deg, 65.0) << l.id << ": aimed as the product says";
+    EXPECT_EQ(l.rotation_deg, 90.0) << l.id << ": C0 along +y, into the room";
+  }
+  EXPECT_TRUE(result.all_met);
+  bool wall_goal = false;
+  for (const ilp::GoalRecord& g : result.goals) {
+    ASSERT_TRUE(g.verified.has_value()) << g.name;
+    EXPECT_TRUE(g.met) << g.name << " " << g.metric;
+    if (g.name == "north_wall" && g.metric == "average") {
+      wall_goal = true;
+      EXPECT_GE(*g.verified, 650.0);
+    }
+  }
+  EXPECT_TRUE(wall_goal) << "the feature wall's average is a goal line";
+}
+
+// The shipped wall job with one key changed: each refusal names the file, line and key,
+// exits 1 and writes nothing.
+TEST(IlpLayouts, BadWallMountingExitsOneNamingFileLineAndKeyAndWritesNothing) {
+  const std::string shipped = ilp::test::read_file(ILP_SOURCE_DIR "/configs/office_wallwash.yaml");
+  struct Case {
+    std::string from, to, expected;
+  };
+  const std::vector<Case> cases = {
+      {"height_m: 2.6, facing: +y}", "height_m: 3.2, facing: +y}",
+       "luminaires.on_wall.height_m = 3.2: at z = 3.2 m, at or above the top of the scene"},
+      {"height_m: 2.6, facing: +y}", "height_m: 2.6, facing: up}", "luminaires.on_wall.facing = up: must be +x"},
+      {"on_wall: {surface: walls,", "on_wall: {surface: floor,", "luminaires.on_wall.surface: wall 'floor' has no patch facing +y"},
+      {"  layout: rows ", "  zone: {rectangle_m: [[7, 0], [9, 4]]}\n  layout: rows ",
+       "luminaires.zone: wall 'walls': the mounting zone x [7, 9] m holds no luminaire position along it"},
+      {"tilt_deg: 65 ", "tilt_deg: 95 ", "tilt_deg = 95: must be in [0, 90] degrees"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.to);
+    TempDir dir;
+    std::string text = shipped;
+    for (std::size_t at; (at = text.find("../data/")) != std::string::npos;) text.replace(at, 8, ILP_SOURCE_DIR "/data/");
+    const std::size_t at = text.find(c.from);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, c.from.size(), c.to);
+    const std::string job = dir.write("job.yaml", text);
+    const RunResult r = run_ilp(dir, {"run", job, "--out", dir.file("out"), "--cache", dir.file("cache"), "-q"});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find(job + ":"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out"))) << "nothing written";
+  }
 }
 
 }  // namespace

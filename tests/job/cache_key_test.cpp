@@ -47,10 +47,20 @@ TEST(CacheKey, CandidateSpecCoversEveryField) {
       {"zone_m", [](CandidateSpec& s) { s.zone_m = std::make_pair(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1)); }},
       {"zone_margin_m", [](CandidateSpec& s) { s.zone_margin_m = 1.0; }},
       {"suspended_height_m", [](CandidateSpec& s) { s.suspended_height_m = 3.0; }},
+      {"wall", [](CandidateSpec& s) { s.wall = WallMountSpec{}; }},
       {"floor_surface", [](CandidateSpec& s) { s.floor_surface = "floor"; }},
       left_out<CandidateSpec>("zone_loc", [](CandidateSpec& s) { s.zone_loc = kAt; }),
       left_out<CandidateSpec>("suspended_loc", [](CandidateSpec& s) { s.suspended_loc = kAt; }),
       left_out<CandidateSpec>("floor_loc", [](CandidateSpec& s) { s.floor_loc = kAt; }),
+  });
+}
+
+TEST(CacheKey, WallMountSpecCoversEveryField) {
+  expect_key_covers_fields<WallMountSpec>("WallMountSpec", WallMountSpec{}, {
+      {"facing", [](WallMountSpec& w) { w.facing = Eigen::Vector2d(0, -1); }},
+      {"height_m", [](WallMountSpec& w) { w.height_m = 2.6; }},
+      left_out<WallMountSpec>("height_loc", [](WallMountSpec& w) { w.height_loc = kAt; }),
+      left_out<WallMountSpec>("facing_loc", [](WallMountSpec& w) { w.facing_loc = kAt; }),
   });
 }
 

@@ -492,6 +492,7 @@ TEST(ModelCache, EveryLuminaireSettingThatChangesTheCandidatesReachesTheKey) {
       left_out<LuminaireSearch>("zone_loc", [&](LuminaireSearch& s) { s.zone_loc = at; }),
       {"suspended_height_m", [](LuminaireSearch& s) { s.suspended_height_m = 2.0; }},
       left_out<LuminaireSearch>("suspended_loc", [&](LuminaireSearch& s) { s.suspended_loc = at; }),
+      {"on_wall", [](LuminaireSearch& s) { s.on_wall = WallMountSpec{}; }},
       {"floor_surface", [](LuminaireSearch& s) { s.floor_surface = "floor"; }},
       left_out<LuminaireSearch>("floor_loc", [&](LuminaireSearch& s) { s.floor_loc = at; }),
   }, [&](const LuminaireSearch& search) {

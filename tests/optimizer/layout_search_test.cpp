@@ -843,3 +843,85 @@ TEST(TiltedProducts, TiltAndLengthAxisAreChecked) {
 
 }  // namespace
 }  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// Wall mounting (issue 19, item 4): panels on the hall's west wall (x = 0, facing +x)
+// 3 m above the floor, aimed 70 degrees up from the nadir into the hall, for a grid on
+// the east wall (x = 10) 10 m away.
+std::string wall_job(const std::string& on_wall, const std::string& extra = "") {
+  return "scene:\n  mesh: hall.obj\n  max_patch_edge_m: 1.0\n  default_reflectance: 0\n"
+         "luminaires:\n  products:\n    - {name: washer, model: square_lambertian, size_m: 0.2, flux_lm: 20000,\n"
+         "       power_w: 200, dimming: [0.05, 1], tilt_deg: 70}\n"
+         "  on_wall: " + on_wall + "\n  floor_surface: floor\n  candidate_spacing_m: 0.5\n" + extra +
+         "grids:\n  - name: east\n    vertical: {from_m: [10, 3], to_m: [10, 7], bottom_m: 1, top_m: 3, facing: left}\n"
+         "    spacing_m: 0.5\n"
+         "goals:\n  - grid: east\n    average_lux: 50\n    uniformity: 0.5\n"
+         "solver:\n  rays_per_patch: 64\n  seed: 3\n  sample_fraction: 0.2\nverification:\n  rays_per_patch: 64\n";
+}
+
+TEST(WallMountedLuminaires, ARowOnOneWallAimedAcrossLightsTheGridOnTheWallOpposite) {
+  TempDir dir;
+  dir.write("hall.obj", open_hall_obj());
+  const JobConfig job = load_job_config(dir.write("job.yaml", wall_job("{surface: walls, height_m: 3, facing: +x}")));
+  const PreparedJob prepared = test::prepare(job);
+  EXPECT_EQ(prepared.plan.search.layout.family, LayoutFamily::rows) << "a wall holds a row by default";
+  EXPECT_EQ(prepared.plan.search.luminaire.rotation_deg, 0.0) << "C0 into the room (+x)";
+  EXPECT_EQ(prepared.plan.search.luminaire.tilt_deg, 70.0);
+  const JobOutcome outcome = solve_prepared(prepared, job);
+  ASSERT_GE(outcome.luminaires.size(), 1u);
+  const double half_across = LuminaireType::square_lambertian(0.2).half_footprint_m(0.0, 70.0).x();
+  for (const PlacedLuminaire& l : outcome.luminaires) {
+    EXPECT_NEAR(l.position_m.x(), 0.02 + half_across, 1e-9) << "in front of the wall x = 0";
+    EXPECT_NEAR(l.position_m.z(), 3.0, 1e-12) << "3 m above the floor";
+    EXPECT_GE(l.position_m.y(), 2.5 - 1e-9) << "within the zone: the grid's y [3, 7] + 0.5 m";
+    EXPECT_LE(l.position_m.y(), 7.5 + 1e-9);
+  }
+  EXPECT_TRUE(outcome.all_met);
+  for (const auto& g : outcome.goals) {
+    ASSERT_TRUE(g.verified.has_value()) << g.predicted.name;
+    EXPECT_TRUE(g.met) << g.predicted.name;
+    EXPECT_NEAR(g.verified->value / g.predicted.value, 1.0, 0.03) << g.predicted.name << ": the same aim predicted and verified";
+  }
+}
+
+TEST(WallMountedLuminaires, BadWallsHeightsAndLayoutsAreRefusedWithFileLineAndKey) {
+  TempDir dir;
+  dir.write("hall.obj", open_hall_obj());
+  auto at_prepare = [&](const std::string& text, const std::string& expected) {
+    const JobConfig job = load_job_config(dir.write("job.yaml", text));
+    try {
+      test::prepare(job);
+      ADD_FAILURE() << "accepted: " << expected;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("job.yaml:"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  at_prepare(wall_job("{surface: walls, height_m: 9, facing: +x}"),
+             "luminaires.on_wall.height_m = 9: at z = 9 m, at or above the top of the scene");
+  at_prepare(wall_job("{surface: floor, height_m: 3, facing: +x}"),
+             "luminaires.on_wall.surface: wall 'floor' has no patch facing +x");
+  at_prepare(wall_job("{surface: walls, height_m: 3, facing: +x}", "  zone: {rectangle_m: [[0, 20], [10, 30]]}\n"),
+             "luminaires.zone: wall 'walls': the mounting zone y [20, 30] m holds no luminaire position along it");
+  auto at_load = [&](const std::string& text, const std::string& expected) {
+    try {
+      load_job_config(dir.write("job.yaml", text));
+      ADD_FAILURE() << "accepted: " << expected;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("job.yaml:"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  at_load(wall_job("{surface: walls, height_m: 3, facing: up}"),
+          "luminaires.on_wall.facing = up: must be +x, -x, +y or -y");
+  at_load(wall_job("{surface: walls, height_m: 3, facing: +x}", "  layout: free\n"),
+          "luminaires.layout = free: must be rows or field with on_wall");
+  at_load(wall_job("{surface: walls, height_m: 3, facing: +x}", "  mounting_surface: walls\n"),
+          "not with mounting_surface (one of them)");
+  at_load(wall_job("{surface: walls, height_m: 3}"), "luminaires.on_wall.facing");
+}
+
+}  // namespace
+}  // namespace ilp
