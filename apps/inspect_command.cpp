@@ -136,8 +136,9 @@ void print_cost_estimates(const JobConfig& job, const RunOptions& run, const Sce
 
 int run_inspect(const InspectArgs& args) {
   const auto start = std::chrono::steady_clock::now();
-  const JobConfig job = job_for(args);
+  JobConfig job = job_for(args);
   const RunOptions run = run_options(args.threads, args.max_memory);
+  job.mesh_read.import_limits.max_memory_bytes = memory_budget_bytes(run.max_memory_bytes);
   TriangleMesh mesh;
   const JobScene loaded = load_job_scene(job, &mesh);
   const Scene& scene = loaded.scene;

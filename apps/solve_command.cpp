@@ -193,6 +193,7 @@ int run_solve(const SolveArgs& args) {
   const RunOptions run = run_options(args.threads, args.max_memory);
   if (args.method == "exact") job.method = SolveMethod::exact;
   if (args.method == "sample") job.method = SolveMethod::sample;
+  job.mesh_read.import_limits.max_memory_bytes = memory_budget_bytes(run.max_memory_bytes);
   const JobScene loaded = load_job_scene(job);
   for (const std::string& line : loaded.log) std::cerr << line << "\n";
   {

@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "core/base/key_hash.h"
+#include "core/operator/cost_model.h"
 #include "core/scene/mesh_import.h"
 
 namespace ilp {
@@ -89,8 +90,13 @@ SceneOptions scene_frame(const JobConfig& job, const TriangleMesh& mesh, std::ve
 JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   JobScene out;
   TriangleMesh mesh;
+  // A model read through assimp never takes more than the machine (or its cgroup) has
+  // available: a malformed file can make assimp allocate without bound. A caller with a
+  // smaller budget (--max-memory) sets the limit itself.
+  MeshReadOptions read = job.mesh_read;
+  if (!read.import_limits.max_memory_bytes) read.import_limits.max_memory_bytes = memory_budget_bytes(std::nullopt);
   try {
-    mesh = load_mesh(job.mesh_path, job.mesh_read);
+    mesh = load_mesh(job.mesh_path, read);
   } catch (const SceneError& e) {
     throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
   }

@@ -23,7 +23,9 @@ struct JobScene {
 };
 
 // `mesh_out`, when given, receives the mesh the scene was made from (file units, after
-// surface splitting, exclusions and two-sided doubling), for `ilp inspect`.
+// surface splitting, exclusions and two-sided doubling), for `ilp inspect`. A model read
+// through assimp is limited to job.mesh_read.import_limits, its memory by default to the
+// machine's available memory (memory_budget_bytes).
 JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out = nullptr);
 
 // The operator cache's key (core/base/key_hash.h): everything load_job_scene's scene

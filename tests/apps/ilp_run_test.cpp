@@ -461,6 +461,22 @@ TEST(IlpInspect, ShowsSurfacesSuggestionsWarningsAndTheCostEstimate) {
   EXPECT_TRUE(OutputContains(one.out, "cost estimate: not an inverse job"));
 }
 
+// A 24 KB malformed COLLADA file (a fuzz finding) makes assimp 5.2.5 allocate without
+// bound: `ilp inspect` grew past 17 GB in two minutes. Regression: inspect read the model
+// with no memory limit; it now reads it within the budget (--max-memory here) and refuses
+// it, exit 1, in seconds.
+TEST(IlpInspect, AModelThatMakesAssimpAllocateWithoutBoundIsRefusedWithinTheBudget) {
+  TempDir dir;
+  const std::string model = std::string(ILP_SOURCE_DIR) + "/tests/data/import/oom.dae";
+  const auto start = std::chrono::steady_clock::now();
+  const RunResult r = run_ilp(dir, {"inspect", model, "--max-memory", "1G"});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_TRUE(OutputContains(r.err, model + ": out of memory reading the model (the import's memory limit was reached)"))
+      << r.err;
+  EXPECT_LT(seconds, 120.0);
+}
+
 }  // namespace
 
 namespace {
