@@ -146,9 +146,16 @@ std::vector<GoalSpec> goal_specs(const JobConfig& job, double maintenance_factor
 }
 
 std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
-  if (!job.search)
+  if (!job.search) {
+    // A forward job (every luminaire placed, light computed, nothing chosen) is for
+    // `ilp solve` and `ilp accuracy`: the message says so rather than only what is missing.
+    const std::string forward = !job.luminaires.empty() || !job.emitting_surfaces.empty()
+                                    ? "; this job's light is all given (luminaires.placed or emitting_surfaces): "
+                                      "compute it with `ilp solve` (or check it with `ilp accuracy`)"
+                                    : "";
     throw ConfigError(job.path + ": luminaires.mounting_surface is missing: an inverse job says where luminaires may "
-                                 "go (see docs/user-guide.md)");
+                                 "go (see docs/user-guide.md)" + forward);
+  }
   if (job.goals.empty()) throw ConfigError(job.path + ": goals are missing: an inverse job says what surfaces must receive");
   const bool listed = !job.products.empty();
   const bool on_wall = job.search->on_wall.has_value();
