@@ -231,17 +231,42 @@ class PdfPages {
     std::vector<std::string> lines;
     std::istringstream words(text);
     std::string line;
-    for (std::string word; words >> word;) {
-      const std::string longer = line.empty() ? word : line + " " + word;
-      if (!line.empty() && advance(longer) > width) {
-        lines.push_back(line);
-        line = word;
-      } else {
-        line = longer;
+    for (std::string whole; words >> whole;) {
+      for (const std::string& word : split_long_word(whole, width)) {
+        const std::string longer = line.empty() ? word : line + " " + word;
+        if (!line.empty() && advance(longer) > width) {
+          lines.push_back(line);
+          line = word;
+        } else {
+          line = longer;
+        }
       }
     }
     if (!line.empty() || lines.empty()) lines.push_back(line);
     return lines;
+  }
+
+  // A word wider than `width` (a long grid or goal name) in pieces that fit: each piece
+  // ends after its last '_' where there is one, else at the last character that fits;
+  // never inside a UTF-8 sequence. A word that fits is one piece.
+  std::vector<std::string> split_long_word(std::string word, double width) {
+    std::vector<std::string> pieces;
+    while (advance(word) > width) {
+      std::size_t fits = 0, underscore = 0;
+      for (std::size_t end = 1; end <= word.size(); ++end) {
+        if (end < word.size() && (static_cast<unsigned char>(word[end]) & 0xC0) == 0x80) continue;
+        if (advance(word.substr(0, end)) > width) break;
+        fits = end;
+        if (word[end - 1] == '_') underscore = end;
+      }
+      std::size_t cut = underscore > 0 && underscore < word.size() ? underscore : fits;
+      if (cut == 0) cut = std::min<std::size_t>(word.size(), 1);  // not one character fits: one a line
+      while (cut < word.size() && (static_cast<unsigned char>(word[cut]) & 0xC0) == 0x80) ++cut;
+      pieces.push_back(word.substr(0, cut));
+      word.erase(0, cut);
+    }
+    if (!word.empty()) pieces.push_back(word);
+    return pieces;
   }
 
   cairo_t* cr_;
@@ -340,9 +365,23 @@ void room_page(PdfPages& pdf, const ResultRecord& r) {
     pdf.heading("Surfaces", 2);
     const bool floor = r.room->floor_z_m.has_value();
     Table surfaces({"surface", "area", "reflectance", floor ? "bottom above floor" : "bottom (z)", floor ? "top above floor" : "top (z)"}, {0.32, 0.16, 0.16, 0.18, 0.18}, {false, true, true, true, true});
-    for (const SurfaceRecord& s : r.room->surfaces)
+    // The largest first, at most kSurfaceRows of them; the rest summed in one line
+    // (result.json keeps every surface).
+    std::vector<SurfaceRecord> largest = r.room->surfaces;
+    std::stable_sort(largest.begin(), largest.end(),
+                     [](const SurfaceRecord& a, const SurfaceRecord& b) { return a.area_m2 > b.area_m2; });
+    constexpr std::size_t kSurfaceRows = 20;
+    for (std::size_t i = 0; i < std::min(largest.size(), kSurfaceRows); ++i) {
+      const SurfaceRecord& s = largest[i];
       surfaces.rows.push_back({s.name, fixed(s.area_m2, 2) + " m²", fixed(s.reflectance, 2), fixed(s.bottom_m, 2) + " m",
                                fixed(s.top_m, 2) + " m"});
+    }
+    if (largest.size() > kSurfaceRows) {
+      double rest_m2 = 0.0;
+      for (std::size_t i = kSurfaceRows; i < largest.size(); ++i) rest_m2 += largest[i].area_m2;
+      surfaces.rows.push_back({std::to_string(largest.size() - kSurfaceRows) + " smaller surfaces",
+                               fixed(rest_m2, 2) + " m²", "", "", ""});
+    }
     pdf.table(surfaces);
   }
   pdf.heading("Luminaire schedule", 2);

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <regex>
 #include <sstream>
+#include <vector>
 
 #include "core/base/error.h"
 #include "output/report_pdf.h"
@@ -149,6 +150,59 @@ TEST(ReportPdf, TextHoldsTheRecordsNumbersWithUnits) {
   // File names only: the folders of the machine appear nowhere.
   EXPECT_EQ(text.find("/home/designer"), std::string::npos);
   EXPECT_EQ(ilp::test::read_file(pdf).find("/home/designer"), std::string::npos);
+}
+
+// A word's box in the PDF (pdftotext -bbox), points from the page's top left.
+struct WordBox {
+  std::string text;
+  double x_min, y_min, x_max, y_max;
+};
+
+std::vector<WordBox> word_boxes(const std::string& pdf, const std::string& scratch) {
+  const std::string out = scratch + "/bbox.html";
+  EXPECT_EQ(ilp::test::run_capture("pdftotext -bbox '" + pdf + "' '" + out + "'", scratch + "/bbox.log"), 0);
+  const std::string html = ilp::test::read_file(out);
+  const std::regex word(R"re(<word xMin="([0-9.]+)" yMin="([0-9.]+)" xMax="([0-9.]+)" yMax="([0-9.]+)">([^<]*)</word>)re");
+  std::vector<WordBox> boxes;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), word); it != std::sregex_iterator(); ++it)
+    boxes.push_back({(*it)[5], std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4])});
+  return boxes;
+}
+
+// A goal name longer than its column (work_plane_surrounding in the classroom's report
+// ran into the metric column: "work_plane_surroundingaverage (lx)"). Regression: the name
+// is now broken after an underscore within its column; no word crosses into the next.
+// The room's surfaces: the 20 largest, then one line for the rest.
+TEST(ReportPdf, LongNamesStayInTheirColumnAndSmallSurfacesAreSummed) {
+  TempDir dir;
+  ilp::ResultRecord r = record();
+  const std::string long_name = "work_plane_surrounding_of_the_front_desks";
+  r.goals.push_back({long_name, {}, "average", "lx", 300.0, 310.0, 305.0, true, false, 0.0, long_name});
+  for (int k = 0; k < 25; ++k) r.room->surfaces.push_back({"chair_" + std::to_string(k), 0.01 * (k + 1), 0.5, 0.0, 0.9});
+  ilp::ReportInput in;
+  in.job = "job.yaml";
+  in.record = &r;
+  const std::string pdf = dir.file("report.pdf");
+  ilp::write_report_pdf(pdf, in);
+  const std::vector<WordBox> boxes = word_boxes(pdf, dir.file(""));
+  ASSERT_FALSE(boxes.empty());
+  // The metric of the long line: the "average" word right of a piece of the name, on its row.
+  int pieces = 0;
+  for (const WordBox& name : boxes) {
+    if (name.text.rfind("work_plane_surr", 0) != 0 && name.text.find("front_desks") == std::string::npos) continue;
+    ++pieces;
+    for (const WordBox& other : boxes) {
+      if (&other == &name || std::abs(other.y_min - name.y_min) > 1.0 || other.x_min <= name.x_min) continue;
+      EXPECT_LT(name.x_max, other.x_min) << "'" << name.text << "' runs into '" << other.text << "'";
+    }
+  }
+  EXPECT_GE(pieces, 2) << "the long name broken into pieces";
+  const std::string text = squeezed(ilp::test::pdf_text(pdf, dir.file("")));
+  EXPECT_TRUE(Contains(text, "walls 42.00 m²")) << "the largest surfaces listed";
+  EXPECT_TRUE(Contains(text, "chair_24 0.25 m²"));
+  EXPECT_FALSE(Contains(text, "chair_0 0.01 m²")) << "a small surface beyond the 20 largest";
+  // 28 surfaces: 20 listed, 8 summed (chair_0 .. chair_7: 0.01 + ... + 0.08 = 0.36 m²).
+  EXPECT_TRUE(Contains(text, "8 smaller surfaces 0.36 m²")) << text;
 }
 
 TEST(ReportPdf, FontsAreEmbedded) {
