@@ -14,6 +14,7 @@
 #include "core/light/luminaire_product.h"
 #include "core/rays/ray_caster.h"
 #include "core/scene/reference_scenes.h"
+#include "tests/core/asymmetric_web.h"
 #include "optimizer/candidate_grid.h"
 #include "optimizer/lighting_model.h"
 #include "optimizer/regular_layout.h"
@@ -102,28 +103,9 @@ TEST(WallMount, AWallWithoutFacesThatWayOrAHeightOffItIsRefused) {
   }
 }
 
-// An asymmetric web: I(C, gamma) = 1000 cos(gamma) (1 + 0.5 sin(gamma) cos C + 0.25 sin(gamma) sin 2C)
-// below the horizontal, 0 above (as in tests/core/tilted_luminaire_test.cpp).
-double web_cd(double c_deg, double gamma_deg) {
-  if (gamma_deg >= 90.0) return 0.0;
-  const double c = c_deg * kDeg, g = gamma_deg * kDeg;
-  return 1000.0 * std::cos(g) * (1.0 + 0.5 * std::sin(g) * std::cos(c) + 0.25 * std::sin(g) * std::sin(2.0 * c));
-}
-
-std::shared_ptr<const Photometry> synthetic_point_web() {
-  std::ostringstream os;
-  os.precision(17);
-  os << "IESNA:LM-63-2002\n[TEST] synthetic\n[MANUFAC] test\nTILT=NONE\n1 -1 1 37 73 1 2 0 0 0\n1 1 10\n";
-  for (int g = 0; g <= 36; ++g) os << 2.5 * g << ' ';
-  os << '\n';
-  for (int c = 0; c <= 72; ++c) os << 5.0 * c << ' ';
-  os << '\n';
-  for (int c = 0; c <= 72; ++c) {
-    for (int g = 0; g <= 36; ++g) os << web_cd(5.0 * c, 2.5 * g) << ' ';
-    os << '\n';
-  }
-  return std::make_shared<const Photometry>(parse_ies(os.str(), "synthetic.ies"));
-}
+// The asymmetric web of tests/core/asymmetric_web.h.
+double web_cd(double c_deg, double gamma_deg) { return test::asymmetric_web_cd(c_deg, gamma_deg); }
+std::shared_ptr<const Photometry> synthetic_point_web() { return test::asymmetric_point_web(); }
 
 TEST(WallMount, AWallMountedAimedWebLightsTheRoomAsItsRotatedIntensityOverDistanceSquared) {
   // On the wall y = 4 (facing -y) at 2.6 m, aimed 50 degrees up from the nadir into the room.
