@@ -116,11 +116,13 @@ CandidateGrid make_grid(const Scene& scene, const CandidateSpec& search, const E
   }
 }
 
-// The finished floor: the named surface (or the first grid's over_surface), the
-// area-weighted height of its patches facing up.
+// The finished floor: the named surface (or the first grid's over_surface when its
+// patches facing up lie at the scene's lowest level: a grid over a table top is a task
+// area, not the floor), the area-weighted height of its patches facing up.
 std::optional<double> floor_height_m(const Scene& scene, const ModelSpec& spec, std::string& surface_name) {
   surface_name = spec.candidates.floor_surface;
-  if (surface_name.empty())
+  const bool named = !surface_name.empty();
+  if (!named)
     for (const CalcGridSetting& g : spec.grids)
       if (!g.over_surface.empty()) {
         surface_name = g.over_surface;
@@ -143,6 +145,11 @@ std::optional<double> floor_height_m(const Scene& scene, const ModelSpec& spec, 
     if (!spec.candidates.floor_surface.empty())
       throw ConfigError(located(spec.candidates.floor_loc,
                                 "luminaires.floor_surface: '" + surface_name + "' has no patch facing up"));
+    surface_name.clear();
+    return std::nullopt;
+  }
+  constexpr double kFloorLevelTolerance_m = 0.2;  // as the power density's floor (job_runner.cpp)
+  if (!named && z / area > scene.bounds_m.min().z() + kFloorLevelTolerance_m) {
     surface_name.clear();
     return std::nullopt;
   }

@@ -925,3 +925,39 @@ TEST(WallMountedLuminaires, BadWallsHeightsAndLayoutsAreRefusedWithFileLineAndKe
 
 }  // namespace
 }  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// A 4 x 4 x 3 m room: floor (z 0, up), a table top (z 0.7, up), a ceiling (z 3, down).
+std::string room_with_table_obj() {
+  return "g floor\nv 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nf 1 2 3 4\n"
+         "g table\nv 1 1 0.7\nv 3 1 0.7\nv 3 3 0.7\nv 1 3 0.7\nf 5 6 7 8\n"
+         "g ceiling\nv 0 0 3\nv 0 4 3\nv 4 4 3\nv 4 0 3\nf 9 10 11 12\n";
+}
+
+std::string table_job(const std::string& floor_key) {
+  return "scene:\n  mesh: room.obj\n  max_patch_edge_m: 0.5\n  default_reflectance: 0.5\n"
+         "luminaires:\n  size_m: 0.6\n  flux_lm: [100, 10000]\n  efficacy_lm_per_w: 100\n"
+         "  mounting_surface: ceiling\n  candidate_spacing_m: 0.5\n" + floor_key +
+         "grids:\n  - {name: top, over_surface: table, height_m: 0.01, border_m: 0}\n"
+         "goals:\n  - grid: top\n    average_lux: 300\n"
+         "solver:\n  rays_per_patch: 32\n  seed: 3\n  sample_fraction: 0.2\n";
+}
+
+// A grid over a table top is a task area, not the floor. Regression: the conference room's
+// luminaires were reported 1.40 m "above the floor", above its table top (0.54 m), not
+// its floor. The first grid's surface is taken as the floor only at the room's lowest
+// level; a named floor_surface always is.
+TEST(FloorHeight, AGridOverATableTopIsNotTheFloorANamedFloorIs) {
+  TempDir dir;
+  dir.write("room.obj", room_with_table_obj());
+  const PreparedJob unnamed = test::prepare(load_job_config(dir.write("a.yaml", table_job(""))));
+  EXPECT_FALSE(unnamed.model.floor_z_m.has_value()) << "the table top at 0.7 m taken as the floor";
+  const PreparedJob named = test::prepare(load_job_config(dir.write("b.yaml", table_job("  floor_surface: floor\n"))));
+  ASSERT_TRUE(named.model.floor_z_m.has_value());
+  EXPECT_NEAR(*named.model.floor_z_m, 0.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace ilp
