@@ -427,6 +427,7 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
       out.feasible = out.feasible && predicted_met;
     if (verified) {
       o.verified = (*verified)[g];
+      if (margins[g].applies) o.margin = kept_margin(o.margin, o.verified->value, o.verified->target);
       o.met = o.verified->violation <= o.tolerance + 1e-9;
       o.fails_only_on_verification = predicted_met && !o.met;
     } else {

@@ -1,5 +1,6 @@
 #include "job/verification_margin.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "optimizer/goal_metrics.h"
@@ -52,6 +53,13 @@ std::vector<GoalMargin> goal_margins(const LightingModel& model, const std::vect
     out.push_back(m);
   }
   return out;
+}
+
+double kept_margin(double asked, double verified_value, double target) {
+  if (!(asked > 0.0) || !(target > 0.0)) return asked;
+  // Kept to round-off (the correction scales the binding goal to exactly target x (1 + asked)).
+  if (verified_value >= target * (1.0 + asked) * (1.0 - 1e-9)) return asked;
+  return std::clamp(verified_value / target - 1.0, 0.0, asked);
 }
 
 }  // namespace ilp

@@ -37,4 +37,9 @@ std::vector<GoalMargin> goal_margins(const LightingModel& model, const std::vect
                                      const Eigen::VectorXd& lux, const Eigen::VectorXd& point_error_lux,
                                      double margin_floor, bool averages_are_targets);
 
+// The margin a lower-bound goal kept after the flux correction: the one it asked for,
+// unless the correction gave less (held back by an upper bound such as UGR, or the flux
+// range), then what its verified value holds above the target (never below 0).
+double kept_margin(double asked, double verified_value, double target);
+
 }  // namespace ilp

@@ -190,6 +190,16 @@ TEST(VerificationMargin, WithoutAFloorTheMarginIsTheErrorEstimateAlone) {
   EXPECT_EQ(outcome.goals[2].margin, 0.0);
 }
 
+// The margin column says what was kept, not what was asked: a flux correction held back
+// by a UGR limit (or the flux range) leaves a lower bound less above its target than it
+// asked, and the line printed what it asked. search_and_verify now reports kept_margin.
+TEST(VerificationMargin, TheMarginReportedIsWhatTheVerifiedValueKeeps) {
+  EXPECT_DOUBLE_EQ(kept_margin(0.005, 503.0, 500.0), 0.005) << "more than asked: the asked margin";
+  EXPECT_NEAR(kept_margin(0.005, 501.0, 500.0), 0.002, 1e-12) << "held back: what the value keeps";
+  EXPECT_DOUBLE_EQ(kept_margin(0.005, 495.0, 500.0), 0.0) << "below the target: none (the line is missed)";
+  EXPECT_DOUBLE_EQ(kept_margin(0.0, 510.0, 500.0), 0.0) << "a goal without a margin keeps none";
+}
+
 TEST(VerificationMargin, TheFloorIsCheckedAsAKey) {
   test::TempDir dir;
   const std::string path = margin_job(dir, 0.5);
