@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "core/base/error.h"
+#include "core/glare/ugr_table.h"
 #include "output/atomic_file.h"
 #include "output/polar_curve.h"
 
@@ -445,6 +446,40 @@ bool stated(const std::string& field) { return !field.empty() && field != "0"; }
 
 std::string percent_or_dash(double v) { return std::isfinite(v) ? fixed(v, 1) + " %" : "not stated in the file"; }
 
+// The product's tabular UGR (CIE 190: rooms X x Y in H, reflectances ceiling/walls/floor,
+// spacing 0.25H, core/glare/ugr_table.h) at the rated flux the job uses: the file's table
+// shifted by 8 log10(rated / file flux), as every luminance and the background scale alike.
+void ugr_table_section(PdfPages& pdf, const Photometry& f, double rated_flux_lm) {
+  const UgrTable table = ugr_table(f);
+  if (table.rooms.empty() || !(table.flux_lm > 0.0)) return;
+  const double shift = rated_flux_lm > 0.0 ? 8.0 * std::log10(rated_flux_lm / table.flux_lm) : 0.0;
+  Table t;
+  t.size_pt = kSmallPt;
+  t.header = {"room X × Y"};
+  t.widths = {0.12};
+  t.right = {false};
+  for (const char* viewing : {"cross", "end"})
+    for (const RoomReflectances& r : table.reflectances) {
+      t.header.push_back(std::string(viewing) + " " + fixed(100.0 * r.ceiling, 0) + "/" + fixed(100.0 * r.walls, 0) + "/" +
+                         fixed(100.0 * r.floor, 0));
+      t.widths.push_back(0.088);
+      t.right.push_back(true);
+    }
+  for (std::size_t i = 0; i < table.rooms.size(); ++i) {
+    std::vector<std::string> row{fixed(table.rooms[i].x_h, 0) + "H × " + fixed(table.rooms[i].y_h, 0) + "H"};
+    for (const Eigen::MatrixXd* m : {&table.crosswise, &table.endwise})
+      for (Eigen::Index j = 0; j < m->cols(); ++j) row.push_back(fixed((*m)(static_cast<Eigen::Index>(i), j) + shift, 1));
+    t.rows.push_back(std::move(row));
+  }
+  pdf.ensure(kSmallPt * kLineGap * (static_cast<double>(t.rows.size()) + 8.0));  // the heading stays with its table
+  pdf.heading("UGR table (CIE 190)", 3);
+  pdf.paragraph("At " + fixed(rated_flux_lm > 0.0 ? rated_flux_lm : table.flux_lm, 0) +
+                    " lm, luminaires 0.25H apart, H their height above the eye; reflectances ceiling/walls/floor "
+                    "in %; cross: the line of sight in the C0–C180 plane, end: in C90–C270.",
+                kSmallPt);
+  pdf.table(t);
+}
+
 void product_page(PdfPages& pdf, const ReportProduct& p) {
   pdf.new_page();
   pdf.heading("Data sheet: " + p.name);
@@ -507,6 +542,7 @@ void product_page(PdfPages& pdf, const ReportProduct& p) {
   }
   pdf.heading("Intensity (cd/klm)", 3);
   pdf.table(values);
+  ugr_table_section(pdf, *f, p.rated_flux_lm);
 }
 
 void bill_page(PdfPages& pdf, const ResultRecord& r) {

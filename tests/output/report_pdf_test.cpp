@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/base/error.h"
+#include "core/glare/ugr_table.h"
 #include "output/report_pdf.h"
 #include "tests/output/pdf_text.h"
 #include "tests/test_support.h"
@@ -203,6 +204,43 @@ TEST(ReportPdf, LongNamesStayInTheirColumnAndSmallSurfacesAreSummed) {
   EXPECT_FALSE(Contains(text, "chair_0 0.01 m²")) << "a small surface beyond the 20 largest";
   // 28 surfaces: 20 listed, 8 summed (chair_0 .. chair_7: 0.01 + ... + 0.08 = 0.36 m²).
   EXPECT_TRUE(Contains(text, "8 smaller surfaces 0.36 m²")) << text;
+}
+
+// The data sheet's UGR table is the product's CIE 190 table (core/glare) at the rated
+// flux the job uses: the 4H x 8H room at 70/50/20, crosswise and endwise, shifted by
+// 8 log10(rated / file flux) (here 3000 lm rated, the file's own).
+TEST(ReportPdf, TheDataSheetCarriesTheProductsUgrTableAtItsRatedFlux) {
+  TempDir dir;
+  const ilp::ResultRecord r = record();
+  const ilp::Photometry photometry = cosine_file();
+  const ilp::UgrTable table = ilp::ugr_table(photometry);
+  ilp::ReportInput in;
+  in.job = "job.yaml";
+  in.record = &r;
+  const double rated_lm = 2.0 * table.flux_lm;  // a rated flux twice the file's: every value 8 log10 2 higher
+  in.products.push_back({"panel 3000 lm", "panel.ies", &photometry, rated_lm, 30.625, 0.3, 1.0, 0.6, 0.6});
+  const std::string pdf = dir.file("report.pdf");
+  ilp::write_report_pdf(pdf, in);
+  const std::string text = squeezed(ilp::test::pdf_text(pdf, dir.file("")));
+  EXPECT_TRUE(Contains(text, "UGR table (CIE 190)"));
+  std::size_t room = 0;
+  for (; room < table.rooms.size(); ++room)
+    if (table.rooms[room].x_h == 4 && table.rooms[room].y_h == 8) break;
+  ASSERT_LT(room, table.rooms.size());
+  const double shift = 8.0 * std::log10(2.0);
+  std::ostringstream row;
+  row << std::fixed;
+  row.precision(1);
+  row << "4H × 8H " << table.crosswise(static_cast<Eigen::Index>(room), 0) + shift;
+  EXPECT_TRUE(Contains(text, row.str())) << row.str() << "\n" << text;
+  std::ostringstream end;
+  end << std::fixed;
+  end.precision(1);
+  end << " " << table.endwise(static_cast<Eigen::Index>(room), 4) + shift << "\n";
+  const std::size_t at = text.find("4H × 8H ");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NE(text.substr(at, text.find('\n', at) - at + 1).find(end.str()), std::string::npos)
+      << "the row ends with the endwise 30/30/20 value" << end.str();
 }
 
 TEST(ReportPdf, FontsAreEmbedded) {
