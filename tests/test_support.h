@@ -19,6 +19,21 @@
 
 namespace ilp::test {
 
+// Built with AddressSanitizer (scripts/sanitize.sh): its own handlers turn a crash or an
+// exhausted allocator into a report and exit status 1, where a plain build dies by the
+// signal or throws std::bad_alloc; the death tests that watch those say which they expect.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+
 // A fresh folder under the system temp dir, named after the process and the running
 // test (so unique per test, also with ctest -j), removed when the test ends.
 class TempDir {

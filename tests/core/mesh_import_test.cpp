@@ -293,7 +293,10 @@ TEST(MeshImportDeathTest, TheCrashingFileCrashesAssimpInProcess) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   TempDir dir;
   const std::string dae = crashing_dae(dir);
-  EXPECT_EXIT((void)load_with_assimp(dae, ".dae", {}), testing::KilledBySignal(SIGSEGV), "");
+  if (test::kAddressSanitizer)  // ASan reports the SEGV and exits 1
+    EXPECT_EXIT((void)load_with_assimp(dae, ".dae", {}), testing::ExitedWithCode(1), "AddressSanitizer: SEGV");
+  else
+    EXPECT_EXIT((void)load_with_assimp(dae, ".dae", {}), testing::KilledBySignal(SIGSEGV), "");
 }
 
 // Regression: load_mesh read the file in this process and the program died (SIGSEGV).
@@ -393,6 +396,10 @@ TEST(MeshImport, TheChildsTimeAndMemoryAreLimited) {
 // mappings, and memory this process's allocator already holds free from earlier tests
 // would be reused without counting.
 TEST(MeshImportDeathTest, TheChildsMemoryIsLimited) {
+  // Under ASan a child out of its address space does not throw std::bad_alloc: ASan's
+  // allocator reports it, and its report (the symbolizer it starts) can hang under the
+  // same limit (measured: 0.4 s once, over 300 s the next time). The plain build tests it.
+  if (test::kAddressSanitizer) GTEST_SKIP() << "ASan replaces the allocator whose failure this watches";
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   const std::string ifc = kScenes + "ifc-fzk-haus/AC14-FZK-Haus.ifc";
   ASSERT_TRUE(std::filesystem::exists(ifc)) << ifc;
