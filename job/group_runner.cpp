@@ -23,11 +23,29 @@ std::string located_group(const JobConfig& job, std::size_t g, const std::string
   return located(job.groups[g].loc, "luminaires.groups[" + std::to_string(g) + "] ('" + job.groups[g].name + "'): " + what);
 }
 
-// Does the group serve a goal: does any of its candidates (any variant) light any goal
-// row at all, directly or by interreflection, through the operator?
-bool serves_a_goal(const GroupLights& lights) {
-  for (const PreparedJob* p : lights.variants)
-    if (p->model.candidate_lux_per_lm.size() > 0 && p->model.candidate_lux_per_lm.maxCoeff() > 0.0) return true;
+// Share of a goal's target a group must give some point of the goal's area directly,
+// from one candidate at full output, to serve that goal.
+constexpr double kServesShare = 0.01;
+
+// Does the group serve a goal: does one of its candidates (any variant), at full output,
+// light some row of a lux goal's area (average, minimum, cylindrical) directly with at
+// least kServesShare of the goal's target? Light that reaches the goals only after
+// reflection, or a trace of stray light, is not service.
+bool serves_a_goal(const GroupLights& lights, const JobConfig& job) {
+  for (const PreparedJob* p : lights.variants) {
+    const LightingModel& model = p->model;
+    if (model.candidate_direct_lux_per_lm.size() == 0) continue;
+    for (const GoalSpec& goal : goal_specs(job, p->plan.maintenance_factor)) {
+      const MetricRule& rule = metric_rule(goal.metric);
+      if (!rule.lux || !rule.lower_bound || !(goal.target > 0.0)) continue;
+      const int a = find_goal_area(model, goal.name, rule.area);
+      if (a < 0) continue;
+      for (const Eigen::Index r : model.areas[static_cast<std::size_t>(a)].rows)
+        if (model.candidate_direct_lux_per_lm.row(r).maxCoeff() * p->plan.search.luminaire.flux_max_lm >=
+            kServesShare * goal.target)
+          return true;
+    }
+  }
   return false;
 }
 
@@ -42,9 +60,10 @@ std::vector<GroupLights> arrangement_lights(const PreparedGroups& groups, const 
     g.per_variant.push_back(regular_arrangement_lights(p.model, spec));
   }
   for (std::size_t g = 0; g < out.size(); ++g) {
-    if (!serves_a_goal(out[g]))
-      throw ConfigError(located_group(job, g, "serves no goal: none of its candidates lights any goal's patch or "
-                                              "point (move its zone or mounting toward the goals, or leave it out)"));
+    if (!serves_a_goal(out[g], job))
+      throw ConfigError(located_group(job, g, "serves no goal: none of its candidates, at full output, lights any point of a "
+                                              "goal's area directly with 1 % of its target (move its zone or mounting toward "
+                                              "the goals, or leave it out)"));
     bool any = false;
     for (const RegularLights& l : out[g].per_variant) any = any || !l.arrangements.empty();
     if (!any)
