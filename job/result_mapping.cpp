@@ -1,6 +1,8 @@
 #include "job/result_mapping.h"
 
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -188,8 +190,11 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
     for (const OutcomeGroup& g : outcome.groups) {
       const std::string sep = r.arrangement.empty() ? "" : "; ";
       r.layout_family += sep + g.name + ": " + std::string(layout_family_key(g.plan.search.layout.family));
-      r.arrangement += sep + g.name + ": " + g.arrangement;
+      std::ostringstream spacing;
+      spacing << std::fixed << std::setprecision(2) << ", spacing " << g.spacing_m.x() << " x " << g.spacing_m.y() << " m";
+      r.arrangement += sep + g.name + ": " + g.arrangement + spacing.str();
     }
+    r.spacing_x_m = r.spacing_y_m = 0.0;
   }
   for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
     const PlacedLuminaire& l = outcome.luminaires[j];

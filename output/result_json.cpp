@@ -549,8 +549,9 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
   print_verdict(os, r);
   os << (r.all_met ? "Optimal layout (" : "Closest layout found (") << r.objective << ", " << r.luminaires.size()
      << " luminaires";
-  if (!r.arrangement.empty())
-    os << ": " << r.arrangement << ", spacing " << fixed(r.spacing_x_m, 2) << " x " << fixed(r.spacing_y_m, 2) << " m";
+  if (!r.arrangement.empty()) os << ": " << r.arrangement;
+  if (!r.arrangement.empty() && (r.spacing_x_m > 0.0 || r.spacing_y_m > 0.0))  // (groups: in each group's arrangement)
+    os << ", spacing " << fixed(r.spacing_x_m, 2) << " x " << fixed(r.spacing_y_m, 2) << " m";
   os << ")\n";
   bool products = false, heights = false;
   for (const LuminaireRecord& l : r.luminaires) {
