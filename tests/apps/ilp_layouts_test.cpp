@@ -276,6 +276,14 @@ TEST(IlpLayouts, BadGroupsExitOneNamingFileLineAndKeyAndWritesNothing) {
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("out"))) << "nothing written";
   }
+  // ilp sweep searches one group: it refuses groups before any work.
+  TempDir dir;
+  const std::string job = dir.write("job.yaml", shipped);
+  const RunResult r = run_ilp(dir, {"sweep", job, "--set", "goals.work_plane.average_lux=400,500", "--out",
+                                    dir.file("out"), "--cache", dir.file("cache"), "-q"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("luminaires.groups: ilp sweep searches one luminaire group"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out"))) << "nothing written";
 }
 
 }  // namespace
