@@ -79,8 +79,9 @@ std::vector<GroupChoices> group_choices(const JobConfig& job, const std::vector<
     GroupChoices c{job.groups[g].name, {}};
     for (std::size_t v = 0; v < lights[g].variants.size(); ++v) {
       const SearchLuminaire& s = lights[g].variants[v]->plan.search.luminaire;
+      const Eigen::Vector2d extent_m = 2.0 * s.type.half_footprint_m(s.rotation_deg, s.tilt_deg);
       for (const ArrangementLight& a : lights[g].per_variant[v].arrangements)
-        c.options.push_back({static_cast<int>(v), &a, s.flux_min_lm, s.flux_max_lm, s.efficacy_lm_per_w});
+        c.options.push_back({static_cast<int>(v), &a, s.flux_min_lm, s.flux_max_lm, s.efficacy_lm_per_w, extent_m});
     }
     out.push_back(std::move(c));
   }
@@ -225,8 +226,11 @@ std::string search_line(const GroupSearchResult& r, const std::vector<GroupChoic
   line << std::fixed << std::setprecision(2) << "groups searched together: ";
   for (std::size_t g = 0; g < choices.size(); ++g)
     line << (g ? " x " : "") << choices[g].options.size() << " arrangements of '" << choices[g].name << "'";
-  line << " = " << r.pairs << " pairs; " << r.solved << " output solves (evaluations), " << r.pruned
-       << " pairs pruned by their least power; " << r.seconds << " s";
+  std::size_t arrangements = 0;
+  for (const GroupChoices& c : choices) arrangements += c.options.size();
+  line << " = " << r.pairs << " pairs; " << arrangements << " arrangement lights, " << r.solved
+       << " output solves (evaluations), " << r.pruned << " pairs pruned by their least power, " << r.colliding
+       << " colliding (a luminaire of one group on another's); " << r.seconds << " s";
   return line.str();
 }
 
@@ -270,6 +274,9 @@ VariantChoice solve_groups(const PreparedGroups& groups, const JobConfig& job, c
   cap.max_w_per_m2 = job.constraints.max_power_density_w_per_m2;
   const GroupSearchResult found = search_groups(primary.model, {spec.goals, cap.max_power_w()}, choices);
   if (log) log(search_line(found, choices));
+  if (found.groups.empty())
+    throw ConfigError(job.path + ": luminaires.groups: no pair of arrangements can be placed together (in every pair a "
+                                 "luminaire of one group lies on one of the other's; give the groups separate zones)");
 
   VariantChoice choice;
   JobOutcome& out = choice.outcome;

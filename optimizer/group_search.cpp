@@ -133,6 +133,17 @@ double least_pair_power_w(const std::vector<const GroupOption*>& pair, const std
 
 }  // namespace
 
+bool groups_collide(const GroupOption& a, const GroupOption& b) {
+  constexpr double kTouchM = 1e-3;
+  const Eigen::Vector2d reach = 0.5 * (a.extent_m + b.extent_m) - Eigen::Vector2d::Constant(kTouchM);
+  for (const PlacedLuminaire& p : a.light->luminaires)
+    for (const PlacedLuminaire& q : b.light->luminaires) {
+      const Eigen::Vector3d d = (p.position_m - q.position_m).cwiseAbs();
+      if (d.x() < reach.x() && d.y() < reach.y() && d.z() < kGroupClearanceM) return true;
+    }
+  return false;
+}
+
 std::optional<Eigen::Vector2d> least_cost_outputs(const std::vector<OutputConstraint>& constraints,
                                                   const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
                                                   const Eigen::Vector2d& cost) {
@@ -262,6 +273,10 @@ GroupSearchResult search_groups(const LightingModel& model, const GroupSearchSpe
     }
     std::vector<const GroupOption*> pair{&groups[0].options[static_cast<std::size_t>(p.i)]};
     if (k == 2) pair.push_back(&groups[1].options[static_cast<std::size_t>(p.j)]);
+    if (k == 2 && groups_collide(*pair[0], *pair[1])) {
+      ++best.colliding;
+      continue;
+    }
     Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Zero(), cost = Eigen::Vector2d::Zero();
     std::vector<const Eigen::VectorXd*> units;
     for (std::size_t g = 0; g < k; ++g) {

@@ -52,8 +52,16 @@ struct GroupOption {
   const ArrangementLight* light = nullptr;  // its light at 1 lm per luminaire
   double flux_min_lm = 0.0, flux_max_lm = 0.0;
   double efficacy_lm_per_w = 100.0;
+  Eigen::Vector2d extent_m = Eigen::Vector2d::Zero();  // its luminaires' outline in plan (x, y), as placed
   int count() const { return static_cast<int>(light->luminaires.size()); }
 };
+
+// Do two arrangements of different groups collide: a luminaire of one whose outline in
+// plan overlaps one of the other's by more than 1 mm on both axes, their emitting faces
+// within kGroupClearanceM in height (a ceiling field and a ceiling row may not share a
+// place; a wall bracket below a ceiling batten may)?
+inline constexpr double kGroupClearanceM = 0.1;
+bool groups_collide(const GroupOption& a, const GroupOption& b);
 
 struct GroupChoices {
   std::string name;
@@ -80,6 +88,7 @@ struct GroupSearchResult {
   long pairs = 0;      // arrangement pairs in all
   long solved = 0;     // linear programmes solved (the evaluations)
   long pruned = 0;     // pairs left out: their least power could not beat the best found
+  long colliding = 0;  // pairs left out: a luminaire of one group on another's (groups_collide)
   double seconds = 0.0;
 };
 

@@ -147,6 +147,29 @@ TEST(GroupSearch, TheLinearProgrammeIsExactOnAKnownTriangle) {
   EXPECT_FALSE(least_cost_outputs({{{1.0, 1.0}, 50.0}}, {0.0, 0.0}, {20.0, 20.0}, {1.0, 1.0}));
 }
 
+// Two groups on one ceiling: an arrangement of B whose luminaire lies on one of A's is
+// never chosen, however cheap; one beside it (outlines touching) may be.
+TEST(GroupSearch, PairsWhoseLuminairesShareAPlaceAreLeftOut) {
+  const LightingModel m = synthetic_model();
+  std::mt19937 rng(5);
+  ArrangementLight la = random_light(rng, 1, 0.5), on = random_light(rng, 1, 0.5), beside = on;
+  la.luminaires[0].position_m = {2.0, 2.0, 2.9};
+  on.luminaires[0].position_m = {2.3, 2.0, 2.9};       // 0.3 m apart, outlines 1.2 x 0.1 m: overlapping
+  beside.luminaires[0].position_m = {2.0, 2.1, 2.9};   // 0.1 m apart across: touching
+  ArrangementLight below = on;
+  below.luminaires[0].position_m.z() = 2.5;            // under it, 0.4 m lower: no collision
+  const Eigen::Vector2d extent{1.2, 0.1};
+  const GroupOption a{0, &la, 300.0, 3000.0, 100.0, extent};
+  EXPECT_TRUE(groups_collide(a, {0, &on, 300.0, 3000.0, 100.0, extent}));
+  EXPECT_FALSE(groups_collide(a, {0, &beside, 300.0, 3000.0, 100.0, extent}));
+  EXPECT_FALSE(groups_collide(a, {0, &below, 300.0, 3000.0, 100.0, extent}));
+  const GroupSearchResult r = search_groups(m, {{{"task", GoalMetric::average, 100.0}}},
+                                            {{"A", {a}}, {"B", {{0, &on, 300.0, 3000.0, 100.0, extent}}}});
+  EXPECT_EQ(r.colliding, 1);
+  EXPECT_EQ(r.solved, 0);
+  EXPECT_FALSE(r.feasible);
+}
+
 TEST(GroupSearch, MoreThanTwoGroupsAreRefused) {
   const LightingModel m = synthetic_model();
   std::mt19937 rng(3);
