@@ -39,11 +39,12 @@ PlanLuminaire plan_luminaire(const std::string& id, const std::string& product, 
 // The layout found (L1, L2, ...), then the luminaires placed in the config.
 std::vector<PlanLuminaire> plan_luminaires(const PlanInputs& in, double floor_z_m) {
   std::vector<PlanLuminaire> out;
-  const SearchLuminaire& s = in.prepared.plan.search.luminaire;
-  for (std::size_t j = 0; j < in.outcome.luminaires.size(); ++j)
-    out.push_back(plan_luminaire(luminaire_name(j), s.product, s.type,
+  for (std::size_t j = 0; j < in.outcome.luminaires.size(); ++j) {
+    const SearchLuminaire& s = outcome_plan(in.prepared, in.outcome, j).search.luminaire;
+    out.push_back(plan_luminaire(outcome_luminaire_name(in.outcome, j), s.product, s.type,
                                  {in.outcome.luminaires[j].position_m, s.rotation_deg, s.tilt_deg},
                                  in.outcome.luminaires[j].flux_lm, floor_z_m));
+  }
   const Scene& scene = in.prepared.loaded.scene;
   for (const SceneLuminaire& l : scene.luminaires)
     out.push_back(plan_luminaire(scene.surfaces[static_cast<std::size_t>(l.surface)].name, l.type.name, l.type,

@@ -20,6 +20,7 @@
 #include "core/light/luminaire_product.h"
 #include "core/operator/cost_model.h"
 #include "optimizer/goal_metrics.h"
+#include "job/group_runner.h"
 #include "job/job_runner.h"
 #include "job/result_mapping.h"
 #include "job/variant_search.h"
@@ -196,10 +197,12 @@ void stage_scene_ply(OutputSet& set, const RunProducts& p) {
 
 // The layout found (L1, L2, ... as the report names them) and the luminaires placed in the config.
 std::vector<DrawnLuminaire> run_luminaires(const RunProducts& p) {
-  const SearchLuminaire& s = p.prepared.plan.search.luminaire;
   std::vector<DrawnLuminaire> out = scene_luminaires(p.prepared.loaded.scene);
-  for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j)
-    out.push_back({luminaire_name(j), s.product, s.type, {p.outcome.luminaires[j].position_m, s.rotation_deg, s.tilt_deg}});
+  for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j) {
+    const SearchLuminaire& s = outcome_plan(p.prepared, p.outcome, j).search.luminaire;
+    out.push_back({outcome_luminaire_name(p.outcome, j), s.product, s.type,
+                   {p.outcome.luminaires[j].position_m, s.rotation_deg, s.tilt_deg}});
+  }
   return out;
 }
 
@@ -236,7 +239,8 @@ void stage_report_pdf(OutputSet& set, const RunProducts& p) {
   in.plan_svg = plan_svg(p);
   const std::vector<DrawnLuminaire> luminaires = run_luminaires(p);
   for (const GridResult& g : p.grids) in.grids.push_back(isolux_grid_view(*g.grid, g.light, luminaires));
-  in.products.push_back(report_product(p.prepared.plan));
+  if (p.outcome.groups.empty()) in.products.push_back(report_product(p.prepared.plan));
+  for (const OutcomeGroup& g : p.outcome.groups) in.products.push_back(report_product(g.plan));
   write_report_pdf(set.staging_path("report.pdf"), in);
   set.staged("report.pdf");
 }
@@ -247,11 +251,12 @@ ExportInputs export_inputs(const RunProducts& p) {
   ExportInputs in;
   const Scene& scene = p.prepared.loaded.scene;
   in.scene = &scene;
-  const SearchLuminaire& s = p.prepared.plan.search.luminaire;
   for (std::size_t j = 0; j < p.outcome.luminaires.size(); ++j) {
-    ExportLuminaire l{luminaire_name(j), s.product, s.type,
+    const VariantPlan& plan = outcome_plan(p.prepared, p.outcome, j);
+    const SearchLuminaire& s = plan.search.luminaire;
+    ExportLuminaire l{outcome_luminaire_name(p.outcome, j), s.product, s.type,
                       {p.outcome.luminaires[j].position_m, s.rotation_deg, s.tilt_deg},
-                      p.outcome.luminaires[j].flux_lm, p.prepared.plan.product.rated_flux_lm,
+                      p.outcome.luminaires[j].flux_lm, plan.product.rated_flux_lm,
                       p.outcome.luminaires[j].power_w};
     if (j < p.record.luminaires.size()) l.above_floor_m = p.record.luminaires[j].above_floor_m;
     in.luminaires.push_back(std::move(l));
@@ -396,8 +401,14 @@ int run_job(const RunArgs& args) {
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.
   OutputSet set(output_directory(job, args.out_dir), run_output_names(job, false));
-  const std::vector<PreparedJob> all = prepare_all(job, run, progress, cache_folder(args.cache_dir, args.no_cache));
-  const VariantChoice chosen = solve_variants(all, job, progress, log_line);
+  const std::string cache = cache_folder(args.cache_dir, args.no_cache);
+  // Several groups: every group's variants prepared, searched together (job/group_runner.h).
+  PreparedGroups groups;
+  if (job.groups.empty()) groups.prepared = prepare_all(job, run, progress, cache);
+  else groups = prepare_groups(job, run, progress, cache, log_line, log_build);
+  const std::vector<PreparedJob>& all = groups.prepared;
+  const VariantChoice chosen = job.groups.empty() ? solve_variants(all, job, progress, log_line)
+                                                  : solve_groups(groups, job, progress, log_line);
   const PreparedJob& prepared = all[chosen.variant];
   const JobOutcome& outcome = chosen.outcome;
   // Every variant's phases, summed: what the run cost.
@@ -434,6 +445,8 @@ int run_job(const RunArgs& args) {
 int run_sweep(const SweepArgs& args) {
   const auto start = Clock::now();
   const JobConfig job = load_job_config(args.config);
+  if (!job.groups.empty())
+    throw ConfigError(job.path + ": luminaires.groups: ilp sweep searches one luminaire group; run the job with ilp run");
   const RunOptions run = run_options(args.threads, args.max_memory);
   SweepSetting sweep;
   if (!args.set.empty()) {

@@ -967,7 +967,7 @@ JobConfig load_job_config(const std::string& path) {
       read_luminaires(Map(*v, {"size_m", "placed", "model", "flux_lm", "efficacy_lm_per_w", "mounting_surface",
                                "mount_offset_m", "candidate_spacing_m", "count", "layout", "array", "products",
                                "wall_distance_m", "ceiling_module_m", "field", "rows", "bays", "zone", "output",
-                               "suspended", "on_wall", "floor_surface"}),
+                               "suspended", "on_wall", "floor_surface", "groups"}),
                       job);
     if (auto v = top.get("grids")) read_grids(*v, job);
     if (auto v = top.get("maintenance_factor")) {
@@ -1004,6 +1004,18 @@ JobConfig load_job_config(const std::string& path) {
     throw ConfigError(located({path, e.mark.line + 1, e.mark.column + 1}, std::string("invalid YAML: ") + e.what()));
   }
   return job;
+}
+
+JobConfig group_job(const JobConfig& job, std::size_t g) {
+  const LuminaireGroup& group = job.groups.at(g);
+  JobConfig out = job;
+  out.groups.clear();
+  out.search = group.search;
+  out.products.clear();
+  for (const std::string& name : group.products)
+    for (const ProductSetting& p : job.products)
+      if (p.name == name) out.products.push_back(p);
+  return out;
 }
 
 }  // namespace ilp

@@ -167,6 +167,16 @@ struct LuminaireSearch {
   FileLoc floor_loc;
 };
 
+// luminaires.groups: one of several luminaire groups searched together (issue 19, item
+// 5; docs/config.md): its name, the products it chooses from and its own search settings
+// (mounting, layout family, zone, output), read by the single group's reader.
+struct LuminaireGroup {
+  std::string name;
+  FileLoc loc;
+  std::vector<std::string> products;  // names in luminaires.products
+  LuminaireSearch search;
+};
+
 // One line of goals: a metric over the union of some surfaces. A goals entry with
 // several metrics (average_lux and uniformity) becomes several GoalSettings with the
 // same name.
@@ -334,6 +344,7 @@ struct JobConfig {
   std::vector<FileLoc> report_surface_locs;
   // the inverse problem
   std::optional<LuminaireSearch> search;  // luminaires.mounting_surface and its companions
+  std::vector<LuminaireGroup> groups;     // luminaires.groups (then search is empty)
   std::vector<GoalSetting> goals;
   std::vector<CalcGridSetting> grids;     // calculation grids goals can name
   // Targets are maintained values; the search and the verification work on initial
@@ -362,6 +373,10 @@ void set_goal_parameter(JobConfig& job, const std::string& key, double value);
 double initial_target(const JobConfig& job, const GoalSetting& goal);
 // Index of the grid with this name in job.grids, or -1.
 int find_grid(const JobConfig& job, const std::string& name);
+
+// The job as group g of job.groups alone: its search, its products, no groups (what
+// the single-group stages are given for each group).
+JobConfig group_job(const JobConfig& job, std::size_t g);
 
 // Reads and validates a job file. Throws ConfigError "file:line:col: key = value: rule".
 JobConfig load_job_config(const std::string& path);

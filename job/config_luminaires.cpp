@@ -248,12 +248,12 @@ void read_layout(const Map& luminaires, LuminaireSearch& search) {
 
 void read_search(const Map& luminaires, const Value& mounting, JobConfig& job) {
   LuminaireSearch& search = job.search.emplace();
-  if (mounting.key() == "luminaires.suspended") {  // a plane above the floor, no surface
+  if (mounting.key().ends_with(".suspended")) {  // a plane above the floor, no surface
     const Map block(mounting, {"height_m"});
     search.suspended_height_m = block.require("height_m").bounded(0.1, 1000.0, " m");
     search.suspended_loc = block.require("height_m").loc();
     if (auto v = luminaires.get("mount_offset_m")) v->fail("not with suspended (the height places the luminaires)");
-  } else if (mounting.key() == "luminaires.on_wall") {  // a wall's faces facing one way, at a height
+  } else if (mounting.key().ends_with(".on_wall")) {  // a wall's faces facing one way, at a height
     const Map block(mounting, {"surface", "height_m", "facing"});
     WallMountSpec& wall = search.on_wall.emplace();
     const Value surface = block.require("surface");
@@ -390,6 +390,61 @@ LuminaireSetting read_placed(const Value& item, const JobConfig& job, ResolvedPr
 
 }  // namespace
 
+// One entry of luminaires.groups: its name and products, then its search as the
+// single group's keys give it (read_search on a copy of the job holding its products).
+LuminaireGroup read_group(const Value& item, const JobConfig& job) {
+  // (earlier groups are in job.groups: a name used twice is refused here)
+  std::vector<std::string> allowed{"name", "products", "mounting_surface", "suspended", "on_wall"};
+  for (const char* key : kSearchKeys) allowed.emplace_back(key);
+  const Map block(item, allowed);
+  LuminaireGroup group;
+  group.loc = item.loc();
+  group.name = block.require("name").text();
+  if (group.name.empty()) block.require("name").fail("must name the group");
+  for (const LuminaireGroup& other : job.groups)
+    if (other.name == group.name) block.require("name").fail("group name '" + group.name + "' is used twice");
+  JobConfig scratch = job;
+  scratch.products.clear();
+  const Value products = block.require("products");
+  for (const Value& name : products.list()) {
+    const std::string wanted = name.text();
+    const auto it = std::find_if(job.products.begin(), job.products.end(), [&](const ProductSetting& p) { return p.name == wanted; });
+    if (it == job.products.end()) name.fail("unknown product (a group names products of luminaires.products)");
+    if (std::find(group.products.begin(), group.products.end(), wanted) != group.products.end()) name.fail("is listed twice");
+    group.products.push_back(wanted);
+    scratch.products.push_back(*it);
+  }
+  if (group.products.empty()) products.fail("must name at least one product of luminaires.products");
+  const auto mounting = block.get("mounting_surface"), suspended = block.get("suspended"), on_wall = block.get("on_wall");
+  if (mounting && suspended) suspended->fail("not with mounting_surface (one or the other)");
+  if (on_wall && (mounting || suspended))
+    on_wall->fail(std::string("not with ") + (mounting ? "mounting_surface" : "suspended") + " (one of them)");
+  if (!mounting && !suspended && !on_wall) item.fail("a group needs mounting_surface, suspended or on_wall");
+  read_search(block, mounting ? *mounting : suspended ? *suspended : *on_wall, scratch);
+  group.search = *scratch.search;
+  if (group.search.layout == LayoutFamily::free || group.search.layout == LayoutFamily::array) {
+    const std::string rule = "field, rows or bays in a group (groups are searched together over regular arrangements)";
+    if (auto v = block.get("layout")) v->fail("must be " + rule);
+    item.fail("needs layout: " + rule);
+  }
+  return group;
+}
+
+void read_groups(const Map& luminaires, const Value& groups, JobConfig& job) {
+  for (const char* key : {"mounting_surface", "suspended", "on_wall"})
+    if (auto v = luminaires.get(key)) v->fail("not with luminaires.groups (each group gives its own)");
+  for (const char* key : kSearchKeys)
+    if (auto v = luminaires.get(key)) v->fail("not with luminaires.groups (each group gives its own)");
+  const std::vector<Value> items = groups.list();
+  if (items.empty()) groups.fail("must list at least one group");
+  if (items.size() > 2) items[2].fail("at most two groups are searched together");
+  if (job.products.empty()) groups.fail("needs luminaires.products (each group names its products)");
+  for (const Value& item : items) {
+    LuminaireGroup group = read_group(item, job);
+    job.groups.push_back(std::move(group));
+  }
+}
+
 void read_luminaires(const Map& luminaires, JobConfig& job) {
   if (auto v = luminaires.get("size_m")) job.luminaire_size_m = v->bounded(kMinLuminaireSize_m, kMaxLuminaireSize_m, " m");
   if (auto v = luminaires.get("products")) read_products(*v, job);
@@ -401,6 +456,10 @@ void read_luminaires(const Map& luminaires, JobConfig& job) {
       if (!names.insert(setting.name).second) item.fail("luminaire name '" + setting.name + "' is used twice");
       job.luminaires.push_back(std::move(setting));
     }
+  }
+  if (auto groups = luminaires.get("groups")) {
+    read_groups(luminaires, *groups, job);
+    return;
   }
   const auto mounting = luminaires.get("mounting_surface"), suspended = luminaires.get("suspended"),
              on_wall = luminaires.get("on_wall");

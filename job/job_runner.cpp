@@ -42,13 +42,23 @@ Verification verify_layout(const PreparedJob& prepared, const std::vector<Placed
   Verification out;
   const VerificationSettings& settings = job.verification;
   if (settings.method == VerificationMethod::none) return out;
-  const auto start = Clock::now();
   Scene scene = prepared.loaded.scene;
   add_layout(scene, prepared.plan.search.luminaire, layout);
+  return verify_scene(prepared, scene, static_cast<int>(layout.size()), progress);
+}
+
+Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int luminaires,
+                          const ProgressCallback& progress) {
+  const JobConfig& job = prepared.job;
+  const RunOptions& run = prepared.run;
+  Verification out;
+  const VerificationSettings& settings = job.verification;
+  if (settings.method == VerificationMethod::none) return out;
+  const auto start = Clock::now();
   // auto resolves by the cost model: exact while its sparse rows fit, else a sample that fits.
   const VerificationPlan plan =
       plan_verification(job, scene.patches.size(), reflecting_patches(scene).size(), prepared.model.goal_patches.size(),
-                        static_cast<int>(layout.size()), memory_budget_bytes(run.max_memory_bytes));
+                        luminaires, memory_budget_bytes(run.max_memory_bytes));
   const bool exact = plan.method == VerificationMethod::exact;
   out.rays_per_patch = settings.rays_per_patch;
   if (exact) {
@@ -115,14 +125,13 @@ Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification
   return out;
 }
 
-namespace {
-
 // The flux scale that makes the verified values meet the lower-bound goals with their
 // margins, target x (1 + margin), within what the upper-bound goals allow (min_power), or fit the average targets best
 // (closest_to_target): illuminance is linear in flux, so scaling every flux scales the
 // verified values exactly.
 double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgement>& verified,
-                           const std::vector<GoalMargin>& margins, const std::vector<PlacedLuminaire>& layout,
+                           const std::vector<GoalMargin>& margins, const std::vector<double>& flux_lm,
+                           const std::vector<double>& flux_min_lm, const std::vector<double>& flux_max_lm,
                            bool& limited) {
   limited = false;
   double scale = 0.0, least = 0.0, num = 0.0, den = 0.0;
@@ -146,19 +155,33 @@ double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgeme
   // bound; when even the targets themselves need more than the cap, the lower bounds win
   // and the UGR line says by how much it is missed.
   if (scale > cap && cap >= least) scale = cap;
-  double flux_high = 0.0, flux_low = std::numeric_limits<double>::infinity();
-  for (const PlacedLuminaire& l : layout) {
-    flux_high = std::max(flux_high, l.flux_lm);
-    flux_low = std::min(flux_low, l.flux_lm);
-  }
   const double wanted = scale;
-  if (flux_high > 0.0) scale = std::min(scale, spec.luminaire.flux_max_lm / flux_high);
-  if (flux_low > 0.0) scale = std::max(scale, spec.luminaire.flux_min_lm / flux_low);
+  double most = std::numeric_limits<double>::infinity(), least_range = 0.0;
+  for (std::size_t j = 0; j < flux_lm.size(); ++j)
+    if (flux_lm[j] > 0.0) {
+      most = std::min(most, flux_max_lm[j] / flux_lm[j]);
+      least_range = std::max(least_range, flux_min_lm[j] / flux_lm[j]);
+    }
+  scale = std::max(std::min(scale, most), least_range);
   limited = std::abs(scale - wanted) > 1e-12 * wanted;
   return scale;
 }
 
-}  // namespace
+const OutcomeGroup* outcome_group(const JobOutcome& outcome, std::size_t j) {
+  for (const OutcomeGroup& g : outcome.groups)
+    if (j >= g.first && j < g.first + g.count) return &g;
+  return nullptr;
+}
+
+std::string outcome_luminaire_name(const JobOutcome& outcome, std::size_t j) {
+  const OutcomeGroup* g = outcome_group(outcome, j);
+  return g ? g->label_prefix + std::to_string(j - g->first + 1) : luminaire_name(j);
+}
+
+const VariantPlan& outcome_plan(const PreparedJob& prepared, const JobOutcome& outcome, std::size_t j) {
+  const OutcomeGroup* g = outcome_group(outcome, j);
+  return g ? g->plan : prepared.plan;
+}
 
 void add_layout(Scene& scene, const SearchLuminaire& search, const std::vector<PlacedLuminaire>& layout) {
   for (std::size_t j = 0; j < layout.size(); ++j)
@@ -279,6 +302,8 @@ std::pair<double, double> upward_area_m2(const Scene& scene, int surface) {
 // named as such) of the first horizontal grid drawn as a rectangle or polygon (a grid
 // over a raised surface, a table top, is a task area and gives none); else the
 // mounting surface's plan area.
+}  // namespace
+
 std::pair<double, std::string> power_density_area(const PreparedJob& prepared) {
   const Scene& scene = prepared.loaded.scene;
   const CandidateSpec& c = prepared.plan.model.candidates;
@@ -303,6 +328,8 @@ std::pair<double, std::string> power_density_area(const PreparedJob& prepared) {
           c.suspended_height_m ? std::string("plan area of the suspension zone")
                                : "plan area of the mounting surface '" + c.mounting_surface + "'"};
 }
+
+namespace {
 
 // The glare side of a layout's light (GoalLight): per observer, the indirect illuminance at
 // the eye and the glare terms.
@@ -382,7 +409,13 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
     // Without fixed sources every illuminance is proportional to the common flux scale.
     const bool no_fixed = model.fixed_lux.cwiseAbs().maxCoeff() == 0.0;
     if (no_fixed && !out.luminaires.empty()) {
-      out.flux_correction = verified_flux_scale(job, *verified, margins, out.luminaires, out.flux_correction_limited);
+      std::vector<double> flux, flux_min, flux_max;
+      for (const PlacedLuminaire& l : out.luminaires) {
+        flux.push_back(l.flux_lm);
+        flux_min.push_back(job.luminaire.flux_min_lm);
+        flux_max.push_back(job.luminaire.flux_max_lm);
+      }
+      out.flux_correction = verified_flux_scale(job, *verified, margins, flux, flux_min, flux_max, out.flux_correction_limited);
       if (std::abs(out.flux_correction - 1.0) > 1e-12) {
         for (PlacedLuminaire& l : out.luminaires) {
           l.flux_lm *= out.flux_correction;

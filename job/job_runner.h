@@ -15,6 +15,7 @@
 #include "job/constraint_check.h"
 #include "job/job_scene.h"
 #include "job/plan.h"
+#include "job/verification_margin.h"
 #include "core/base/progress.h"
 #include "core/rays/ray_caster.h"
 #include "optimizer/layout_search.h"
@@ -91,8 +92,21 @@ Verification verify_layout(const PreparedJob& prepared, const std::vector<Placed
 // The verified illuminance at the model's goal rows: goal patches, then goal points.
 Eigen::VectorXd verified_goal_lux(const LightingModel& model, const Verification& verification);
 
+// One group of a layout of several (luminaires.groups): what it placed and where its
+// luminaires are in JobOutcome::luminaires.
+struct OutcomeGroup {
+  std::string name;
+  std::string label_prefix;            // its luminaires are named A1, A2, ... (B1, ... for the second)
+  VariantPlan plan;                    // the product variant it placed
+  std::size_t first = 0, count = 0;    // its luminaires: luminaires[first .. first + count)
+  std::string arrangement;             // "4 x 3 field"
+  Eigen::Vector2d spacing_m = Eigen::Vector2d::Zero();
+  double power_w = 0.0;                // after the flux correction
+};
+
 struct JobOutcome {
-  std::vector<PlacedLuminaire> luminaires;  // named L1, L2, ... in this order
+  std::vector<PlacedLuminaire> luminaires;  // named L1, L2, ... in this order (groups: A1, ..., B1, ...)
+  std::vector<OutcomeGroup> groups;         // several groups searched together; empty for one
   std::vector<GoalOutcome> goals;
   std::vector<ConstraintOutcome> constraints;  // the job's constraints on the final layout (job/constraint_check.h)
   double margin_floor = 0.0;                // verification.margin: the least margin above a scaled goal's target
@@ -132,6 +146,29 @@ void add_layout(Scene& scene, const SearchLuminaire& luminaire, const std::vecto
 
 // "L1", "L2", ...: the name of the j-th (0-based) luminaire of a layout.
 std::string luminaire_name(std::size_t j);
+
+// The j-th luminaire of an outcome: its group (nullptr for a single group), its name
+// (L1, ... or its group's A1, ...) and the variant that placed it.
+const OutcomeGroup* outcome_group(const JobOutcome& outcome, std::size_t j);
+std::string outcome_luminaire_name(const JobOutcome& outcome, std::size_t j);
+const VariantPlan& outcome_plan(const PreparedJob& prepared, const JobOutcome& outcome, std::size_t j);
+
+// Solves the job's scene with `scene` (the job's, the layout's `luminaires` real
+// luminaires added) as job.verification says: what verify_layout does once it has placed them.
+Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int luminaires,
+                          const ProgressCallback& progress = {});
+
+// The power density's area and what it is the area of (JobOutcome::floor_area_m2).
+std::pair<double, std::string> power_density_area(const PreparedJob& prepared);
+
+// The flux correction after verification: the one scale of every flux that brings the
+// verified lower-bound goals to their targets with their margins, within what the
+// upper-bound goals allow, each luminaire j kept within [flux_min_lm[j], flux_max_lm[j]]
+// (`limited` says when that range held it back).
+double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgement>& verified,
+                           const std::vector<GoalMargin>& margins, const std::vector<double>& flux_lm,
+                           const std::vector<double>& flux_min_lm, const std::vector<double>& flux_max_lm,
+                           bool& limited);
 
 // Searches and verifies with `job`'s goals. When a goal fails only on verification
 // (met as predicted, missed as verified), searches again, up to

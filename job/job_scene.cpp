@@ -426,7 +426,7 @@ void hash_fields(KeyWriter& k, const LuminaireSetting& l) {
 }
 
 // Each JobConfig field is a scene input below or named in the comment at the end.
-static_assert(field_count<JobConfig>() == 41,
+static_assert(field_count<JobConfig>() == 42,
               "JobConfig changed: if load_job_scene reads the new field, hash it in hash_scene_inputs; "
               "if the operator depends on it otherwise, it must reach it through plan_job's ModelSpec");
 void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
@@ -464,7 +464,7 @@ void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
   // only as set or not, above), exclude_surface_locs,
   // two_sided_locs, report_surfaces and report_surface_locs (checked, never change the
   // scene), max_memory_bytes (lowers scene.max_patches, a limit that refuses a scene);
-  // form_factors, direct_light, sample, search, goals, grids (the operator's, through
+  // form_factors, direct_light, sample, search, groups (each through group_job and plan_job), goals, grids (the operator's, through
   // plan_job's ModelSpec); radiosity, method, maintenance_factor, maintenance_loc,
   // constraints, objective, optimizer, verification, output, energy, sweep (not the operator's).
 }

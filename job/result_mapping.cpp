@@ -1,6 +1,8 @@
 #include "job/result_mapping.h"
 
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -70,6 +72,16 @@ std::optional<EnergyRecord> energy_record(const EnergySettings& settings, double
 // Product x count, watts each and in all.
 std::vector<BillLine> bill_of_materials(const VariantPlan& plan, const JobOutcome& outcome) {
   if (outcome.luminaires.empty()) return {};
+  if (!outcome.groups.empty()) {  // one line per group: its product at its one output
+    std::vector<BillLine> lines;
+    for (const OutcomeGroup& g : outcome.groups) {
+      const ProductVariant& p = g.plan.product;
+      BillLine line{p.product, std::filesystem::path(p.source).filename().string(), static_cast<int>(g.count),
+                    p.rated_flux_lm, p.power_w, outcome.luminaires[g.first].flux_lm / p.rated_flux_lm, g.power_w, g.name};
+      lines.push_back(line);
+    }
+    return lines;
+  }
   const ProductVariant& p = plan.product;
   const SearchLuminaire& s = plan.search.luminaire;
   BillLine line;
@@ -164,7 +176,6 @@ VariantRecord variant_record(const PreparedJob& prepared, const JobConfig& job, 
 
 ResultRecord make_record(const std::string& program_version, const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
                          const std::vector<GridRecord>& grids, const std::vector<std::pair<std::string, double>>& timings) {
-  const SearchLuminaire& luminaire = prepared.plan.search.luminaire;
   ResultRecord r;
   r.program_version = program_version;
   r.config = job.path;
@@ -173,13 +184,27 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.arrangement = outcome.search.best.arrangement;
   r.spacing_x_m = outcome.search.best.spacing_m.x();
   r.spacing_y_m = outcome.search.best.spacing_m.y();
+  if (!outcome.groups.empty()) {  // "A: 4 x 3 field; B: 1 row of 3", the families likewise
+    r.layout_family.clear();
+    r.arrangement.clear();
+    for (const OutcomeGroup& g : outcome.groups) {
+      const std::string sep = r.arrangement.empty() ? "" : "; ";
+      r.layout_family += sep + g.name + ": " + std::string(layout_family_key(g.plan.search.layout.family));
+      std::ostringstream spacing;
+      spacing << std::fixed << std::setprecision(2) << ", spacing " << g.spacing_m.x() << " x " << g.spacing_m.y() << " m";
+      r.arrangement += sep + g.name + ": " + g.arrangement + spacing.str();
+    }
+    r.spacing_x_m = r.spacing_y_m = 0.0;
+  }
   for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
     const PlacedLuminaire& l = outcome.luminaires[j];
+    const SearchLuminaire& luminaire = outcome_plan(prepared, outcome, j).search.luminaire;
+    const OutcomeGroup* group = outcome_group(outcome, j);
     const std::optional<double> floor_z = prepared.model.floor_z_m;
-    r.luminaires.push_back({luminaire_name(j), l.position_m.x(), l.position_m.y(), l.position_m.z(), l.flux_lm, l.power_w,
-                            luminaire.product, luminaire.rotation_deg,
+    r.luminaires.push_back({outcome_luminaire_name(outcome, j), l.position_m.x(), l.position_m.y(), l.position_m.z(),
+                            l.flux_lm, l.power_w, luminaire.product, luminaire.rotation_deg,
                             floor_z ? std::optional<double>(l.position_m.z() - *floor_z) : std::nullopt,
-                            luminaire.tilt_deg});
+                            luminaire.tilt_deg, group ? group->name : std::string()});
   }
   const VerdictLines lines = verdict_lines(job, outcome);
   r.goals = lines.goals;

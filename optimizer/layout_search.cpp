@@ -201,10 +201,11 @@ class Evaluator {
     }
   }
 
-  LayoutEvaluation operator()(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& w) const {
-    const SearchLuminaire& s = spec_.luminaire;
+  // The light of the luminaires at xy with relative fluxes w at scale 1 (at the goal
+  // rows, without the fixed sources): out.luminaires get their blends and positions,
+  // terms_ the blended candidate columns.
+  Eigen::VectorXd blend(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& w, LayoutEvaluation& out) const {
     const std::size_t n = xy.size();
-    LayoutEvaluation out;
     out.luminaires.resize(n);
     // Each candidate column's weight, summed over the luminaires whose blends share it:
     // neighbouring luminaires blend the same columns, so there are at most as many
@@ -246,7 +247,35 @@ class Evaluator {
       });
     }
     // Catmull-Rom weights can be negative: at a sharp shadow edge the blend may dip below 0.
-    const Eigen::VectorXd a = a_float.cast<double>().cwiseMax(0.0);
+    return a_float.cast<double>().cwiseMax(0.0);
+  }
+
+  // A fixed arrangement's light at 1 lm per luminaire (ArrangementLight).
+  ArrangementLight unit_light(const std::vector<Eigen::Vector2d>& xy) const {
+    LayoutEvaluation placed;
+    ArrangementLight out;
+    out.lux_per_lm = blend(xy, std::vector<double>(xy.size(), 1.0), placed);
+    out.luminaires = std::move(placed.luminaires);
+    for (PlacedLuminaire& l : out.luminaires) l.flux_lm = 1.0;
+    const auto n_obs = static_cast<Eigen::Index>(model_.observers.size());
+    out.eye_indirect_per_lm = Eigen::VectorXd::Zero(n_obs);
+    out.glare_per_lm2 = Eigen::VectorXd::Zero(n_obs);
+    if (n_obs == 0) return out;
+    for (const auto& [column, weight] : terms_) out.eye_indirect_per_lm += weight * eye_indirect_.col(column);
+    out.eye_indirect_per_lm = out.eye_indirect_per_lm.cwiseMax(0.0);
+    for (const PlacedLuminaire& l : out.luminaires)
+      for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
+        if (l.blend.candidates[k] >= 0)
+          out.glare_per_lm2 += l.blend.weights[k] * model_.candidate_glare_per_lm2.col(l.blend.candidates[k]);
+    out.glare_per_lm2 = out.glare_per_lm2.cwiseMax(0.0);
+    return out;
+  }
+
+  LayoutEvaluation operator()(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& w) const {
+    const SearchLuminaire& s = spec_.luminaire;
+    const std::size_t n = xy.size();
+    LayoutEvaluation out;
+    const Eigen::VectorXd a = blend(xy, w, out);
     const Eigen::VectorXd& f = model_.fixed_lux;
     const double w_max = n ? *std::max_element(w.begin(), w.end()) : 0.0;
     const double w_min = n ? *std::min_element(w.begin(), w.end()) : 0.0;
@@ -281,7 +310,7 @@ class Evaluator {
     scale = std::clamp(scale, scale_lo, scale_hi);
 
     out.lux = f + scale * a;
-    glare_at_eyes(out, terms, scale, w);
+    glare_at_eyes(out, terms_, scale, w);
     out.goals = judge_goals(model_, spec_, areas_, {out.lux, out.eye_indirect_lux, out.glare});
     for (std::size_t j = 0; j < n; ++j) {
       out.luminaires[j].flux_lm = scale * w[j];
@@ -815,6 +844,36 @@ SearchResult search_layout(const LightingModel& model, const SearchSpec& spec, c
   if (best) result.best = std::move(*best);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
+}
+
+RegularLights regular_arrangement_lights(const LightingModel& model, const SearchSpec& spec) {
+  if (spec.layout.family == LayoutFamily::free || spec.layout.family == LayoutFamily::array)
+    throw std::invalid_argument("regular_arrangement_lights: free and array layouts have no fixed arrangements");
+  std::vector<Arrangement> arrangements;
+  try {
+    arrangements = regular_arrangements(spec.layout, arrangement_frame(model, spec));
+  } catch (const std::length_error& e) {
+    throw ConfigError(located(spec.layout.loc, std::string("luminaires.layout: ") + e.what()));
+  }
+  if (arrangements.empty())
+    throw ConfigError(located(spec.layout.loc, "luminaires.layout: no arrangement of this layout has a luminaire count "
+                                               "in [" + std::to_string(spec.layout.count_min) + ", " +
+                                               std::to_string(spec.layout.count_max) + "] in the mounting zone"));
+  const Evaluator evaluate(model, spec);
+  RegularLights out;
+  for (const Arrangement& a : arrangements) {
+    std::string stop = unmountable_member(model, spec.layout, a);
+    if (stop.empty()) stop = crowded_members(spec, a);
+    if (!stop.empty()) {
+      if (out.refused++ == 0) out.first_refusal = a.label + ": " + stop;
+      continue;
+    }
+    ArrangementLight light = evaluate.unit_light(a.xy_m);
+    light.label = a.label;
+    light.spacing_m = a.spacing_m;
+    out.arrangements.push_back(std::move(light));
+  }
+  return out;
 }
 
 }  // namespace ilp

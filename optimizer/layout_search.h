@@ -147,6 +147,29 @@ class LayoutEvaluator {
   std::unique_ptr<Impl> impl_;
 };
 
+// A regular arrangement (field, rows, bays) and its light with every luminaire at 1 lm,
+// blended from the candidates as the search blends them, without the fixed sources: at a
+// flux phi per luminaire the arrangement adds phi x lux_per_lm at the goal rows, phi x
+// eye_indirect_per_lm at the observers' eyes and phi^2 x glare_per_lm2 to their glare
+// terms. What a joint search of several groups (optimizer/group_search.h) combines.
+struct ArrangementLight {
+  std::string label;                                    // "3 x 4 field"
+  Eigen::Vector2d spacing_m = Eigen::Vector2d::Zero();
+  std::vector<PlacedLuminaire> luminaires;              // at 1 lm each (power 0)
+  Eigen::VectorXd lux_per_lm, eye_indirect_per_lm, glare_per_lm2;
+};
+
+struct RegularLights {
+  std::vector<ArrangementLight> arrangements;  // those that can be mounted and built, fewest luminaires first
+  int refused = 0;                             // arrangements with a member off its mounting or crowded
+  std::string first_refusal;                   // why the first was refused
+};
+
+// Every arrangement of spec.layout's regular family on the model, with its light at 1 lm
+// per luminaire. Throws ConfigError (at spec.layout.loc) when the family makes no
+// arrangement in its count range, std::invalid_argument for free and array layouts.
+RegularLights regular_arrangement_lights(const LightingModel& model, const SearchSpec& spec);
+
 // The layout at given positions and relative fluxes (the scale as the search sets it):
 // for tests and for re-evaluating a saved layout. xy and relative_flux have one entry
 // per luminaire; relative fluxes in (0, 1].

@@ -64,6 +64,8 @@ json to_json(const ResultRecord& r) {
                                {"flux_lm", l.flux_lm},
                                {"power_w", l.power_w},
                                {"above_floor_m", l.above_floor_m ? json(*l.above_floor_m) : json(nullptr)}});
+  for (std::size_t k = 0; k < r.luminaires.size(); ++k)
+    if (!r.luminaires[k].group.empty()) j["luminaires"][k]["group"] = r.luminaires[k].group;
   j["bill_of_materials"] = json::array();
   for (const BillLine& b : r.bill_of_materials)
     j["bill_of_materials"].push_back({{"product", b.product},
@@ -73,6 +75,8 @@ json to_json(const ResultRecord& r) {
                                       {"unit_power_w", b.unit_power_w},
                                       {"output_fraction", b.output_fraction},
                                       {"total_power_w", b.total_power_w}});
+  for (std::size_t k = 0; k < r.bill_of_materials.size(); ++k)
+    if (!r.bill_of_materials[k].group.empty()) j["bill_of_materials"][k]["group"] = r.bill_of_materials[k].group;
   j["variants"] = json::array();
   for (const VariantRecord& v : r.variants) j["variants"].push_back(variant_json(v));
   j["files"] = r.files;
@@ -241,13 +245,13 @@ ResultRecord from_json(const json& j) {
                             l.contains("above_floor_m") && l.at("above_floor_m").is_number()
                                 ? std::optional<double>(l.at("above_floor_m").get<double>())
                                 : std::nullopt,
-                            l.value("tilt_deg", 0.0)});
+                            l.value("tilt_deg", 0.0), l.value("group", std::string())});
   if (j.contains("bill_of_materials"))
     for (const json& b : j.at("bill_of_materials"))
       r.bill_of_materials.push_back({b.at("product").get<std::string>(), b.at("source").get<std::string>(),
                                      b.at("count").get<int>(), b.at("rated_flux_lm").get<double>(),
                                      b.at("unit_power_w").get<double>(), b.at("output_fraction").get<double>(),
-                                     b.at("total_power_w").get<double>()});
+                                     b.at("total_power_w").get<double>(), b.value("group", std::string())});
   if (j.contains("variants"))
     for (const json& v : j.at("variants")) r.variants.push_back(variant_from_json(v));
   r.files = j.value("files", std::vector<std::string>());
@@ -545,8 +549,9 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
   print_verdict(os, r);
   os << (r.all_met ? "Optimal layout (" : "Closest layout found (") << r.objective << ", " << r.luminaires.size()
      << " luminaires";
-  if (!r.arrangement.empty())
-    os << ": " << r.arrangement << ", spacing " << fixed(r.spacing_x_m, 2) << " x " << fixed(r.spacing_y_m, 2) << " m";
+  if (!r.arrangement.empty()) os << ": " << r.arrangement;
+  if (!r.arrangement.empty() && (r.spacing_x_m > 0.0 || r.spacing_y_m > 0.0))  // (groups: in each group's arrangement)
+    os << ", spacing " << fixed(r.spacing_x_m, 2) << " x " << fixed(r.spacing_y_m, 2) << " m";
   os << ")\n";
   bool products = false, heights = false;
   for (const LuminaireRecord& l : r.luminaires) {
@@ -571,7 +576,7 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
   if (!r.bill_of_materials.empty()) {
     os << "Bill of materials:\n";
     for (const BillLine& b : r.bill_of_materials)
-      os << "  " << b.count << " x " << b.product << " (" << fixed(b.rated_flux_lm, 0) << " lm, "
+      os << "  " << (b.group.empty() ? "" : "group " + b.group + ": ") << b.count << " x " << b.product << " (" << fixed(b.rated_flux_lm, 0) << " lm, "
          << fixed(b.unit_power_w, 1) << " W each" << (b.output_fraction < 1.0 - 1e-9 ? ", set to " + fixed(100.0 * b.output_fraction, 1) + " %" : "")
          << "; " << b.source << "): " << fixed(b.total_power_w, 1) << " W\n";
   }

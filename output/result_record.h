@@ -19,6 +19,7 @@ struct LuminaireRecord {
   double rotation_deg = 0.0;
   std::optional<double> above_floor_m = std::nullopt;  // the emitting face's height above the finished floor, when known
   double tilt_deg = 0.0;    // aim: the nadir swung toward C0 by this, [0, 90] (core/light/luminaire.h)
+  std::string group = {};   // its luminaire group (luminaires.groups); "" for a single group
 };
 
 // One line of the bill of materials: a product and how many of it the layout uses.
@@ -30,6 +31,7 @@ struct BillLine {
   double unit_power_w = 0.0;   // at full output
   double output_fraction = 1.0;  // the output they are set to (dimming), of the rated
   double total_power_w = 0.0;    // as set
+  std::string group = {};        // the luminaire group (luminaires.groups); "" for a single group
 };
 
 // One line of the verdict: a goal or a constraint, its target, its value and whether it

@@ -185,4 +185,105 @@ TEST(IlpLayouts, BadWallMountingExitsOneNamingFileLineAndKeyAndWritesNothing) {
   }
 }
 
+// The shipped two-group job (configs/office_two_groups.yaml) at 256 verification rays:
+// a ceiling field and a wall row searched together, each its own product at its own one
+// output, billed together, every goal met as verified.
+TEST(IlpLayouts, OfficeTwoGroupsSearchesAFieldAndAWallRowTogetherThatMeetEveryGoal) {
+  TempDir dir;
+  std::string text = ilp::test::read_file(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
+  for (std::size_t at; (at = text.find("../data/")) != std::string::npos;) text.replace(at, 8, ILP_SOURCE_DIR "/data/");
+  const std::size_t rays = text.find("  rays_per_patch: 1024");
+  ASSERT_NE(rays, std::string::npos);
+  text.replace(rays, 22, "  rays_per_patch: 256");
+  const std::string job = dir.write("office_two_groups.yaml", text);
+  const RunResult r = run_ilp(dir, {"run", job, "--out", dir.file("out"), "--cache", dir.file("cache"), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("groups searched together:"), std::string::npos) << "the run log counts the pairs";
+  const ilp::ResultRecord result = ilp::read_result_json(dir.file("out/result.json"));
+  std::map<std::string, std::vector<ilp::LuminaireRecord>> by_group;
+  for (const ilp::LuminaireRecord& l : result.luminaires) by_group[l.group].push_back(l);
+  ASSERT_EQ(by_group.size(), 2u);
+  ASSERT_EQ(by_group.count("general"), 1u);
+  ASSERT_EQ(by_group.count("wall wash"), 1u);
+  double sum_w = 0.0;
+  for (const auto& [group, members] : by_group) {
+    const std::string prefix = group == "general" ? "A" : "B";
+    for (const ilp::LuminaireRecord& l : members) {
+      EXPECT_EQ(l.id.substr(0, 1), prefix) << l.id << ": labelled by its group";
+      EXPECT_EQ(l.flux_lm, members.front().flux_lm) << l.id << ": one output per group";
+      EXPECT_EQ(l.product, group == "general" ? "linear LED 2112 lm" : "wall linear LED") << l.id;
+      sum_w += l.power_w;
+    }
+  }
+  for (const ilp::LuminaireRecord& l : by_group["general"]) EXPECT_NEAR(l.z_m, 2.95, 1e-6) << l.id << ": on the ceiling";
+  for (const ilp::LuminaireRecord& l : by_group["wall wash"]) {
+    EXPECT_LT(l.y_m, 0.1) << l.id << ": on the south wall";
+    EXPECT_EQ(l.tilt_deg, 65.0) << l.id;
+  }
+  EXPECT_NE(by_group["general"].front().flux_lm, by_group["wall wash"].front().flux_lm) << "each group its own output";
+  ASSERT_EQ(result.bill_of_materials.size(), 2u);
+  double billed_w = 0.0;
+  for (const ilp::BillLine& b : result.bill_of_materials) {
+    EXPECT_EQ(static_cast<std::size_t>(b.count), by_group[b.group].size()) << b.group;
+    billed_w += b.total_power_w;
+  }
+  EXPECT_NEAR(result.power_w, sum_w, 1e-6);
+  EXPECT_NEAR(result.power_w, billed_w, 1e-6);
+  EXPECT_NEAR(result.power_density_w_per_m2, result.power_w / result.floor_area_m2, 1e-9);
+  EXPECT_TRUE(result.all_met);
+  ASSERT_EQ(result.goals.size(), 4u);
+  for (const ilp::GoalRecord& g : result.goals) {
+    ASSERT_TRUE(g.verified.has_value()) << g.name;
+    EXPECT_TRUE(g.met) << g.name << " " << g.metric;
+    EXPECT_GE(*g.verified, g.target) << g.name << " " << g.metric;
+  }
+}
+
+// The shipped two-group job with one key changed: each refusal names the file, line and
+// key, exits 1 and writes nothing.
+TEST(IlpLayouts, BadGroupsExitOneNamingFileLineAndKeyAndWritesNothing) {
+  std::string shipped = ilp::test::read_file(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
+  for (std::size_t at; (at = shipped.find("../data/")) != std::string::npos;) shipped.replace(at, 8, ILP_SOURCE_DIR "/data/");
+  const std::size_t groups_at = shipped.find("  groups:\n"), grids_at = shipped.find("\ngrids:");
+  ASSERT_NE(groups_at, std::string::npos);
+  ASSERT_NE(grids_at, std::string::npos);
+  struct Case {
+    std::string from, to, expected;
+  };
+  const std::vector<Case> cases = {
+      {"    - name: wall wash", "    - name: general", "luminaires.groups[1].name = general: group name 'general' is used twice"},
+      {shipped.substr(groups_at, grids_at - groups_at), "  groups: []", "luminaires.groups = [...]: must list at least one group"},
+      {"  groups:\n", "  mounting_surface: ceiling\n  groups:\n",
+       "luminaires.mounting_surface = ceiling: not with luminaires.groups"},
+      {"      layout: field\n", "      colour: red\n      layout: field\n", "unknown key 'luminaires.groups[0].colour'"},
+      {"      layout: field\n      field: {rows: [1, 4], columns: [1, 6], edge_ratio: [0.3, 1.0]}\n", "      layout: free\n",
+       "luminaires.groups[0].layout = free: must be field, rows or bays"},
+      {"      products: [wall linear LED]", "      products: [wall washer]", "luminaires.groups[1].products[0] = wall washer: unknown product"},
+      {"      mounting_surface: ceiling\n      mount_offset_m: 0.05\n", "      suspended: {height_m: 0.3}\n",
+       "luminaires.groups[0] ('general'): serves no goal"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.to);
+    TempDir dir;
+    std::string text = shipped;
+    const std::size_t at = text.find(c.from);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, c.from.size(), c.to);
+    const std::string job = dir.write("job.yaml", text);
+    const RunResult r = run_ilp(dir, {"run", job, "--out", dir.file("out"), "--cache", dir.file("cache"), "-q"});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find(job + ":"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out"))) << "nothing written";
+  }
+  // ilp sweep searches one group: it refuses groups before any work.
+  TempDir dir;
+  const std::string job = dir.write("job.yaml", shipped);
+  const RunResult r = run_ilp(dir, {"sweep", job, "--set", "goals.work_plane.average_lux=400,500", "--out",
+                                    dir.file("out"), "--cache", dir.file("cache"), "-q"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("luminaires.groups: ilp sweep searches one luminaire group"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out"))) << "nothing written";
+}
+
 }  // namespace

@@ -232,6 +232,7 @@ TEST(CacheKey, SceneInputsCoverEveryJobConfigField) {
       not_scene("report_surfaces", [](JobConfig& j) { j.report_surfaces.push_back("floor"); }),
       not_scene("report_surface_locs", [](JobConfig& j) { j.report_surface_locs.push_back(kAt); }),
       not_scene("search", [](JobConfig& j) { j.search->candidate_spacing_m = 0.4; }),
+      not_scene("groups", [](JobConfig& j) { j.groups.push_back({"A", {}, {}, *j.search}); }),
       not_scene("goals", [](JobConfig& j) { j.goals[0].surfaces = {"floor"}; }),
       not_scene("grids", [](JobConfig& j) { j.grids.push_back(CalcGridSetting{}); }),
       not_scene("maintenance_factor", [](JobConfig& j) { j.maintenance_factor = 0.8; }),

@@ -201,6 +201,59 @@ TEST(JobConfig, EveryShippedConfigLoads) {
   }
 }
 
+// luminaires.groups: each group read by the single group's reader into its own options
+// (LuminaireSearch), and group_job gives the job as that group alone.
+TEST(JobConfig, GroupsReadEachGroupWithTheSingleGroupsKeys) {
+  const ilp::JobConfig job = ilp::load_job_config(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
+  EXPECT_FALSE(job.search.has_value());
+  ASSERT_EQ(job.groups.size(), 2u);
+  EXPECT_EQ(job.groups[0].name, "general");
+  EXPECT_EQ(job.groups[0].products, (std::vector<std::string>{"linear LED 2112 lm"}));
+  EXPECT_EQ(job.groups[0].search.layout, ilp::LayoutFamily::field);
+  EXPECT_EQ(job.groups[0].search.mounting_surface, "ceiling");
+  EXPECT_EQ(job.groups[0].search.regular.rows.max, 4);
+  EXPECT_EQ(job.groups[0].search.wall_distance_m, 0.3);
+  EXPECT_EQ(job.groups[1].name, "wall wash");
+  EXPECT_EQ(job.groups[1].search.layout, ilp::LayoutFamily::rows);
+  ASSERT_TRUE(job.groups[1].search.on_wall.has_value());
+  EXPECT_EQ(job.groups[1].search.on_wall->height_m, 2.6);
+  EXPECT_EQ(job.groups[1].search.candidate_spacing_m, 0.25);
+  const ilp::JobConfig wall = ilp::group_job(job, 1);
+  ASSERT_TRUE(wall.search.has_value());
+  EXPECT_TRUE(wall.groups.empty());
+  EXPECT_TRUE(wall.search->on_wall.has_value());
+  ASSERT_EQ(wall.products.size(), 1u);
+  EXPECT_EQ(wall.products[0].name, "wall linear LED");
+  EXPECT_EQ(wall.products[0].tilt_deg, 65.0);
+  EXPECT_EQ(wall.goals.size(), job.goals.size());
+}
+
+TEST(JobConfigErrors, BadGroupsNameTheLineAndKey) {
+  std::string shipped = ilp::test::read_file(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
+  for (std::size_t at; (at = shipped.find("../data/")) != std::string::npos;) shipped.replace(at, 8, ILP_SOURCE_DIR "/data/");
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = shipped;
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+  };
+  // The shipped file: luminaires.groups at line 31, the first group at 32, the second at 40.
+  expect_config_error(with("  groups:\n", "  on_wall: {surface: walls, height_m: 2, facing: +y}\n  groups:\n"), 31,
+                      {"luminaires.on_wall", "not with luminaires.groups"});
+  expect_config_error(with("    - name: wall wash", "    - name: general"), 40,
+                      {"luminaires.groups[1].name = general", "group name 'general' is used twice"});
+  expect_config_error(with("      layout: rows\n", "      layout: rows\n      tint: warm\n"), 47,
+                      {"unknown key 'luminaires.groups[1].tint'"});
+  expect_config_error(with("      products: [linear LED 2112 lm]\n", ""), 32,
+                      {"luminaires.groups[0].products", "required key is missing"});
+  const std::size_t first = shipped.find("    - name: general"), second = shipped.find("    - name: wall wash");
+  const std::string group = shipped.substr(first, second - first);
+  std::string three = shipped;
+  three.insert(second, group + group);
+  expect_config_error(three, 48, {"luminaires.groups[2]", "at most two groups"});
+}
+
 // ---------------------------------------------------------------------------------
 // The sample-based operator's keys (solver section)
 

@@ -1,0 +1,347 @@
+#include "job/group_runner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "core/base/error.h"
+#include "core/glare/ugr.h"
+#include "optimizer/group_search.h"
+#include "optimizer/goal_metrics.h"
+
+namespace ilp {
+namespace {
+
+// Every arrangement of every variant of one group, with its light.
+struct GroupLights {
+  std::vector<RegularLights> per_variant;  // in the group's prepared order
+  std::vector<const PreparedJob*> variants;
+};
+
+std::string located_group(const JobConfig& job, std::size_t g, const std::string& what) {
+  return located(job.groups[g].loc, "luminaires.groups[" + std::to_string(g) + "] ('" + job.groups[g].name + "'): " + what);
+}
+
+// Share of a goal's target a group must give some point of the goal's area directly,
+// from one candidate at full output, to serve that goal.
+constexpr double kServesShare = 0.01;
+
+// Does the group serve a goal: does one of its candidates (any variant), at full output,
+// light some row of a lux goal's area (average, minimum, cylindrical) directly with at
+// least kServesShare of the goal's target? Light that reaches the goals only after
+// reflection, or a trace of stray light, is not service.
+bool serves_a_goal(const GroupLights& lights, const JobConfig& job) {
+  for (const PreparedJob* p : lights.variants) {
+    const LightingModel& model = p->model;
+    if (model.candidate_direct_lux_per_lm.size() == 0) continue;
+    for (const GoalSpec& goal : goal_specs(job, p->plan.maintenance_factor)) {
+      const MetricRule& rule = metric_rule(goal.metric);
+      if (!rule.lux || !rule.lower_bound || !(goal.target > 0.0)) continue;
+      const int a = find_goal_area(model, goal.name, rule.area);
+      if (a < 0) continue;
+      for (const Eigen::Index r : model.areas[static_cast<std::size_t>(a)].rows)
+        if (model.candidate_direct_lux_per_lm.row(r).maxCoeff() * p->plan.search.luminaire.flux_max_lm >=
+            kServesShare * goal.target)
+          return true;
+    }
+  }
+  return false;
+}
+
+std::vector<GroupLights> arrangement_lights(const PreparedGroups& groups, const JobConfig& job) {
+  std::vector<GroupLights> out(job.groups.size());
+  for (std::size_t k = 0; k < groups.prepared.size(); ++k) {
+    const PreparedJob& p = groups.prepared[k];
+    GroupLights& g = out[groups.group[k]];
+    g.variants.push_back(&p);
+    SearchSpec spec = p.plan.search;
+    spec.goals = goal_specs(job, p.plan.maintenance_factor);
+    g.per_variant.push_back(regular_arrangement_lights(p.model, spec));
+  }
+  for (std::size_t g = 0; g < out.size(); ++g) {
+    if (!serves_a_goal(out[g], job))
+      throw ConfigError(located_group(job, g, "serves no goal: none of its candidates, at full output, lights any point of a "
+                                              "goal's area directly with 1 % of its target (move its zone or mounting toward "
+                                              "the goals, or leave it out)"));
+    bool any = false;
+    for (const RegularLights& l : out[g].per_variant) any = any || !l.arrangements.empty();
+    if (!any)
+      throw ConfigError(located_group(job, g, "no arrangement can be mounted or built; " +
+                                                  out[g].per_variant.front().first_refusal));
+  }
+  return out;
+}
+
+std::vector<GroupChoices> group_choices(const JobConfig& job, const std::vector<GroupLights>& lights) {
+  std::vector<GroupChoices> out;
+  for (std::size_t g = 0; g < lights.size(); ++g) {
+    GroupChoices c{job.groups[g].name, {}};
+    for (std::size_t v = 0; v < lights[g].variants.size(); ++v) {
+      const SearchLuminaire& s = lights[g].variants[v]->plan.search.luminaire;
+      const Eigen::Vector2d extent_m = 2.0 * s.type.half_footprint_m(s.rotation_deg, s.tilt_deg);
+      for (const ArrangementLight& a : lights[g].per_variant[v].arrangements)
+        c.options.push_back({static_cast<int>(v), &a, s.flux_min_lm, s.flux_max_lm, s.efficacy_lm_per_w, extent_m});
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+// The outcome's luminaires and groups from the search's pair.
+void place_groups(JobOutcome& out, const JobConfig& job, const std::vector<GroupLights>& lights,
+                  const std::vector<GroupChoices>& choices, const GroupSearchResult& found) {
+  for (std::size_t g = 0; g < choices.size(); ++g) {
+    const GroupPick& pick = found.groups[g];
+    const GroupOption& option = choices[g].options[static_cast<std::size_t>(pick.option)];
+    OutcomeGroup group;
+    group.name = job.groups[g].name;
+    group.label_prefix = std::string(1, static_cast<char>('A' + g));
+    group.plan = lights[g].variants[static_cast<std::size_t>(option.variant)]->plan;
+    group.first = out.luminaires.size();
+    group.count = option.light->luminaires.size();
+    group.arrangement = option.light->label;
+    group.spacing_m = option.light->spacing_m;
+    for (PlacedLuminaire l : option.light->luminaires) {
+      l.flux_lm = pick.flux_lm;
+      l.power_w = pick.flux_lm / option.efficacy_lm_per_w;
+      out.luminaires.push_back(l);
+    }
+    out.groups.push_back(std::move(group));
+  }
+}
+
+// Every group's luminaires placed as real ones in the job's scene, each of its group's type.
+Scene scene_with_groups(const PreparedJob& primary, const JobOutcome& out) {
+  Scene scene = primary.loaded.scene;
+  for (std::size_t j = 0; j < out.luminaires.size(); ++j) {
+    const SearchLuminaire& s = outcome_plan(primary, out, j).search.luminaire;
+    add_luminaire(scene, outcome_luminaire_name(out, j), s.type, {out.luminaires[j].position_m, s.rotation_deg, s.tilt_deg},
+                  out.luminaires[j].flux_lm);
+  }
+  return scene;
+}
+
+// Per observer: the verified indirect light at the eye, and the real luminaires' glare terms.
+void verified_eyes(const PreparedJob& primary, const JobOutcome& out, Eigen::VectorXd& eye, Eigen::VectorXd& glare) {
+  const LightingModel& model = primary.model;
+  const auto n = static_cast<Eigen::Index>(model.observers.size());
+  eye.resize(n);
+  glare = model.fixed_glare;
+  const auto patches = static_cast<Eigen::Index>(model.goal_patches.size());
+  for (Eigen::Index o = 0; o < n; ++o) {
+    const Eigen::Index q = model.observer_rows[static_cast<std::size_t>(o)] - patches;
+    eye[o] = std::max(0.0, out.verification.point_lux[q] - out.verification.point_direct_lux[q]);
+    for (std::size_t j = 0; j < out.luminaires.size(); ++j) {
+      const SearchLuminaire& s = outcome_plan(primary, out, j).search.luminaire;
+      const PlacedLuminaire& l = out.luminaires[j];
+      glare[o] += glare_term(glare_source(s.type, {l.position_m, s.rotation_deg, s.tilt_deg}, l.flux_lm),
+                             model.observers[static_cast<std::size_t>(o)]);
+    }
+  }
+}
+
+// One flux scale for every group (illuminance is linear in every flux together), each
+// luminaire within its own product's range; applied to the outcome's fluxes and light.
+double correct_fluxes(JobOutcome& out, const PreparedJob& primary, const SearchSpec& spec,
+                      const std::vector<GoalJudgement>& verified, const std::vector<GoalMargin>& margins) {
+  std::vector<double> flux, lo, hi;
+  for (std::size_t j = 0; j < out.luminaires.size(); ++j) {
+    const SearchLuminaire& s = outcome_plan(primary, out, j).search.luminaire;
+    flux.push_back(out.luminaires[j].flux_lm);
+    lo.push_back(s.flux_min_lm);
+    hi.push_back(s.flux_max_lm);
+  }
+  const double scale = verified_flux_scale(spec, verified, margins, flux, lo, hi, out.flux_correction_limited);
+  if (std::abs(scale - 1.0) <= 1e-12) return 1.0;
+  for (PlacedLuminaire& l : out.luminaires) {
+    l.flux_lm *= scale;
+    l.power_w *= scale;
+  }
+  out.predicted_lux *= scale;
+  Verification& v = out.verification;
+  v.lux *= scale;
+  v.direct_lux *= scale;
+  v.point_lux *= scale;
+  v.point_direct_lux *= scale;
+  v.point_error_lux *= scale;
+  return scale;
+}
+
+// The prepared variant a group of the outcome placed.
+const PreparedJob& group_variant(const GroupLights& lights, const OutcomeGroup& group) {
+  for (const PreparedJob* v : lights.variants)
+    if (v->plan.product.product == group.plan.product.product &&
+        v->plan.product.rotation_deg == group.plan.product.rotation_deg)
+      return *v;
+  throw std::logic_error("solve_groups: group '" + group.name + "' placed a variant it does not have");
+}
+
+// The layout's direct light at the goal rows as predicted: each luminaire through its
+// own group's candidates' direct columns, plus the fixed sources'.
+Eigen::VectorXd predicted_direct(const JobOutcome& out, const std::vector<GroupLights>& lights, const LightingModel& primary) {
+  Eigen::VectorXd a = primary.fixed_direct_lux;
+  for (std::size_t g = 0; g < out.groups.size(); ++g) {
+    const LightingModel& model = group_variant(lights[g], out.groups[g]).model;
+    for (std::size_t j = out.groups[g].first; j < out.groups[g].first + out.groups[g].count; ++j) {
+      const PlacedLuminaire& l = out.luminaires[j];
+      for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
+        if (l.blend.candidates[k] >= 0)
+          a += (l.flux_lm * l.blend.weights[k]) * model.candidate_direct_lux_per_lm.col(l.blend.candidates[k]);
+    }
+  }
+  return a.cwiseMax(0.0);
+}
+
+// Each group's constraint lines (count, distances, flux range), named by the group, and
+// the power density of all groups together.
+std::vector<ConstraintOutcome> group_constraints(const JobOutcome& out, const std::vector<GroupLights>& lights,
+                                                 const PowerDensityCap& cap) {
+  std::vector<ConstraintOutcome> lines;
+  for (std::size_t g = 0; g < out.groups.size(); ++g) {
+    const OutcomeGroup& group = out.groups[g];
+    const PreparedJob* p = &group_variant(lights[g], group);
+    const std::vector<PlacedLuminaire> own(out.luminaires.begin() + static_cast<std::ptrdiff_t>(group.first),
+                                           out.luminaires.begin() + static_cast<std::ptrdiff_t>(group.first + group.count));
+    for (ConstraintOutcome c : check_constraints(p->plan.search, p->model.grid.surface_box_m(),
+                                                 p->plan.model.candidates.wall_distance_m, own)) {
+      c.name = group.name + "." + c.name;
+      lines.push_back(c);
+    }
+  }
+  if (cap.max_w_per_m2) {
+    double total_w = 0.0;
+    for (const PlacedLuminaire& l : out.luminaires) total_w += l.power_w;
+    const double value = cap.area_m2 > 0.0 ? total_w / cap.area_m2 : 0.0;
+    ConstraintOutcome c{"max_power_density_w_per_m2", "power density of every group", "W/m²", ConstraintRule::at_most,
+                        *cap.max_w_per_m2, 0.0, value, kConstraintLineTolerance, false};
+    c.met = constraint_met(c.rule, c.target, 0.0, value, c.tolerance);
+    lines.push_back(c);
+  }
+  return lines;
+}
+
+std::string search_line(const GroupSearchResult& r, const std::vector<GroupChoices>& choices) {
+  std::ostringstream line;
+  line << std::fixed << std::setprecision(2) << "groups searched together: ";
+  for (std::size_t g = 0; g < choices.size(); ++g)
+    line << (g ? " x " : "") << choices[g].options.size() << " arrangements of '" << choices[g].name << "'";
+  std::size_t arrangements = 0;
+  for (const GroupChoices& c : choices) arrangements += c.options.size();
+  line << " = " << r.pairs << " pairs; " << arrangements << " arrangement lights, " << r.solved
+       << " output solves (evaluations), " << r.pruned << " pairs pruned by their least power, " << r.colliding
+       << " colliding (a luminaire of one group on another's); " << r.seconds << " s";
+  return line.str();
+}
+
+}  // namespace
+
+PreparedGroups prepare_groups(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
+                              const std::string& cache_dir, const LogSink& log,
+                              const std::function<void(const PreparedJob&)>& prepared_log) {
+  PreparedGroups out;
+  for (std::size_t g = 0; g < job.groups.size(); ++g) {
+    if (log) log("group '" + job.groups[g].name + "'");
+    const JobConfig one = group_job(job, g);
+    for (PreparedJob& p : prepare_variants(one, plan_job(one, run), run, progress, cache_dir, log, prepared_log)) {
+      out.prepared.push_back(std::move(p));
+      out.group.push_back(g);
+    }
+  }
+  return out;
+}
+
+VariantChoice solve_groups(const PreparedGroups& groups, const JobConfig& job, const ProgressCallback& progress,
+                           const LogSink& log) {
+  if (!objective_rule(job.objective).minimises_power)
+    throw ConfigError(job.path + ": objective: luminaires.groups are searched for min_power only");
+  const PreparedJob& primary = groups.prepared.front();
+  const double mf = primary.plan.maintenance_factor;
+  for (const PreparedJob& p : groups.prepared) {
+    if (std::abs(p.plan.maintenance_factor - mf) > 1e-12)
+      throw ConfigError(located_group(job, groups.group[static_cast<std::size_t>(&p - groups.prepared.data())],
+                                      "product '" + p.plan.product.product +
+                                          "' has its own maintenance factor: every group's products must share one"));
+    if (p.model.goal_rows() != primary.model.goal_rows())
+      throw std::logic_error("solve_groups: the groups' models have different goal rows");
+  }
+  const std::vector<GroupLights> lights = arrangement_lights(groups, job);
+  const std::vector<GroupChoices> choices = group_choices(job, lights);
+  SearchSpec spec = primary.plan.search;
+  spec.goals = goal_specs(job, mf);
+  PowerDensityCap cap;
+  std::tie(cap.area_m2, cap.area_source) = power_density_area(primary);
+  cap.max_w_per_m2 = job.constraints.max_power_density_w_per_m2;
+  const GroupSearchResult found = search_groups(primary.model, {spec.goals, cap.max_power_w()}, choices);
+  if (log) log(search_line(found, choices));
+  if (found.groups.empty())
+    throw ConfigError(job.path + ": luminaires.groups: no pair of arrangements can be placed together (in every pair a "
+                                 "luminaire of one group lies on one of the other's; give the groups separate zones)");
+
+  VariantChoice choice;
+  JobOutcome& out = choice.outcome;
+  place_groups(out, job, lights, choices, found);
+  out.search.evaluations = static_cast<int>(found.solved);
+  out.search.seconds = found.seconds;
+  out.predicted_lux = found.lux;
+  Eigen::VectorXd eye = found.eye_indirect_lux, glare = found.glare;
+  out.verification = verify_scene(primary, scene_with_groups(primary, out), static_cast<int>(out.luminaires.size()), progress);
+  out.verify_seconds = out.verification.seconds;
+  out.margin_floor = job.verification.margin;
+  std::optional<std::vector<GoalJudgement>> verified;
+  std::vector<GoalMargin> margins(spec.goals.size());
+  if (out.verification.method != "none") {
+    Eigen::VectorXd v_eye, v_glare;
+    verified_eyes(primary, out, v_eye, v_glare);
+    const Eigen::VectorXd lux = verified_goal_lux(primary.model, out.verification);
+    verified = judge_goals(primary.model, spec, GoalLight{lux, v_eye, v_glare});
+    margins = goal_margins(primary.model, *verified, lux, out.verification.point_error_lux, out.margin_floor, false);
+    if (primary.model.fixed_lux.cwiseAbs().maxCoeff() == 0.0) {
+      out.flux_correction = correct_fluxes(out, primary, spec, *verified, margins);
+      verified_eyes(primary, out, v_eye, v_glare);
+      verified = judge_goals(primary.model, spec, GoalLight{verified_goal_lux(primary.model, out.verification), v_eye, v_glare});
+      eye *= out.flux_correction;
+      glare *= out.flux_correction * out.flux_correction;
+    }
+  }
+  const std::vector<GoalJudgement> predicted = judge_goals(primary.model, spec, GoalLight{out.predicted_lux, eye, glare});
+  for (std::size_t k = 0; k < out.luminaires.size(); ++k) out.power_w += out.luminaires[k].power_w;
+  for (OutcomeGroup& g : out.groups)
+    for (std::size_t j = g.first; j < g.first + g.count; ++j) g.power_w += out.luminaires[j].power_w;
+  out.predicted_direct_lux = predicted_direct(out, lights, primary.model);
+  out.fixed_flux_lm = primary.model.fixed_flux_lm;
+  out.mounting_area_m2 = primary.model.grid.mounting_area_m2();
+  out.maintenance_factor = mf;
+  out.floor_area_m2 = cap.area_m2;
+  out.floor_area_source = cap.area_source;
+  out.power_density_w_per_m2 = cap.area_m2 > 0.0 ? out.power_w / cap.area_m2 : 0.0;
+  out.feasible = found.feasible;
+  out.constraints = group_constraints(out, lights, cap);
+  out.all_met = std::all_of(out.constraints.begin(), out.constraints.end(), [](const ConstraintOutcome& c) { return c.met; });
+  for (std::size_t g = 0; g < predicted.size(); ++g) {
+    GoalOutcome o;
+    o.predicted = predicted[g];
+    o.searched_value = found.goals[g].value;
+    o.tolerance = goal_tolerance(job.objective, predicted[g].metric);
+    o.relative_error = margins[g].relative_error;
+    o.margin = margins[g].margin;
+    const bool predicted_met = found.goals[g].violation <= o.tolerance + 1e-9;
+    o.met = verified ? (*verified)[g].violation <= o.tolerance + 1e-9 : predicted_met;
+    if (verified) o.verified = (*verified)[g];
+    o.fails_only_on_verification = predicted_met && !o.met;
+    out.all_met = out.all_met && o.met;
+    out.goals.push_back(o);
+  }
+  for (const GoalOutcome& o : out.goals)
+    if (o.predicted.metric == GoalMetric::average) {
+      const double maintained = (o.verified ? o.verified->value : o.predicted.value) * mf;
+      if (maintained > 0.0) out.power_density_w_per_m2_per_100_lx = out.power_density_w_per_m2 / (maintained / 100.0);
+      break;
+    }
+  choice.variant = 0;
+  choice.search_seconds = found.seconds;
+  choice.verify_seconds = out.verify_seconds;
+  return choice;
+}
+
+}  // namespace ilp
