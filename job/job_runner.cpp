@@ -38,7 +38,6 @@ constexpr std::uint64_t kVerificationSeedSalt = 0x5EED5EEDull;
 Verification verify_layout(const PreparedJob& prepared, const std::vector<PlacedLuminaire>& layout,
                            const ProgressCallback& progress) {
   const JobConfig& job = prepared.job;
-  const RunOptions& run = prepared.run;
   Verification out;
   const VerificationSettings& settings = job.verification;
   if (settings.method == VerificationMethod::none) return out;
