@@ -742,11 +742,9 @@ std::string crowded_members(const SearchSpec& spec, const Arrangement& a) {
   return {};
 }
 
-// Field, rows and bays: every arrangement judged at its one output (no NLopt: nothing
-// moves). Min_power skips an arrangement that cannot draw less than a layout already found.
-SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress,
-                            const SearchBounds& bounds) {
-  const auto start = Clock::now();
+// The regular layout's arrangements in the mounting zone; a layout too wide to enumerate
+// or with none in its count range is refused at luminaires.layout.
+std::vector<Arrangement> layout_arrangements(const LightingModel& model, const SearchSpec& spec) {
   std::vector<Arrangement> arrangements;
   try {
     arrangements = regular_arrangements(spec.layout, arrangement_frame(model, spec));
@@ -757,6 +755,15 @@ SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, 
     throw ConfigError(located(spec.layout.loc, "luminaires.layout: no arrangement of this layout has a luminaire count "
                                                "in [" + std::to_string(spec.layout.count_min) + ", " +
                                                std::to_string(spec.layout.count_max) + "] in the mounting zone"));
+  return arrangements;
+}
+
+// Field, rows and bays: every arrangement judged at its one output (no NLopt: nothing
+// moves). Min_power skips an arrangement that cannot draw less than a layout already found.
+SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress,
+                            const SearchBounds& bounds) {
+  const auto start = Clock::now();
+  const std::vector<Arrangement> arrangements = layout_arrangements(model, spec);
   const Evaluator evaluate(model, spec);
   const double least_flux_lm = least_total_flux_lm(model, spec);
   const bool min_power = objective_rule(spec.objective).minimises_power;
@@ -849,16 +856,7 @@ SearchResult search_layout(const LightingModel& model, const SearchSpec& spec, c
 RegularLights regular_arrangement_lights(const LightingModel& model, const SearchSpec& spec) {
   if (spec.layout.family == LayoutFamily::free || spec.layout.family == LayoutFamily::array)
     throw std::invalid_argument("regular_arrangement_lights: free and array layouts have no fixed arrangements");
-  std::vector<Arrangement> arrangements;
-  try {
-    arrangements = regular_arrangements(spec.layout, arrangement_frame(model, spec));
-  } catch (const std::length_error& e) {
-    throw ConfigError(located(spec.layout.loc, std::string("luminaires.layout: ") + e.what()));
-  }
-  if (arrangements.empty())
-    throw ConfigError(located(spec.layout.loc, "luminaires.layout: no arrangement of this layout has a luminaire count "
-                                               "in [" + std::to_string(spec.layout.count_min) + ", " +
-                                               std::to_string(spec.layout.count_max) + "] in the mounting zone"));
+  const std::vector<Arrangement> arrangements = layout_arrangements(model, spec);
   const Evaluator evaluate(model, spec);
   RegularLights out;
   for (const Arrangement& a : arrangements) {
