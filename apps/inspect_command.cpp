@@ -114,8 +114,10 @@ void print_cost_estimates(const JobConfig& job, const RunOptions& run, const Sce
   const std::optional<MemoryBudget> budget = memory_budget(run.max_memory_bytes);
   const std::optional<double> bytes = budget ? std::optional<double>(budget->bytes) : std::nullopt;
   const std::vector<VariantPlan> plans = plan_job(job, run);
+  double whole_run_s = 0.0;
   for (const VariantPlan& plan : plans) {
     const CostedGeometry costed = costed_geometry(job, scene, plan.model, budget);
+    whole_run_s += costed.estimate.total_seconds();
     const CostCounts& counts = costed.counts;
     std::cout << "cost estimate of `ilp run`";
     if (plans.size() > 1) std::cout << " for " << printable(plan.product.product) << " at " << plan.product.rotation_deg << " deg";
@@ -130,6 +132,10 @@ void print_cost_estimates(const JobConfig& job, const RunOptions& run, const Sce
     if (!verification.reason.empty()) std::cout << "  verification: " << verification.reason << "\n";
     if (!costed.refusal.empty()) std::cout << "  would be refused: " << costed.refusal << "\n";
   }
+  // Each variant (product x rotation) builds its own operator and runs its own verification.
+  if (plans.size() > 1)
+    std::cout << "cost estimate of the whole run: about " << fixed(whole_run_s, 1) << " s for its " << plans.size()
+              << " variants, one after another\n";
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -461,6 +462,30 @@ TEST(IlpInspect, ShowsSurfacesSuggestionsWarningsAndTheCostEstimate) {
   const RunResult one = run_ilp(dir, {"inspect", dir.file("box.obj")});
   ASSERT_EQ(one.exit_code, 0) << one.err;
   EXPECT_TRUE(OutputContains(one.out, "cost estimate: not an inverse job"));
+}
+
+// A job of several variants (products x rotations) builds and verifies each one: inspect
+// sums their estimates into the whole run's (issue 21: the estimate ignored the variants).
+TEST(IlpInspect, TheWholeRunsEstimateIsTheSumOfItsVariants) {
+  TempDir dir;
+  const RunResult r = run_ilp(dir, {"inspect", std::string(ILP_SOURCE_DIR) + "/configs/office_products.yaml"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  double sum = 0.0;
+  int variants = 0;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    const std::string in_all = "estimate: in all about ";
+    if (const auto at = line.find(in_all); at != std::string::npos) {
+      sum += std::stod(line.substr(at + in_all.size()));
+      ++variants;
+    }
+  }
+  ASSERT_GT(variants, 1);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, std::regex("cost estimate of the whole run: about ([0-9.]+) s for its ([0-9]+) variants")))
+      << r.out;
+  EXPECT_EQ(std::stoi(m[2]), variants);
+  EXPECT_NEAR(std::stod(m[1]), sum, 0.05 * variants + 0.05) << "the sum of the rounded per-variant figures";
 }
 
 // A 24 KB malformed COLLADA file (a fuzz finding) makes assimp 5.2.5 allocate without
