@@ -310,7 +310,6 @@ std::pair<double, std::string> power_density_area(const PreparedJob& prepared) {
     const double area = upward_area_m2(scene, scene.find_surface(c.floor_surface)).first;
     if (area > 0.0) return {area, "floor '" + c.floor_surface + "' (luminaires.floor_surface)"};
   }
-  constexpr double kFloorLevelTolerance_m = 0.2;
   for (const CalcGridSetting& g : prepared.plan.model.grids)
     if (g.kind == GridKind::horizontal && !g.over_surface.empty()) {
       const auto [area, highest_m] = upward_area_m2(scene, scene.find_surface(g.over_surface));

@@ -148,7 +148,6 @@ std::optional<double> floor_height_m(const Scene& scene, const ModelSpec& spec, 
     surface_name.clear();
     return std::nullopt;
   }
-  constexpr double kFloorLevelTolerance_m = 0.2;  // as the power density's floor (job_runner.cpp)
   if (!named && z / area > scene.bounds_m.min().z() + kFloorLevelTolerance_m) {
     surface_name.clear();
     return std::nullopt;

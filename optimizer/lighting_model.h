@@ -30,6 +30,11 @@
 
 namespace ilp {
 
+// A surface is the room's floor, unless the job names one, when its patches facing up lie
+// within this of the scene's lowest point: a grid over a table top is a task area, not
+// the floor (heights above the floor, the power density's area).
+inline constexpr double kFloorLevelTolerance_m = 0.2;
+
 class KeyWriter;  // core/base/key_hash.h
 
 // Wall mounting: the mounting surface is a wall; luminaires hang on its faces that face
@@ -66,8 +71,8 @@ struct CandidateSpec {
   std::optional<double> zone_margin_m = 0.5;
   // Suspended: the emitting faces this far above the floor, on a plane over the zone
   // (no mounting surface). The floor: floor_surface's patches facing up, or when it
-  // is empty the floor of the first grid laid over a surface; heights are reported
-  // above it.
+  // is empty the first grid's surface if it lies at the scene's lowest level (within
+  // kFloorLevelTolerance_m); heights are reported above it.
   std::optional<double> suspended_height_m;
   std::optional<WallMountSpec> wall;  // mounting_surface is a wall: luminaires on it at a height
   std::string floor_surface;

@@ -34,18 +34,32 @@ void expect_equal_spacing(const std::vector<double>& at, double tolerance_m, con
     EXPECT_NEAR(at[i] - at[i - 1], at[1] - at[0], tolerance_m) << axis << " spacing " << i;
 }
 
+// A shipped job's text with its ../data/ paths made absolute (the test writes it elsewhere).
+std::string shipped_job(const std::string& name) {
+  std::string text = ilp::test::read_file(ILP_SOURCE_DIR "/configs/" + name);
+  for (std::size_t at; (at = text.find("../data/")) != std::string::npos;) text.replace(at, 8, ILP_SOURCE_DIR "/data/");
+  return text;
+}
+
+// That job, its verification at 256 rays (the shipped 1024 take longer), written to `dir`.
+std::string shipped_job_at_256_rays(const TempDir& dir, const std::string& name) {
+  std::string text = shipped_job(name);
+  const std::size_t rays = text.find("  rays_per_patch: 1024");
+  EXPECT_NE(rays, std::string::npos) << name;
+  if (rays != std::string::npos) text.replace(rays, 22, "  rays_per_patch: 256");
+  return dir.write(name, text);
+}
+
 // The shipped job with its field block replaced by `layout: free` (the mesh and
 // photometry paths made absolute): the same job searched without regularity.
 std::string office_products_free(const TempDir& dir) {
-  std::string text = ilp::test::read_file(ILP_SOURCE_DIR "/configs/office_products.yaml");
+  std::string text = shipped_job("office_products.yaml");
   const std::size_t layout = text.find("  layout: field");
   const std::size_t ratio = text.find("edge_ratio", layout);
   EXPECT_NE(layout, std::string::npos);
   EXPECT_NE(ratio, std::string::npos);
   if (layout == std::string::npos || ratio == std::string::npos) return "";
   text.replace(layout, text.find('\n', ratio) - layout, "  layout: free");
-  for (std::size_t at; (at = text.find("../data/")) != std::string::npos;)
-    text.replace(at, 8, ILP_SOURCE_DIR "/data/");
   return dir.write("office_products_free.yaml", text);
 }
 
@@ -118,12 +132,7 @@ TEST(IlpLayouts, OfficeProductsIsACentredFieldAtOneOutputThatMeetsEveryGoal) {
 // job's 1024 take longer; the figures in docs/layouts.md are at 1024).
 TEST(IlpLayouts, OfficeWallWashIsAWallRowAimedAtTheFeatureWallThatMeetsEveryGoal) {
   TempDir dir;
-  std::string text = ilp::test::read_file(ILP_SOURCE_DIR "/configs/office_wallwash.yaml");
-  for (std::size_t at; (at = text.find("../data/")) != std::string::npos;) text.replace(at, 8, ILP_SOURCE_DIR "/data/");
-  const std::size_t rays = text.find("  rays_per_patch: 1024");
-  ASSERT_NE(rays, std::string::npos);
-  text.replace(rays, 22, "  rays_per_patch: 256");
-  const std::string job = dir.write("office_wallwash.yaml", text);
+  const std::string job = shipped_job_at_256_rays(dir, "office_wallwash.yaml");
   const RunResult r = run_ilp(dir, {"run", job, "--out", dir.file("out"), "--cache", dir.file("cache"), "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const ilp::ResultRecord result = ilp::read_result_json(dir.file("out/result.json"));
@@ -190,12 +199,7 @@ TEST(IlpLayouts, BadWallMountingExitsOneNamingFileLineAndKeyAndWritesNothing) {
 // output, billed together, every goal met as verified.
 TEST(IlpLayouts, OfficeTwoGroupsSearchesAFieldAndAWallRowTogetherThatMeetEveryGoal) {
   TempDir dir;
-  std::string text = ilp::test::read_file(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
-  for (std::size_t at; (at = text.find("../data/")) != std::string::npos;) text.replace(at, 8, ILP_SOURCE_DIR "/data/");
-  const std::size_t rays = text.find("  rays_per_patch: 1024");
-  ASSERT_NE(rays, std::string::npos);
-  text.replace(rays, 22, "  rays_per_patch: 256");
-  const std::string job = dir.write("office_two_groups.yaml", text);
+  const std::string job = shipped_job_at_256_rays(dir, "office_two_groups.yaml");
   const RunResult r = run_ilp(dir, {"run", job, "--out", dir.file("out"), "--cache", dir.file("cache"), "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("groups searched together:"), std::string::npos) << "the run log counts the pairs";
@@ -242,8 +246,7 @@ TEST(IlpLayouts, OfficeTwoGroupsSearchesAFieldAndAWallRowTogetherThatMeetEveryGo
 // The shipped two-group job with one key changed: each refusal names the file, line and
 // key, exits 1 and writes nothing.
 TEST(IlpLayouts, BadGroupsExitOneNamingFileLineAndKeyAndWritesNothing) {
-  std::string shipped = ilp::test::read_file(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
-  for (std::size_t at; (at = shipped.find("../data/")) != std::string::npos;) shipped.replace(at, 8, ILP_SOURCE_DIR "/data/");
+  const std::string shipped = shipped_job("office_two_groups.yaml");
   const std::size_t groups_at = shipped.find("  groups:\n"), grids_at = shipped.find("\ngrids:");
   ASSERT_NE(groups_at, std::string::npos);
   ASSERT_NE(grids_at, std::string::npos);
