@@ -115,7 +115,7 @@ void BM_PlainEmbreeSameRays(benchmark::State& state) {
   for (auto _ : state) {
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n * per_row, 64 * per_row), [&](const auto& range) {
-        ilp::RayCaster::prepare_thread();
+        const auto ray_modes = ilp::RayCaster::prepare_thread();
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         for (std::size_t k = range.begin(); k != range.end(); ++k) {

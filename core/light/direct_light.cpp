@@ -377,7 +377,7 @@ LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std:
   std::atomic<std::size_t> done{0};
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, receivers, 16), [&](const auto& range) {
-      RayCaster::prepare_thread();
+      const auto ray_modes = RayCaster::prepare_thread();
       std::vector<Unoccluded> unoccluded(geometry.size());
       std::uint64_t cast = 0;
       for (std::size_t r = range.begin(); r != range.end(); ++r) {

@@ -233,12 +233,13 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   return arena.execute([&] { return build_in_arena(scene, caster, goals, options, progress); });
 }
 
-static_assert(field_count<SampleOperatorOptions>() == 7,
+static_assert(field_count<SampleOperatorOptions>() == 8,
               "SampleOperatorOptions changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const SampleOperatorOptions& o) {
   k.field("sample_size", o.sample_size).field("strategy", o.strategy).field("sample_seed", o.sample_seed);
   k.field("indirect", o.indirect).field("form_factors", o.form_factors).field("direct_light", o.direct_light);
   k.field("hit_direct_light", o.hit_direct_light);
+  k.field("sample_direct_light", o.sample_direct_light);
 }
 
 }  // namespace ilp

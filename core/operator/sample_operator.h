@@ -76,6 +76,12 @@ struct SampleOperatorOptions {
   // exact_second_bounce only: direct light at the patches the rows hit that are
   // neither goal nor sample patches, seen only through a row's average over its hits.
   DirectLightOptions hit_direct_light = cheap_direct_light_options();
+  // Direct light at the sample patches that are not goal patches: like the hits, it is
+  // read only through reflections (the k x k system's emission), and each sample patch
+  // stands for a stratum of about n / k patches, so one patch's estimate needs no more
+  // precision than the stratum's spread. Receiver points are random on the patch and
+  // shadow rays stratified over the opening: the cheap estimate is unbiased.
+  DirectLightOptions sample_direct_light = cheap_direct_light_options();
 };
 
 // The operator cache's key (core/base/key_hash.h): every field (the nested options

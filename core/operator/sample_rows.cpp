@@ -186,7 +186,10 @@ SampleRows cast_sample_rows(const Scene& scene, const RayCaster& caster, const G
   return {std::move(rows), std::move(sums), std::move(sample_slot), std::move(goal_slot)};
 }
 
-// Direct light at the sample patches (copied where a sample patch is a goal).
+// Direct light at the sample patches. A census (every patch its own stratum) takes the
+// goals' precise estimate, copied where a sample patch is a goal; a sample takes
+// options.sample_direct_light at every sample patch, goal or not, so that the sample's
+// emission does not depend on which patches are goals.
 SampleDirect direct_light_at_sample(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
                                     const PatchSample& sample, SampleRows& rows, const SourceTable& table,
                                     const SampleOperatorOptions& options, const ProgressCallback& progress,
@@ -195,7 +198,9 @@ SampleDirect direct_light_at_sample(const Scene& scene, const RayCaster& caster,
   const std::vector<int>& P = sample.patches;
   const Eigen::Index k = static_cast<Eigen::Index>(P.size());
   const Eigen::Index L = static_cast<Eigen::Index>(sources.size());
-  const std::vector<int>& goal_slot = rows.goal_slot;
+  const bool census = sample.census;
+  std::vector<int> goal_slot = rows.goal_slot;
+  if (!census) std::fill(goal_slot.begin(), goal_slot.end(), -1);
   std::vector<int> need_direct;
   std::vector<Eigen::Index> need_direct_row;
   for (Eigen::Index b = 0; b < k; ++b)
@@ -206,7 +211,9 @@ SampleDirect direct_light_at_sample(const Scene& scene, const RayCaster& caster,
   Eigen::MatrixXd gathered_needed(static_cast<Eigen::Index>(need_direct.size()), rows.sums.gathered.cols());
   for (std::size_t m = 0; m < need_direct.size(); ++m)
     gathered_needed.row(static_cast<Eigen::Index>(m)) = rows.sums.gathered.row(need_direct_row[m]);
-  DirectLightOptions sample_light = options.direct_light;
+  DirectLightOptions sample_light = census ? options.direct_light : options.sample_direct_light;
+  sample_light.seed = options.direct_light.seed;
+  sample_light.threads = options.direct_light.threads;
   sample_light.progress = progress;
   sample_light.progress_label = "direct light (sample)";
   const DirectRows D_new = direct_light(scene, caster, need_direct, sources.size(), table, gathered_needed, sample_light);

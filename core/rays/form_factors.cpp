@@ -148,7 +148,7 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, kChunk), [&](const tbb::blocked_range<std::size_t>& range) {
-      RayCaster::prepare_thread();
+      const auto ray_modes = RayCaster::prepare_thread();
       RowScratch& scratch = scratches.local();
       if (scratch.count.empty()) scratch.count.assign(scene.patches.size(), 0);
       for (std::size_t r = range.begin(); r != range.end(); ++r)
@@ -181,7 +181,7 @@ Eigen::MatrixXd compute_row_bin_fractions(const Scene& scene, const RayCaster& c
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 64), [&](const tbb::blocked_range<std::size_t>& range) {
-      RayCaster::prepare_thread();
+      const auto ray_modes = RayCaster::prepare_thread();
       std::vector<int> count(static_cast<std::size_t>(bins) + 2);
       for (std::size_t r = range.begin(); r != range.end(); ++r) {
         std::fill(count.begin(), count.end(), 0);

@@ -38,7 +38,7 @@ FormFactorRows compute_point_rows(const Scene& scene, const RayCaster& caster, s
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 16), [&](const tbb::blocked_range<std::size_t>& range) {
-      RayCaster::prepare_thread();
+      const auto ray_modes = RayCaster::prepare_thread();
       std::vector<int> count(scene.patches.size(), 0), touched;
       for (std::size_t r = range.begin(); r != range.end(); ++r) {
         const ReceiverPoint& p = points[r];

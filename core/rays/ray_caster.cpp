@@ -41,13 +41,15 @@ struct RayCaster::Impl {
   }
 };
 
-void RayCaster::prepare_thread() {
+RayCaster::ThreadModes::ThreadModes() : saved_(_mm_getcsr()) {
   _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
   _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
 }
 
+RayCaster::ThreadModes::~ThreadModes() { _mm_setcsr(saved_); }
+
 RayCaster::RayCaster(const Scene& scene, int threads) : impl_(std::make_unique<Impl>()) {
-  prepare_thread();
+  const ThreadModes modes = prepare_thread();
   const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : "";
   impl_->device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
   if (!impl_->device) throw IlpError("Embree: cannot create a device (error " +

@@ -38,9 +38,21 @@ class RayCaster {
   // float round-off at the scene's coordinates, small against any patch.
   double ray_offset_m() const { return ray_offset_m_; }
 
-  // Sets flush-to-zero and denormals-are-zero for the calling thread, as Embree asks
-  // of every thread that casts rays.
-  static void prepare_thread();
+  // Flush-to-zero and denormals-are-zero for the calling thread while the returned
+  // guard lives, as Embree asks of every thread that casts rays; the guard restores the
+  // thread's modes (a TBB body also runs on the caller's thread, whose later arithmetic,
+  // reading a file's subnormal numbers say, must not flush).
+  class [[nodiscard]] ThreadModes {
+   public:
+    ThreadModes();
+    ~ThreadModes();
+    ThreadModes(const ThreadModes&) = delete;
+    ThreadModes& operator=(const ThreadModes&) = delete;
+
+   private:
+    unsigned int saved_;
+  };
+  static ThreadModes prepare_thread() { return {}; }
 
  private:
   struct Impl;

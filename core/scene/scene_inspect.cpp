@@ -149,7 +149,7 @@ void cast_probe_rays(const Scene& scene, const RayCaster& caster, const InspectO
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, probes, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-      RayCaster::prepare_thread();
+      const auto ray_modes = RayCaster::prepare_thread();
       for (std::size_t q = r.begin(); q != r.end(); ++q) {
         const Patch& p = scene.patches[q * stride];
         const Eigen::Vector3d origin = p.centroid_m + offset * p.normal;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <random>
 
 #include "core/rays/ray_caster.h"
@@ -171,6 +172,31 @@ TEST(FormFactor, RejectsInvalidOptions) {
   const std::vector<int> outside = {0, static_cast<int>(scene.patches.size())};
   EXPECT_THROW(compute_form_factor_rows(scene, caster, outside, options), std::invalid_argument);
   EXPECT_EQ(compute_form_factor_rows(scene, caster, {}, options).F.rows(), 0);
+}
+
+}  // namespace
+}  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// Embree's flush-to-zero and denormals-are-zero modes stay with the rays: the thread
+// that built the BVH and took part in casting (a TBB body runs on the caller's thread
+// too) reads a subnormal number as such afterwards. Before, a product's file read after
+// the first variant's operator (the same thread) saw its 1e-310 cd as 0.
+TEST(RayCasterThreadModes, TheCallersFloatingPointModesAreRestored) {
+  const Scene scene = reference::make_closed_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(1.0, 1.0, 1.0), 0.5, 0.5);
+  {
+    const RayCaster caster(scene, 1);
+    FormFactorOptions options;
+    options.rays_per_patch = 16;
+    options.threads = 1;
+    (void)compute_form_factor_rows(scene, caster, scene.all_patches(), options);
+  }
+  volatile double tiny = std::strtod("1e-310", nullptr);
+  EXPECT_GT(tiny, 0.0) << "flush-to-zero leaked to the caller's thread";
+  volatile double half = tiny * 0.5;
+  EXPECT_GT(half, 0.0);
 }
 
 }  // namespace

@@ -227,11 +227,13 @@ TEST(KeyHash, SampleOperatorOptionsCoverEveryField) {
       {"form_factors", [](SampleOperatorOptions& o) { o.form_factors.rays_per_patch = 512; }},
       {"direct_light", [](SampleOperatorOptions& o) { o.direct_light.shadow_rays = 2; }},
       {"hit_direct_light", [](SampleOperatorOptions& o) { o.hit_direct_light.receiver_points = 2; }},
+      {"sample_direct_light", [](SampleOperatorOptions& o) { o.sample_direct_light.shadow_rays = 9; }},
   });
   // The nested options' threads and progress stay out.
   const SampleOperatorOptions base;
   SampleOperatorOptions other;
-  other.form_factors.threads = other.direct_light.threads = other.hit_direct_light.threads = 1;
+  other.form_factors.threads = other.direct_light.threads = other.hit_direct_light.threads =
+      other.sample_direct_light.threads = 1;
   other.direct_light.progress = [](std::string_view, std::size_t, std::size_t) {};
   EXPECT_EQ(key_text_of(other), key_text_of(base));
 }
