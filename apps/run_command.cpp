@@ -464,6 +464,8 @@ int run_sweep(const SweepArgs& args) {
   const JobConfig job = load_job_config(args.config);
   if (!job.groups.empty())
     throw ConfigError(job.path + ": luminaires.groups: ilp sweep searches one luminaire group; run the job with ilp run");
+  if (!job.rooms.empty())
+    throw ConfigError(job.path + ": rooms: ilp sweep runs single-room jobs; run the building with ilp run");
   const RunOptions run = run_options(args.threads, args.max_memory);
   SweepSetting sweep;
   if (!args.set.empty()) {

@@ -62,8 +62,10 @@ DESKS = [
     ("office_2", 9.5, 1.5, 11.1, 2.3, 0.75),
     ("meeting", 13.7, 1.7, 16.7, 3.1, 0.75),
 ]
-MATERIALS = {  # MTL Kd (the job may override by surface)
-    "floor": 0.25, "ceiling": 0.75, "walls": 0.55, "door": 0.35, "desks": 0.45, "furniture": 0.4, "reveal": 0.55,
+# MTL Kd (the job may override by surface): light finishes within EN 12464-1's useful ranges
+# (ceiling 0.7-0.9, walls 0.5-0.8, floor 0.2-0.4)
+MATERIALS = {
+    "floor": 0.3, "ceiling": 0.85, "walls": 0.7, "door": 0.4, "desks": 0.45, "furniture": 0.4, "reveal": 0.7,
 }
 
 vertices = []
