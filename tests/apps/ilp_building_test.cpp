@@ -104,6 +104,19 @@ TEST(IlpBuilding, EachRoomGivesWhatItGivesRunAlone) {
   EXPECT_TRUE(OutputContains(print.out, "building: 2 rooms"));
 }
 
+// inspect: each room's estimate on its own part of the model, and their sum.
+TEST(IlpBuilding, InspectGivesEachRoomsEstimateAndTheSum) {
+  TempDir dir;
+  dir.write("rooms.obj", two_rooms_obj());
+  const std::string building = dir.write("building.yaml", two_rooms_job(two_rooms_room("a", 150) + two_rooms_room("b", 300)));
+  const RunResult r = run_ilp(dir, {"inspect", building});
+  expect_exit(r, 0);
+  EXPECT_TRUE(OutputContains(r.out, "room a ("));
+  EXPECT_TRUE(OutputContains(r.out, "room b ("));
+  EXPECT_TRUE(OutputContains(r.out, "cost estimate of the building: about"));
+  EXPECT_TRUE(OutputContains(r.out, "for its 2 rooms"));
+}
+
 // The surface table line of `surface` in `ilp solve` output.
 std::string solve_line(const std::string& out, const std::string& surface) {
   for (const std::string& line : ilp::test::lines_of(out))
