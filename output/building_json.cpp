@@ -136,11 +136,19 @@ void write_building_timings_json(const std::string& path, const BuildingRecord& 
   write_file_atomically(path, [&](std::ostream& out) { out << json{{"timings_s", j}}.dump(2) << "\n"; });
 }
 
+// Anything else (a folder, a FIFO, unreadable or malformed) is left to read_result_json,
+// whose errors say what is wrong.
 bool is_building_json(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return false;
-  const json j = json::parse(in, nullptr, false);
-  return j.is_object() && j.contains("rooms") && j.contains("building");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;
+  try {
+    std::ifstream in(path);
+    if (!in) return false;
+    const json j = json::parse(in, nullptr, false);
+    return j.is_object() && j.contains("rooms") && j.contains("building");
+  } catch (const std::exception&) {
+    return false;
+  }
 }
 
 BuildingRecord read_building_json(const std::string& path) {
