@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "apps/cli_support.h"
+#include "job/building.h"
 #include "apps/commands.h"
 #include "job/config.h"
 #include "core/operator/cost_model.h"
@@ -110,7 +111,7 @@ namespace {
 
 // The estimate `ilp run` prints for each variant of the job (its products' files read),
 // the same figures from the same function (costed_geometry).
-void print_cost_estimates(const JobConfig& job, const RunOptions& run, const Scene& scene) {
+double print_cost_estimates(const JobConfig& job, const RunOptions& run, const Scene& scene) {
   const std::optional<MemoryBudget> budget = memory_budget(run.max_memory_bytes);
   const std::optional<double> bytes = budget ? std::optional<double>(budget->bytes) : std::nullopt;
   const std::vector<VariantPlan> plans = plan_job(job, run);
@@ -136,6 +137,20 @@ void print_cost_estimates(const JobConfig& job, const RunOptions& run, const Sce
   if (plans.size() > 1)
     std::cout << "cost estimate of the whole run: about " << fixed(whole_run_s, 1) << " s for its " << plans.size()
               << " variants, one after another\n";
+  return whole_run_s;
+}
+
+// A building job: each room's estimate on its own scene (its part of the model), then the sum.
+void print_building_estimates(const JobConfig& job, const RunOptions& run) {
+  double total_s = 0.0;
+  for (std::size_t r = 0; r < job.rooms.size(); ++r) {
+    const JobConfig& room = room_job(job, r);
+    const JobScene loaded = load_job_scene(room);
+    std::cout << "room " << job.rooms[r].name << " (" << loaded.scene.patches.size() << " patches):\n";
+    total_s += print_cost_estimates(room, run, loaded.scene);
+  }
+  std::cout << "cost estimate of the building: about " << fixed(total_s, 1) << " s for its " << job.rooms.size()
+            << " rooms, one after another\n";
 }
 
 }  // namespace
@@ -177,9 +192,10 @@ int run_inspect(const InspectArgs& args) {
   }
 
   // The cost of running the job, for an inverse job.
-  if (job.search && !job.goals.empty()) {
+  if ((job.search && !job.goals.empty()) || !job.rooms.empty()) {
     try {
-      print_cost_estimates(job, run, scene);
+      if (job.rooms.empty()) print_cost_estimates(job, run, scene);
+      else print_building_estimates(job, run);
     } catch (const IlpError& e) {
       std::cout << "cost estimate: not available: " << e.what() << "\n";
     } catch (const std::invalid_argument& e) {

@@ -16,6 +16,7 @@
 #include "apps/export_outputs.h"
 #include "apps/grid_outputs.h"
 #include "apps/plan_outputs.h"
+#include "apps/run_support.h"
 #include "job/config.h"
 #include "core/light/luminaire_product.h"
 #include "core/operator/cost_model.h"
@@ -25,6 +26,7 @@
 #include "job/result_mapping.h"
 #include "job/variant_search.h"
 #include "output/atomic_file.h"
+#include "output/building_record.h"
 #include "output/colour_map.h"
 #include "output/plan_svg.h"
 #include "output/ply_writer.h"
@@ -36,7 +38,7 @@ namespace ilp::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr const char* kVersion = "ilp 0.1.0";
+constexpr const char* kVersion = kProgramVersion;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
@@ -322,6 +324,8 @@ const std::vector<RunOutput>& run_outputs() {
   return outputs;
 }
 
+}  // namespace
+
 // Every file `ilp run` may write for the job (all formats), or those output.formats selects.
 std::vector<std::string> run_output_names(const JobConfig& job, bool selected_only) {
   std::vector<std::string> out;
@@ -331,9 +335,11 @@ std::vector<std::string> run_output_names(const JobConfig& job, bool selected_on
   return out;
 }
 
-// The formats output.formats selects, written as one set (OutputSet): the folder holds
-// the previous run's files or these, never a mix.
-std::vector<std::string> write_outputs(OutputSet& set, const RunProducts& products) {
+namespace {
+
+// The formats output.formats selects, staged in the set (OutputSet): once committed, the
+// folder holds the previous run's files or these, never a mix.
+void stage_outputs(OutputSet& set, const RunProducts& products) {
   for (const RunOutput& o : run_outputs()) {
     if (!(products.job.output.*o.flag)) continue;
     // Without a layout there is no light: result.json and the plan say why.
@@ -345,7 +351,6 @@ std::vector<std::string> write_outputs(OutputSet& set, const RunProducts& produc
       throw IlpError(set.explained(e.what()));
     }
   }
-  return set.commit();
 }
 
 // An outcome without a layout (every count screened out): the record says why, and only
@@ -394,23 +399,18 @@ std::string default_cache_dir() {
   return ".ilp-cache";
 }
 
-int run_job(const RunArgs& args) {
+RoomRun run_room(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
+                 const std::string& cache) {
   const auto start = Clock::now();
-  const JobConfig job = load_job_config(args.config);
-  const RunOptions run = run_options(args.threads, args.max_memory);
-  const ProgressCallback progress = make_progress(args.quiet);
-  // Staged from the start, so a folder that cannot take the outputs fails before the work.
-  OutputSet set(output_directory(job, args.out_dir), run_output_names(job, false));
-  const std::string cache = cache_folder(args.cache_dir, args.no_cache);
+  RoomRun out;
   // Several groups: every group's variants prepared, searched together (job/group_runner.h).
-  PreparedGroups groups;
-  if (job.groups.empty()) groups.prepared = prepare_all(job, run, progress, cache);
-  else groups = prepare_groups(job, run, progress, cache, log_line, log_build);
-  const std::vector<PreparedJob>& all = groups.prepared;
-  const VariantChoice chosen = job.groups.empty() ? solve_variants(all, job, progress, log_line)
-                                                  : solve_groups(groups, job, progress, log_line);
-  const PreparedJob& prepared = all[chosen.variant];
-  const JobOutcome& outcome = chosen.outcome;
+  if (job.groups.empty()) out.groups.prepared = prepare_all(job, run, progress, cache);
+  else out.groups = prepare_groups(job, run, progress, cache, log_line, log_build);
+  const std::vector<PreparedJob>& all = out.groups.prepared;
+  out.chosen = job.groups.empty() ? solve_variants(all, job, progress, log_line)
+                                  : solve_groups(out.groups, job, progress, log_line);
+  const PreparedJob& prepared = all[out.chosen.variant];
+  const JobOutcome& outcome = out.chosen.outcome;
   // Every variant's phases, summed: what the run cost.
   double scene_s = 0.0, bvh_s = 0.0, operator_s = 0.0;
   for (const PreparedJob& p : all) {
@@ -422,24 +422,41 @@ int run_job(const RunArgs& args) {
       {"scene", scene_s},
       {"BVH", bvh_s},
       {prepared.loaded_from_cache ? "operator from cache" : "operator", operator_s},
-      {"search", chosen.search_seconds},
-      {"verification", chosen.verify_seconds},
+      {"search", out.chosen.search_seconds},
+      {"verification", out.chosen.verify_seconds},
       {"total", seconds_since(start)}};
   // No layout (every count screened out): nothing lit to report per grid.
   const bool no_layout = outcome.search.beaten;
-  const std::vector<GridResult> grids = no_layout ? std::vector<GridResult>{} : run_grid_results(prepared, job, outcome);
+  if (!no_layout) out.grids = run_grid_results(prepared, job, outcome);
   std::vector<GridRecord> grid_records;
-  for (const GridResult& g : grids) grid_records.push_back(grid_record(g, outcome.verification.method != "none"));
-  ResultRecord record = make_record(kVersion, prepared, job, outcome, grid_records, timings);
-  record.bill_of_materials = bill_of_materials(prepared.plan, outcome);
-  record.variants = chosen.records;
-  record.files = run_output_names(job, true);
-  if (no_layout) record_no_layout(record);
-  print_result(std::cout, record);
-  for (const std::string& file : write_outputs(set, {prepared, job, outcome, record, grids}))
-    std::cout << "wrote " << file << "\n";
+  for (const GridResult& g : out.grids) grid_records.push_back(grid_record(g, outcome.verification.method != "none"));
+  out.record = make_record(kVersion, prepared, job, outcome, grid_records, timings);
+  out.record.bill_of_materials = bill_of_materials(prepared.plan, outcome);
+  out.record.variants = out.chosen.records;
+  out.record.files = run_output_names(job, true);
+  if (no_layout) record_no_layout(out.record);
+  return out;
+}
+
+void stage_room_outputs(OutputSet& set, const JobConfig& job, const RoomRun& room) {
+  stage_outputs(set, {room.prepared(), job, room.chosen.outcome, room.record, room.grids});
+}
+
+bool room_met(const RoomRun& room) { return room.record.all_met && room.record.no_layout.empty(); }
+
+int run_job(const RunArgs& args) {
+  const JobConfig job = load_job_config(args.config);
+  if (!job.rooms.empty()) return run_building(args, job);
+  const RunOptions run = run_options(args.threads, args.max_memory);
+  const ProgressCallback progress = make_progress(args.quiet);
+  // Staged from the start, so a folder that cannot take the outputs fails before the work.
+  OutputSet set(output_directory(job, args.out_dir), run_output_names(job, false));
+  const RoomRun room = run_room(job, run, progress, cache_folder(args.cache_dir, args.no_cache));
+  print_result(std::cout, room.record);
+  stage_room_outputs(set, job, room);
+  for (const std::string& file : set.commit()) std::cout << "wrote " << file << "\n";
   std::cout << std::fixed << std::setprecision(2) << "peak memory " << peak_memory_gb() << " GB (resident)\n";
-  return record.all_met && !no_layout ? 0 : 2;
+  return room_met(room) ? 0 : 2;
 }
 
 int run_sweep(const SweepArgs& args) {
@@ -447,6 +464,8 @@ int run_sweep(const SweepArgs& args) {
   const JobConfig job = load_job_config(args.config);
   if (!job.groups.empty())
     throw ConfigError(job.path + ": luminaires.groups: ilp sweep searches one luminaire group; run the job with ilp run");
+  if (!job.rooms.empty())
+    throw ConfigError(job.path + ": rooms: ilp sweep runs single-room jobs; run the building with ilp run");
   const RunOptions run = run_options(args.threads, args.max_memory);
   SweepSetting sweep;
   if (!args.set.empty()) {
@@ -519,7 +538,8 @@ int run_sweep(const SweepArgs& args) {
 }
 
 int run_print(const PrintArgs& args) {
-  print_result(std::cout, read_result_json(args.result));
+  if (is_building_json(args.result)) print_building(std::cout, read_building_json(args.result));
+  else print_result(std::cout, read_result_json(args.result));
   return 0;
 }
 

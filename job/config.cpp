@@ -728,7 +728,8 @@ void read_verification(const Map& verification, JobConfig& job) {
   }
 }
 
-void read_output(const Map& output, JobConfig& job) {
+// building: a job of rooms, whose grids are each room's (a room without grids writes no grid files).
+void read_output(const Map& output, JobConfig& job, bool building) {
   OutputSettings& o = job.output;
   if (auto v = output.get("directory")) {
     o.directory = v->path();
@@ -759,7 +760,7 @@ void read_output(const Map& output, JobConfig& job) {
       const Format* f = std::find_if(std::begin(kFormats), std::end(kFormats),
                                      [&](const Format& x) { return name == x.name; });
       if (f == std::end(kFormats)) item.fail("must be one of " + names);
-      if (f->needs_grids && job.grids.empty()) item.fail("needs calculation grids (the job has no grids section)");
+      if (f->needs_grids && job.grids.empty() && !building) item.fail("needs calculation grids (the job has no grids section)");
       if (o.*f->flag) item.fail("is listed twice");
       o.*f->flag = true;
     }
@@ -891,6 +892,44 @@ void read_solver(const Map& solver, JobConfig& job) {
 
 }  // namespace
 
+namespace config_yaml {
+
+std::vector<std::string> luminaire_keys() {
+  return {"size_m", "placed", "model", "flux_lm", "efficacy_lm_per_w", "mounting_surface", "mount_offset_m",
+          "candidate_spacing_m", "count", "layout", "array", "products", "wall_distance_m", "ceiling_module_m", "field",
+          "rows", "bays", "zone", "output", "suspended", "on_wall", "floor_surface", "groups"};
+}
+
+void read_maintenance_factor(const Value& v, JobConfig& job) {
+  job.maintenance_factor = v.number_in(0.1, 1.0, false, "[0.1, 1] (as a product's)");
+  job.maintenance_loc = v.loc();
+}
+
+// In this order: goals name grids and products, the objective needs the goals.
+void read_room_keys(const Map& map, JobConfig& job, bool products_named) {
+  if (auto v = map.get("luminaires")) read_luminaires(Map(*v, luminaire_keys()), job, products_named);
+  if (auto v = map.get("grids")) read_grids(*v, job);
+  if (auto v = map.get("maintenance_factor")) read_maintenance_factor(*v, job);
+  if (auto v = map.get("goals")) read_goals(*v, job);
+  if (auto v = map.get("constraints")) read_constraints(Map(*v, {"max_luminaires", "min_distance_m", "max_power_density_w_per_m2"}), job);
+  if (auto v = map.get("objective")) read_objective(*v, job);
+  if (auto v = map.get("energy")) read_energy(*v, job);
+}
+
+// A building job's shared keys: the product catalogue, the maintenance factor and the
+// energy profile every room starts from; what belongs to one room is refused here.
+void read_building_keys(const Map& top, JobConfig& job) {
+  for (const char* key : {"goals", "grids", "constraints", "objective", "sweep", "report"})
+    if (top.get(key))
+      throw ConfigError(located(top.key_loc(key), std::string(key) + ": with rooms, each room states its own (rooms[]." +
+                                                      key + "; docs/building.md)"));
+  if (auto v = top.get("luminaires")) read_luminaires(Map(*v, {"products", "size_m"}), job, false);
+  if (auto v = top.get("maintenance_factor")) read_maintenance_factor(*v, job);
+  if (auto v = top.get("energy")) read_energy(*v, job);
+}
+
+}  // namespace config_yaml
+
 std::span<const GoalPreset> goal_presets() { return kPresets; }
 
 double surrounding_average_lux(double task_average_lux) {
@@ -958,25 +997,13 @@ JobConfig load_job_config(const std::string& path) {
   try {
     const Map top(Value(root, "", job.path), {"scene", "luminaires", "grids", "maintenance_factor", "goals",
                                               "constraints", "objective", "solver", "optimizer", "verification",
-                                              "output", "energy", "sweep", "report"});
+                                              "output", "energy", "sweep", "report", "rooms"});
     read_scene(Map(top.require("scene"), {"mesh", "up_axis", "scale_to_m", "max_patch_edge_m", "surfaces_from",
                                           "reflectance", "default_reflectance", "emitting_surfaces",
                                           "exclude_surfaces", "two_sided", "weld_tolerance_m", "regions", "add_floor"}),
                job);
-    if (auto v = top.get("luminaires"))
-      read_luminaires(Map(*v, {"size_m", "placed", "model", "flux_lm", "efficacy_lm_per_w", "mounting_surface",
-                               "mount_offset_m", "candidate_spacing_m", "count", "layout", "array", "products",
-                               "wall_distance_m", "ceiling_module_m", "field", "rows", "bays", "zone", "output",
-                               "suspended", "on_wall", "floor_surface", "groups"}),
-                      job);
-    if (auto v = top.get("grids")) read_grids(*v, job);
-    if (auto v = top.get("maintenance_factor")) {
-      job.maintenance_factor = v->number_in(0.1, 1.0, false, "[0.1, 1] (as a product's)");
-      job.maintenance_loc = v->loc();
-    }
-    if (auto v = top.get("goals")) read_goals(*v, job);
-    if (auto v = top.get("constraints")) read_constraints(Map(*v, {"max_luminaires", "min_distance_m", "max_power_density_w_per_m2"}), job);
-    if (auto v = top.get("objective")) read_objective(*v, job);
+    if (top.get("rooms")) read_building_keys(top, job);
+    else read_room_keys(top, job, false);
     if (auto v = top.get("solver"))
       read_solver(Map(*v, {"method", "rays_per_patch", "seed", "threads", "relative_residual", "max_iterations",
                            "direct_receiver_points", "direct_shadow_rays", "sample_size", "sample_fraction",
@@ -989,9 +1016,9 @@ JobConfig load_job_config(const std::string& path) {
                      job);
     if (auto v = top.get("verification"))
       read_verification(Map(*v, {"method", "rays_per_patch", "indirect_rays_per_patch", "rounds", "max_exact_patches", "sample_fraction", "margin"}), job);
-    if (auto v = top.get("output")) read_output(Map(*v, {"directory", "formats", "plan_cut_height_m"}), job);
-    if (auto v = top.get("energy")) read_energy(*v, job);
+    if (auto v = top.get("output")) read_output(Map(*v, {"directory", "formats", "plan_cut_height_m"}), job, top.get("rooms").has_value());
     if (auto v = top.get("sweep")) read_sweep(*v, top.key_loc("sweep"), job);
+    if (auto v = top.get("rooms")) read_rooms(*v, job);
     if (auto v = top.get("report")) {
       const Map report(*v, {"surfaces"});
       if (auto s = report.get("surfaces"))

@@ -301,6 +301,17 @@ struct SweepSetting {
   FileLoc loc;
 };
 
+struct RoomSetting;
+
+// The part of a model one room of a building job sees (rooms[].surfaces): the surfaces
+// it names, each a name or a prefix ending in '*'; every other surface of the mesh is
+// left out of the room's scene, as scene.exclude_surfaces would. Empty: the whole model.
+struct SurfacePattern {
+  std::string pattern;  // "office_1_floor", or "office_1_*" (every name starting "office_1_")
+  std::string key;      // where it was written: rooms[2].surfaces[0]
+  FileLoc loc;
+};
+
 struct JobConfig {
   std::string path;                     // the YAML file
   // scene
@@ -361,6 +372,26 @@ struct JobConfig {
   // Not from the file: every triangle takes default_reflectance, whatever its MTL Kd
   // (`ilp inspect MESH`, where reflectances do not matter).
   bool ignore_material_kd = false;
+  // A room of a building job: only these surfaces of the mesh (with the surfaces of the
+  // rooms it is coupled to), every other left out (load_job_scene). Empty: all of them.
+  std::vector<SurfacePattern> keep_surfaces;
+  // rooms: a building job (docs/building.md): each room a single-room job of its own,
+  // its keys read over the building's shared ones. Empty: a single-room job.
+  std::vector<RoomSetting> rooms;
+};
+
+// One room of a building job (rooms[i]): its name (its output folder rooms/<name>), what
+// it is used for, and the single-room job it runs as: the building's shared keys (scene,
+// solver, optimizer, verification, output, report; luminaires.products as the catalogue;
+// maintenance_factor, energy and objective as defaults) with the room's own keys read
+// over them (luminaires, grids, goals, constraints, maintenance_factor, energy,
+// objective, surfaces, coupled_with).
+struct RoomSetting {
+  std::string name;
+  std::string use;                       // `use:`, else the first goal preset's key, else ""
+  FileLoc loc;                           // the room's entry
+  std::vector<std::string> coupled_with;  // rooms whose surfaces join this room's scene
+  JobConfig job;
 };
 
 // Sets the goal parameter `key` ("goals.NAME.average_lux", ".min_lux", ".max_lux" or
@@ -377,6 +408,10 @@ int find_grid(const JobConfig& job, const std::string& name);
 // The job as group g of job.groups alone: its search, its products, no groups (what
 // the single-group stages are given for each group).
 JobConfig group_job(const JobConfig& job, std::size_t g);
+
+// Characters a room's name may hold (it names a folder): letters, digits, '_', '-', '.'
+// (not "." or "..").
+bool valid_room_name(const std::string& name);
 
 // Reads and validates a job file. Throws ConfigError "file:line:col: key = value: rule".
 JobConfig load_job_config(const std::string& path);

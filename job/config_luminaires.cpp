@@ -445,9 +445,30 @@ void read_groups(const Map& luminaires, const Value& groups, JobConfig& job) {
   }
 }
 
-void read_luminaires(const Map& luminaires, JobConfig& job) {
+// A room's luminaires.products: names of its building's catalogue (job.products), which
+// they replace, in the order given.
+void select_products(const Value& section, JobConfig& job) {
+  std::vector<ProductSetting> chosen;
+  for (const Value& item : section.list()) {
+    const std::string wanted = item.text();
+    const auto it = std::find_if(job.products.begin(), job.products.end(), [&](const ProductSetting& p) { return p.name == wanted; });
+    if (it == job.products.end())
+      item.fail(job.products.empty() ? "unknown product: the building's luminaires.products lists none"
+                                     : "unknown product (a room names products of the building's luminaires.products)");
+    if (std::any_of(chosen.begin(), chosen.end(), [&](const ProductSetting& p) { return p.name == wanted; }))
+      item.fail("is listed twice");
+    chosen.push_back(*it);
+  }
+  if (chosen.empty()) section.fail("must name at least one product of the building's luminaires.products");
+  job.products = std::move(chosen);
+}
+
+void read_luminaires(const Map& luminaires, JobConfig& job, bool products_named) {
   if (auto v = luminaires.get("size_m")) job.luminaire_size_m = v->bounded(kMinLuminaireSize_m, kMaxLuminaireSize_m, " m");
-  if (auto v = luminaires.get("products")) read_products(*v, job);
+  if (auto v = luminaires.get("products")) {
+    if (products_named) select_products(*v, job);
+    else read_products(*v, job);
+  }
   if (auto v = luminaires.get("placed")) {
     std::set<std::string> names;
     ResolvedProducts resolved;

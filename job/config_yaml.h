@@ -279,6 +279,18 @@ inline Eigen::Vector2d pair_of(const Value& v, double (*check)(const Value&)) {
 }
 
 // luminaires: (job/config_luminaires.cpp) the search's keys, products, placed luminaires.
-void read_luminaires(const Map& luminaires, JobConfig& job);
+// products_named: luminaires.products is a list of names chosen from job.products (a
+// room choosing from its building's catalogue), not the products' definitions.
+void read_luminaires(const Map& luminaires, JobConfig& job, bool products_named = false);
+std::vector<std::string> luminaire_keys();  // every key of the luminaires section
+
+// (job/config.cpp) The keys a single-room job and each room of a building job have:
+// luminaires, grids, maintenance_factor, goals, constraints, objective, energy.
+void read_room_keys(const Map& map, JobConfig& job, bool products_named);
+// A building job's top level: luminaires (products, size_m only), maintenance_factor and
+// energy as the rooms' defaults; a single room's keys there are errors naming them.
+void read_building_keys(const Map& top, JobConfig& job);
+// (job/config_rooms.cpp) rooms: each entry read over a copy of the building's keys.
+void read_rooms(const Value& rooms, JobConfig& building);
 
 }  // namespace ilp::config_yaml

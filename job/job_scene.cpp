@@ -85,6 +85,27 @@ SceneOptions scene_frame(const JobConfig& job, const TriangleMesh& mesh, std::ve
   return o;
 }
 
+bool matches(const std::string& name, const std::string& pattern) {
+  if (!pattern.empty() && pattern.back() == '*') return name.rfind(pattern.substr(0, pattern.size() - 1), 0) == 0;
+  return name == pattern;
+}
+
+// A room's part of the model (JobConfig::keep_surfaces): every surface no pattern
+// matches is excluded. A pattern that matches no surface is an error at its line.
+void keep_only(const std::vector<std::string>& names, const std::vector<SurfacePattern>& keep,
+               std::vector<bool>& excluded) {
+  if (keep.empty()) return;
+  std::vector<bool> kept(names.size(), false);
+  for (const SurfacePattern& p : keep) {
+    bool any = false;
+    for (std::size_t s = 0; s < names.size(); ++s)
+      if (matches(names[s], p.pattern)) kept[s] = any = true;
+    if (!any) throw ConfigError(located(p.loc, p.key + " = " + p.pattern + ": no surface of the mesh matches it"));
+  }
+  for (std::size_t s = 0; s < names.size(); ++s)
+    if (!kept[s]) excluded[s] = true;
+}
+
 }  // namespace
 
 JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
@@ -127,6 +148,7 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   std::vector<bool> excluded(mesh.surface_names.size(), false), two_sided(mesh.surface_names.size(), job.two_sided_all);
   for (std::size_t k = 0; k < job.exclude_surfaces.size(); ++k)
     excluded[require_surface(job.exclude_surfaces[k], job.exclude_surface_locs[k], "scene.exclude_surfaces")] = true;
+  keep_only(mesh.surface_names, job.keep_surfaces, excluded);
   for (std::size_t k = 0; k < job.two_sided_surfaces.size(); ++k)
     two_sided[require_surface(job.two_sided_surfaces[k], job.two_sided_locs[k], "scene.two_sided")] = true;
   std::size_t excluded_triangles = 0, doubled_triangles = 0;
@@ -242,7 +264,7 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   }
   out.log.insert(out.log.end(), split.log.begin(), split.log.end());
   if (excluded_triangles > 0 || !job.exclude_surfaces.empty())
-    out.log.push_back("scene.exclude_surfaces: " + std::to_string(excluded_triangles) + " triangles of " +
+    out.log.push_back(std::string(job.keep_surfaces.empty() ? "" : "the room's surfaces and ") + "scene.exclude_surfaces: " + std::to_string(excluded_triangles) + " triangles of " +
                       std::to_string(job.exclude_surfaces.size()) + " surfaces left out");
   if (doubled_triangles > 0)
     out.log.push_back("scene.two_sided: " + std::to_string(doubled_triangles) +
@@ -274,7 +296,7 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   auto require_patches = [&](int surface, const FileLoc& loc, const std::string& key) {
     if (patches_of[static_cast<std::size_t>(surface)] == 0)
       throw ConfigError(located(loc, key + ": surface '" + scene.surfaces[static_cast<std::size_t>(surface)].name +
-                                         "' has no patch left (left out by scene.exclude_surfaces, or every face "
+                                         "' has no patch left (left out by scene.exclude_surfaces or the room's surfaces, or every face "
                                          "degenerate)"));
   };
   for (std::size_t k = 0; k < job.report_surfaces.size(); ++k) {
@@ -426,7 +448,7 @@ void hash_fields(KeyWriter& k, const LuminaireSetting& l) {
 }
 
 // Each JobConfig field is a scene input below or named in the comment at the end.
-static_assert(field_count<JobConfig>() == 42,
+static_assert(field_count<JobConfig>() == 44,
               "JobConfig changed: if load_job_scene reads the new field, hash it in hash_scene_inputs; "
               "if the operator depends on it otherwise, it must reach it through plan_job's ModelSpec");
 void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
@@ -457,11 +479,15 @@ void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
   k.field("emitting_surfaces", job.emitting_surfaces);
   k.field("add_floors", job.add_floors);
   k.field("exclude_surfaces", job.exclude_surfaces);
+  std::vector<std::string> kept;
+  for (const SurfacePattern& p : job.keep_surfaces) kept.push_back(p.pattern);
+  k.field("keep_surfaces", kept);
   k.field("two_sided_surfaces", job.two_sided_surfaces).field("two_sided_all", job.two_sided_all);
   k.field("luminaire_size_m", job.luminaire_size_m).field("luminaires", job.luminaires);
   k.field("ignore_material_kd", job.ignore_material_kd);
   // Not scene inputs: path, mesh_loc, max_patch_edge_loc, (up_axis_loc and scale_to_m_loc
-  // only as set or not, above), exclude_surface_locs,
+  // only as set or not, above), exclude_surface_locs, keep_surfaces' locs, rooms (each
+  // room runs as its own job, keep_surfaces its part of the scene),
   // two_sided_locs, report_surfaces and report_surface_locs (checked, never change the
   // scene), max_memory_bytes (lowers scene.max_patches, a limit that refuses a scene);
   // form_factors, direct_light, sample, search, groups (each through group_job and plan_job), goals, grids (the operator's, through

@@ -192,13 +192,20 @@ OutputSet::~OutputSet() {
 }
 
 std::string OutputSet::staging_path(const std::string& name) const {
-  if (std::find(owned_.begin(), owned_.end(), name) == owned_.end())
-    throw std::invalid_argument("OutputSet: '" + name + "' is not a file of this set");
-  return (fs::path(staging_) / name).string();
+  const std::string full = full_name(name);
+  if (std::find(owned_.begin(), owned_.end(), full) == owned_.end())
+    throw std::invalid_argument("OutputSet: '" + full + "' is not a file of this set");
+  const fs::path path = fs::path(staging_) / full;
+  if (!subfolder_.empty()) {
+    std::error_code ec;
+    fs::create_directories(path.parent_path(), ec);
+    if (ec) throw IlpError(explained(path.parent_path().string() + ": cannot create the folder (" + ec.message() + ")"));
+  }
+  return path.string();
 }
 
 void OutputSet::staged(const std::string& name) {
-  written_.push_back(name);
+  written_.push_back(full_name(name));
   test_hook(std::to_string(written_.size()));
 }
 

@@ -63,6 +63,12 @@ class OutputSet {
 
   const std::string& folder() const { return folder_; }
 
+  // Names given from now on are in this sub-folder of the set ("rooms/office_1": a
+  // building's room writes its usual file names there; "" the folder itself). The
+  // owned names are the full ones ("rooms/office_1/result.json"); the sub-folder is
+  // created in the staging folder as needed.
+  void set_subfolder(const std::string& subfolder) { subfolder_ = subfolder; }
+
   // A failure's message with the staging folder's path replaced by the output
   // folder's (the user's name for where the files go) and the space left on its file
   // system: what a disk-full failure says.
@@ -74,7 +80,10 @@ class OutputSet {
   std::string staging_;  // beside it
   std::vector<std::string> owned_;
   std::vector<std::string> written_;
+  std::string subfolder_;
   bool committed_ = false;
+
+  std::string full_name(const std::string& name) const { return subfolder_.empty() ? name : subfolder_ + "/" + name; }
 };
 
 }  // namespace ilp

@@ -247,6 +247,10 @@ TEST(CacheKey, SceneInputsCoverEveryJobConfigField) {
       // products reach the scene only through the placed luminaires' resolved types.
       not_scene("products", [](JobConfig& j) { j.products.push_back(ProductSetting{}); }),
       {"ignore_material_kd", [](JobConfig& j) { j.ignore_material_kd = true; }},
+      // A room's part of the model: two rooms of one model must not share an operator.
+      {"keep_surfaces", [](JobConfig& j) { j.keep_surfaces.push_back({"mat", "rooms[0].surfaces[0]", kAt}); }},
+      // Each room runs as a job of its own (its keep_surfaces above); the list is no scene input.
+      not_scene("rooms", [](JobConfig& j) { j.rooms.emplace_back(); }),
   }, scene_key);
 }
 

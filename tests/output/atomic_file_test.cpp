@@ -130,6 +130,29 @@ TEST(OutputSet, FreshFolderGetsTheSet) {
   EXPECT_EQ(names_in(dir.file("results")), (std::vector<std::string>{"job"}));
 }
 
+// A building's set: its own files and a sub-folder per room. The rooms folder is owned
+// as a whole, so a room of the previous run that this run does not write is gone.
+TEST(OutputSet, SubfoldersAreStagedAndCommittedWithTheSet) {
+  TempDir dir;
+  const std::string folder = dir.file("out");
+  fs::create_directories(folder + "/rooms/old_room");
+  dir.write("out/rooms/old_room/result.json", "old\n");
+  dir.write("out/notes.txt", "the user's\n");
+  OutputSet set(folder, {"result.json", "rooms", "rooms/a/result.json", "rooms/b/result.json"});
+  set.set_subfolder("rooms/a");
+  set.write("result.json", [](std::ostream& out) { out << "A\n"; });
+  EXPECT_THROW((void)set.staging_path("plan.svg"), std::invalid_argument);  // rooms/a/plan.svg is not owned
+  set.set_subfolder("");
+  set.write("result.json", [](std::ostream& out) { out << "building\n"; });
+  EXPECT_EQ(read_file(folder + "/rooms/old_room/result.json"), "old\n");  // nothing in place before the commit
+  EXPECT_EQ(set.commit(), (std::vector<std::string>{folder + "/rooms/a/result.json", folder + "/result.json"}));
+  EXPECT_EQ(read_file(folder + "/rooms/a/result.json"), "A\n");
+  EXPECT_EQ(read_file(folder + "/result.json"), "building\n");
+  EXPECT_EQ(read_file(folder + "/notes.txt"), "the user's\n");
+  EXPECT_EQ(names_in(folder + "/rooms"), (std::vector<std::string>{"a"}));
+  EXPECT_TRUE(no_temporaries(dir));
+}
+
 TEST(OutputSet, ReplacesItsOwnFilesKeepsOthersAndDropsOwnedFilesNotWritten) {
   TempDir dir;
   const std::string folder = dir.file("out");
