@@ -771,6 +771,7 @@ SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, 
   std::optional<LayoutEvaluation> best;
   std::string first_refusal;
   bool skipped_for_power = false;
+  const std::string phase = "search " + std::to_string(arrangements.size()) + " arrangements";
   for (std::size_t i = 0; i < arrangements.size(); ++i) {
     const Arrangement& a = arrangements[i];
     const int n = static_cast<int>(a.xy_m.size());
@@ -802,7 +803,9 @@ SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, 
     }
     attempt.global_stop = attempt.local_stop = stop;
     result.attempts.push_back(attempt);
-    if (progress) progress("search " + a.label, i + 1, arrangements.size());
+    // One phase for the whole list (a phase per arrangement printed a line each: 1,668
+    // lines for the classroom's fields).
+    if (progress) progress(phase, i + 1, arrangements.size());
   }
   if (!best && !skipped_for_power) result.refused = "no arrangement can be mounted or built; " + first_refusal;
   result.beaten = !best;

@@ -3,6 +3,8 @@
 // flux against the inverse-square law, the prediction against the verification.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <cmath>
 #include <numbers>
 
@@ -587,6 +589,26 @@ TEST(RegularLayoutSearch, ARowMemberWithoutAMountingPointMakesItsCountInfeasible
   EXPECT_NEAR(r.best.luminaires[0].position_m.y(), 2.0, 1e-9);
   EXPECT_TRUE(r.best.feasible);
   EXPECT_EQ(r.best.luminaires[0].flux_lm, r.best.luminaires[1].flux_lm) << "one output for the row";
+}
+
+// The regular search reports its progress as one phase: a phase per arrangement printed
+// a line each in a log (1,668 lines for the classroom's fields).
+TEST(RegularLayoutSearch, ProgressIsOnePhaseOverTheArrangements) {
+  TempDir dir;
+  const JobConfig job = regular_job(dir, "  layout: rows\n  rows: {rows: 1, per_row: [2, 3]}\n");
+  const PreparedJob prepared = test::prepare(job);
+  std::set<std::string> phases;
+  std::size_t last_total = 0, last_done = 0;
+  const SearchResult r = search_layout(prepared.model, prepared.plan.search,
+                                       [&](std::string_view phase, std::size_t done, std::size_t total) {
+                                         phases.emplace(phase);
+                                         last_done = done;
+                                         last_total = total;
+                                       });
+  ASSERT_GE(r.attempts.size(), 2u);
+  EXPECT_EQ(phases.size(), 1u);
+  EXPECT_EQ(last_done, last_total);
+  EXPECT_GE(last_total, 2u);
 }
 
 TEST(RegularLayoutSearch, ABayMemberWithoutAMountingPointMakesItsCountInfeasible) {
