@@ -249,6 +249,11 @@ struct VerificationSettings {
   // Rows of the other patches, whose light is read only through reflections (smooth):
   // at most this many rays (exact method); direct light there is the cheap estimate.
   int indirect_rays_per_patch = 128;
+  // Those rows start at this many rays and are doubled, with new rays, until every goal
+  // moves by less than its margin allows (job/verification_margin.h): the indirect
+  // light is smooth, so a few rays per patch often decide it. = indirect_rays_per_patch:
+  // one step.
+  int first_indirect_rays = 16;
   // Searches at most: when a goal fails only on verification, the search runs again
   // with that goal's target scaled by predicted / verified (a defect correction).
   int rounds = 3;

@@ -35,6 +35,55 @@ constexpr std::uint64_t kVerificationSeedSalt = 0x5EED5EEDull;
 
 }  // namespace
 
+namespace {
+
+// The exact solve's results at every patch and, gathered from its radiosity, at the goal points.
+void take_exact_solution(const PreparedJob& prepared, const Scene& scene, const ProgressiveExactSolve& solve,
+                         const ExactSolveOptions& options, const ProgressCallback& progress, Verification& out) {
+  out.method = "exact";
+  out.patches = scene.all_patches();
+  out.lux = solve.solution().radiosity.total_lux;
+  out.direct_lux = solve.solution().radiosity.direct_lux;
+  out.indirect_rays_per_patch = solve.other_rays();
+  if (prepared.model.goal_points.empty()) return;
+  const PointIlluminance at = exact_point_illuminance(scene, solve.caster(), solve.solution().radiosity,
+                                                      prepared.model.goal_points, options.form_factors,
+                                                      options.direct_light, progress);
+  out.point_lux = at.total_lux;
+  out.point_direct_lux = at.direct_lux;
+  out.point_error_lux = at.indirect_standard_error_lux;
+}
+
+// The other patches' rows from verification.first_indirect_rays, doubled while a goal
+// still moves by more than its margin allows (refinement_settled); the last step's
+// change at each goal point joins its gather's own error (the same gather rays each
+// step, so the change is the radiosity's).
+void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene, const ExactSolveOptions& options,
+                                const ProgressCallback& progress, Verification& out) {
+  const JobConfig& job = prepared.job;
+  const LightingModel& model = prepared.model;
+  ProgressiveExactSolve solve(scene, options, job.verification.first_indirect_rays, progress);
+  take_exact_solution(prepared, scene, solve, options, progress, out);
+  out.first_indirect_rays = solve.other_rays();
+  Eigen::VectorXd change = Eigen::VectorXd::Zero(model.goal_rows());
+  while (solve.can_refine()) {
+    const Eigen::VectorXd before = verified_goal_lux(model, out);
+    solve.refine();
+    take_exact_solution(prepared, scene, solve, options, progress, out);
+    const Eigen::VectorXd after = verified_goal_lux(model, out);
+    change = after - before;
+    out.refinement_change = largest_goal_change(model, prepared.plan.search.goals, before, after);
+    if (refinement_settled(model, prepared.plan.search.goals, before, after, out.point_error_lux,
+                           job.verification.margin))
+      break;
+  }
+  const Eigen::Index points = out.point_error_lux.size();
+  if (points > 0)
+    out.point_error_lux = (out.point_error_lux.array().square() + change.tail(points).array().square()).sqrt().matrix();
+}
+
+}  // namespace
+
 Verification verify_layout(const PreparedJob& prepared, const std::vector<PlacedLuminaire>& layout,
                            const ProgressCallback& progress) {
   const JobConfig& job = prepared.job;
@@ -69,19 +118,7 @@ Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int l
     // their own rays); with no goal patches, no patch is precise.
     options.precise_patches = prepared.model.goal_patches;
     options.other_rays_per_patch = settings.indirect_rays_per_patch;
-    const ExactSolution solution = solve_exact(scene, options, progress);
-    out.method = "exact";
-    out.patches = scene.all_patches();
-    out.lux = solution.radiosity.total_lux;
-    out.direct_lux = solution.radiosity.direct_lux;
-    if (!prepared.model.goal_points.empty()) {
-      const RayCaster caster(scene, worker_threads(job, run));
-      const PointIlluminance at = exact_point_illuminance(scene, caster, solution.radiosity, prepared.model.goal_points,
-                                                          options.form_factors, options.direct_light, progress);
-      out.point_lux = at.total_lux;
-      out.point_direct_lux = at.direct_lux;
-      out.point_error_lux = at.indirect_standard_error_lux;
-    }
+    verify_exact_progressively(prepared, scene, options, progress, out);
   } else {
     const RayCaster caster(scene, worker_threads(job, run));
     const std::vector<LightSource> sources = scene_light_sources(scene);

@@ -81,6 +81,12 @@ struct Verification {
   // Exact: each goal point's statistical error (lux, one standard error, of its gather;
   // core/rays/point_gather.h). Empty when there is no estimate (sample).
   Eigen::VectorXd point_error_lux;
+  // Exact: rays per row of the patches that are not goals, where the progressive
+  // refinement stopped and where it started (verification.first_indirect_rays), and
+  // the largest relative change of a goal's value at its last step (0: one step).
+  int indirect_rays_per_patch = 0;
+  int first_indirect_rays = 0;
+  double refinement_change = 0.0;
 };
 
 // Places `layout` as real luminaires in the job's scene and solves it as

@@ -229,6 +229,9 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.flux_correction_limited = outcome.flux_correction_limited;
   r.verification = outcome.verification.method;
   r.verification_rays_per_patch = outcome.verification.rays_per_patch;
+  r.verification_indirect_rays_per_patch = outcome.verification.indirect_rays_per_patch;
+  r.verification_first_indirect_rays = outcome.verification.first_indirect_rays;
+  r.verification_refinement_change = outcome.verification.refinement_change;
   r.sample_size = prepared.model.sample_size;
   r.population = static_cast<int>(prepared.model.stats.population);
   r.patches = static_cast<int>(prepared.loaded.scene.patches.size());

@@ -36,7 +36,55 @@ std::optional<double> relative_error(const LightingModel& model, const GoalArea&
   }
 }
 
+// The relative change of a goal's value from `before` to `after` (the same rows), for
+// the goals whose value is an average, a minimum or their ratio; nothing for others.
+std::optional<double> relative_change(const GoalArea& area, GoalMetric metric, const Eigen::VectorXd& before,
+                                      const Eigen::VectorXd& after) {
+  if (area.rows.empty()) return std::nullopt;
+  double average_before = 0.0, average_after = 0.0;
+  Eigen::Index lowest = area.rows.front();
+  for (std::size_t r = 0; r < area.rows.size(); ++r) {
+    const Eigen::Index row = area.rows[r];
+    const double w = area.area_weights[static_cast<Eigen::Index>(r)];
+    average_before += w * before[row];
+    average_after += w * after[row];
+    if (after[row] < after[lowest]) lowest = row;
+  }
+  const double average = average_after > 0.0 ? std::abs(average_after - average_before) / average_after : 0.0;
+  const double minimum = after[lowest] > 0.0 ? std::abs(after[lowest] - before[lowest]) / after[lowest] : 0.0;
+  switch (metric) {
+    case GoalMetric::average: return average;
+    case GoalMetric::minimum: return minimum;
+    case GoalMetric::uniformity: return std::hypot(average, minimum);
+    default: return std::nullopt;
+  }
+}
+
 }  // namespace
+
+double largest_goal_change(const LightingModel& model, const std::vector<GoalSpec>& goals, const Eigen::VectorXd& before,
+                           const Eigen::VectorXd& after) {
+  double largest = 0.0;
+  for (const GoalSpec& g : goals)
+    if (const int a = find_goal_area(model, g.name); a >= 0)
+      largest = std::max(largest, relative_change(model.areas[static_cast<std::size_t>(a)], g.metric, before, after).value_or(0.0));
+  return largest;
+}
+
+bool refinement_settled(const LightingModel& model, const std::vector<GoalSpec>& goals, const Eigen::VectorXd& before,
+                        const Eigen::VectorXd& after, const Eigen::VectorXd& point_error_lux, double margin_floor) {
+  const double floor_share = margin_floor / (2.0 * kMarginStandardErrors);
+  for (const GoalSpec& g : goals) {
+    const int a = find_goal_area(model, g.name);
+    if (a < 0) continue;
+    const GoalArea& area = model.areas[static_cast<std::size_t>(a)];
+    const std::optional<double> change = relative_change(area, g.metric, before, after);
+    if (!change) continue;
+    const double own = relative_error(model, area, g.metric, after, point_error_lux).value_or(0.0);
+    if (*change > std::max(own, floor_share)) return false;
+  }
+  return true;
+}
 
 std::vector<GoalMargin> goal_margins(const LightingModel& model, const std::vector<GoalJudgement>& verified,
                                      const Eigen::VectorXd& lux, const Eigen::VectorXd& point_error_lux,

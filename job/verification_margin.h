@@ -37,6 +37,20 @@ std::vector<GoalMargin> goal_margins(const LightingModel& model, const std::vect
                                      const Eigen::VectorXd& lux, const Eigen::VectorXd& point_error_lux,
                                      double margin_floor, bool averages_are_targets);
 
+// The exact verification's progressive refinement (job_runner.cpp): `before` and
+// `after` are the goal rows' lux at two steps, the second with twice the rays on the
+// rows of the patches that are not goals; their difference estimates the second's error
+// from those rows' noise (the error halves in variance with each doubling). Settled
+// when every average, minimum and uniformity goal changed by at most the larger of its
+// gather's own relative error and a quarter of the margin floor (so the refinement's
+// error never raises a margin above the floor by much). Past that, more rays on those
+// rows cannot decide a verdict that the gather's own error leaves open (a uniformity
+// at its target): only rays_per_patch can. largest_goal_change: the largest such change, for the run log.
+bool refinement_settled(const LightingModel& model, const std::vector<GoalSpec>& goals, const Eigen::VectorXd& before,
+                        const Eigen::VectorXd& after, const Eigen::VectorXd& point_error_lux, double margin_floor);
+double largest_goal_change(const LightingModel& model, const std::vector<GoalSpec>& goals, const Eigen::VectorXd& before,
+                           const Eigen::VectorXd& after);
+
 // The margin a lower-bound goal kept after the flux correction: the one it asked for,
 // unless the correction gave less (held back by an upper bound such as UGR, or the flux
 // range), then what its verified value holds above the target (never below 0).

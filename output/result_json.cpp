@@ -132,6 +132,11 @@ json to_json(const ResultRecord& r) {
   j["flux_correction"] = r.flux_correction;
   j["flux_correction_limited"] = r.flux_correction_limited;
   j["verification"] = {{"method", r.verification}, {"rays_per_patch", r.verification_rays_per_patch}};
+  if (r.verification_indirect_rays_per_patch > 0) {
+    j["verification"]["indirect_rays_per_patch"] = r.verification_indirect_rays_per_patch;
+    j["verification"]["first_indirect_rays"] = r.verification_first_indirect_rays;
+    j["verification"]["refinement_change"] = r.verification_refinement_change;
+  }
   j["sample_size"] = r.sample_size;
   j["population"] = r.population;
   j["patches"] = r.patches;
@@ -308,6 +313,9 @@ ResultRecord from_json(const json& j) {
   r.flux_correction_limited = j.at("flux_correction_limited").get<bool>();
   r.verification = j.at("verification").at("method").get<std::string>();
   r.verification_rays_per_patch = j.at("verification").at("rays_per_patch").get<int>();
+  r.verification_indirect_rays_per_patch = j.at("verification").value("indirect_rays_per_patch", 0);
+  r.verification_first_indirect_rays = j.at("verification").value("first_indirect_rays", 0);
+  r.verification_refinement_change = j.at("verification").value("refinement_change", 0.0);
   r.sample_size = j.at("sample_size").get<int>();
   r.population = j.at("population").get<int>();
   r.patches = j.at("patches").get<int>();
@@ -609,6 +617,12 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
   os << "\nverification: ";
   if (r.verification == "none") os << "none (predicted values only)";
   else os << r.verification << ", " << r.verification_rays_per_patch << " rays per patch";
+  if (r.verification_indirect_rays_per_patch > 0 && r.verification_indirect_rays_per_patch < r.verification_rays_per_patch) {
+    os << " at goals, " << r.verification_indirect_rays_per_patch << " on the other patches' rows";
+    if (r.verification_indirect_rays_per_patch > r.verification_first_indirect_rays)
+      os << " (refined from " << r.verification_first_indirect_rays << ": the goals' values moved by at most "
+         << fixed(100.0 * r.verification_refinement_change, 3) << " % at the last doubling)";
+  }
   if (r.flux_correction != 1.0)
     os << "; every flux scaled by " << fixed(r.flux_correction, 4) << " after verification";
   if (r.flux_correction_limited)

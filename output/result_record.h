@@ -174,6 +174,11 @@ struct ResultRecord {
   bool flux_correction_limited = false;     // the flux range allowed less than the goals wanted
   std::string verification;                 // exact, sample or none
   int verification_rays_per_patch = 0;
+  // exact: the other patches' rows (rays per row) where the progressive refinement
+  // stopped and started, and the goals' largest relative change at its last step.
+  int verification_indirect_rays_per_patch = 0;
+  int verification_first_indirect_rays = 0;
+  double verification_refinement_change = 0.0;
   int sample_size = 0;
   int population = 0;                       // reflecting patches
   int patches = 0;

@@ -44,58 +44,130 @@ void account_flux(const Scene& scene, const FormFactorRows& rows, const Radiosit
 
 }  // namespace
 
-ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, const ProgressCallback& progress) {
-  ExactSolution out;
-  ExactSolveSummary& s = out.summary;
-  s.patches = scene.patches.size();
+namespace {
 
-  auto start = std::chrono::steady_clock::now();
-  const RayCaster caster(scene, options.form_factors.threads);
-  s.bvh_seconds = seconds_since(start);
-  s.ray_offset_m = caster.ray_offset_m();
+// Each refinement's rays follow their own stream.
+constexpr std::uint64_t kRefinementSeedSalt = 0x9E3779B97F4A7C15ull;
 
-  std::vector<int> rays(scene.patches.size(), options.form_factors.rays_per_patch);
-  if (options.precise_patches && options.other_rays_per_patch > 0) {
-    std::fill(rays.begin(), rays.end(), std::min(options.other_rays_per_patch, options.form_factors.rays_per_patch));
-    for (int p : *options.precise_patches) rays.at(static_cast<std::size_t>(p)) = options.form_factors.rays_per_patch;
+// Rows `r` of `base` (in scene order) with the rows of `more` (the patches `others`,
+// ascending) merged in: (n_base x base + n_more x more) / (n_base + n_more).
+void merge_rows(FormFactorRows& base, const FormFactorRows& more, const std::vector<int>& others, int n_base,
+                int n_more) {
+  const Eigen::Index n = base.F.rows();
+  const double w_old = static_cast<double>(n_base) / (n_base + n_more), w_new = 1.0 - w_old;
+  Eigen::VectorXd keep = Eigen::VectorXd::Ones(n), add = Eigen::VectorXd::Zero(n);
+  SparseRows place(n, static_cast<Eigen::Index>(others.size()));
+  std::vector<Eigen::Triplet<double>> at;
+  at.reserve(others.size());
+  for (std::size_t r = 0; r < others.size(); ++r) {
+    keep[others[r]] = w_old;
+    add[others[r]] = w_new;
+    at.emplace_back(others[r], static_cast<Eigen::Index>(r), 1.0);
   }
-  FormFactorRows rows =
-      compute_form_factor_rows(scene, caster, scene.all_patches(), rays, options.form_factors, progress);
-  s.form_factor_seconds = rows.seconds;
-  s.rays_cast = rows.rays_cast;
-  s.rays_per_second = rows.seconds > 0.0 ? static_cast<double>(rows.rays_cast) / rows.seconds : 0.0;
+  place.setFromTriplets(at.begin(), at.end());
+  const SparseRows spread = place * more.F;
+  base.F = SparseRows(keep.asDiagonal() * base.F + add.asDiagonal() * spread);
+  base.F.makeCompressed();
+  for (std::size_t r = 0; r < others.size(); ++r) {
+    const auto i = static_cast<Eigen::Index>(others[r]), k = static_cast<Eigen::Index>(r);
+    base.escaped_fraction[i] = w_old * base.escaped_fraction[i] + w_new * more.escaped_fraction[k];
+    base.back_hit_fraction[i] = w_old * base.back_hit_fraction[i] + w_new * more.back_hit_fraction[k];
+  }
+  base.rays_cast += more.rays_cast;
+  base.seconds += more.seconds;
+}
+
+}  // namespace
+
+ProgressiveExactSolve::ProgressiveExactSolve(const Scene& scene, const ExactSolveOptions& options,
+                                             int first_other_rays, const ProgressCallback& progress)
+    : scene_(scene), options_(options), progress_(progress) {
+  ExactSolveSummary& s = solution_.summary;
+  s.patches = scene.patches.size();
+  auto start = std::chrono::steady_clock::now();
+  caster_ = std::make_unique<RayCaster>(scene, options.form_factors.threads);
+  s.bvh_seconds = seconds_since(start);
+  s.ray_offset_m = caster_->ray_offset_m();
+  const int full = options.form_factors.rays_per_patch;
+  const bool split = options.precise_patches && options.other_rays_per_patch > 0;
+  options_.other_rays_per_patch = split ? std::min(options.other_rays_per_patch, full) : 0;
+  other_rays_ = split ? std::clamp(first_other_rays, 1, options_.other_rays_per_patch) : full;
+  std::vector<int> rays(scene.patches.size(), split ? other_rays_ : full);
+  std::vector<bool> precise(scene.patches.size(), !split);
+  if (split)
+    for (int p : *options.precise_patches) {
+      rays.at(static_cast<std::size_t>(p)) = full;
+      precise[static_cast<std::size_t>(p)] = true;
+    }
+  for (std::size_t i = 0; i < precise.size(); ++i)
+    if (!precise[i]) others_.push_back(static_cast<int>(i));
+  raw_ = compute_form_factor_rows(scene, *caster_, scene.all_patches(), rays, options.form_factors, progress);
+  start = std::chrono::steady_clock::now();
+  if (progress) progress("direct light", 0, 1);
+  if (!options.precise_patches) {
+    emitter_ = emitter_light(scene, *caster_, options.direct_light, raw_);
+  } else {
+    CheapDirectLight cheap{std::vector<bool>(scene.patches.size(), true), options.other_direct_light};
+    cheap.options.seed = options.direct_light.seed;
+    cheap.options.threads = options.direct_light.threads;
+    for (int p : *options.precise_patches) cheap.rows.at(static_cast<std::size_t>(p)) = false;
+    emitter_ = emitter_light(scene, *caster_, options.direct_light, raw_, &cheap);
+  }
+  if (progress) progress("direct light", 1, 1);
+  s.direct_light_seconds = seconds_since(start);
+  s.shadow_rays = emitter_.light.shadow_rays_cast;
+  solve();
+}
+
+ProgressiveExactSolve::~ProgressiveExactSolve() = default;
+
+bool ProgressiveExactSolve::can_refine() const {
+  return options_.other_rays_per_patch > 0 && other_rays_ < options_.other_rays_per_patch && !others_.empty();
+}
+
+void ProgressiveExactSolve::refine() {
+  if (!can_refine()) return;
+  const int more = std::min(other_rays_, options_.other_rays_per_patch - other_rays_);
+  FormFactorOptions step = options_.form_factors;
+  step.rays_per_patch = more;
+  step.seed = options_.form_factors.seed ^ (kRefinementSeedSalt * static_cast<std::uint64_t>(++level_));
+  const FormFactorRows added = compute_form_factor_rows(scene_, *caster_, others_, step, progress_);
+  merge_rows(raw_, added, others_, other_rays_, more);
+  other_rays_ += more;
+  solve();
+}
+
+void ProgressiveExactSolve::solve() {
+  ExactSolveSummary& s = solution_.summary;
+  FormFactorRows rows = raw_;
+  apply_emitter_columns(scene_, emitter_, rows);
+  s.form_factor_seconds = raw_.seconds;
+  s.rays_cast = raw_.rays_cast;
+  s.rays_per_second = raw_.seconds > 0.0 ? static_cast<double>(raw_.rays_cast) / raw_.seconds : 0.0;
   double area = 0.0;
-  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
-    const double a = scene.patches[i].area_m2;
+  s.mean_escaped_fraction = s.mean_back_hit_fraction = 0.0;
+  for (std::size_t i = 0; i < scene_.patches.size(); ++i) {
+    const double a = scene_.patches[i].area_m2;
     area += a;
     s.mean_escaped_fraction += a * rows.escaped_fraction[static_cast<Eigen::Index>(i)];
     s.mean_back_hit_fraction += a * rows.back_hit_fraction[static_cast<Eigen::Index>(i)];
   }
   s.mean_escaped_fraction /= area;
   s.mean_back_hit_fraction /= area;
+  if (progress_) progress_("radiosity solve (Gauss-Seidel)", 0, 1);
+  solution_.radiosity = solve_radiosity(scene_, rows.F, options_.radiosity);
+  if (progress_) progress_("radiosity solve (Gauss-Seidel)", 1, 1);
+  s.solve_seconds += solution_.radiosity.seconds;
+  s.iterations = solution_.radiosity.iterations;
+  s.relative_residual = solution_.radiosity.relative_residual;
+  s.emitted_lm = s.absorbed_lm = s.lost_lm = 0.0;
+  account_flux(scene_, rows, solution_.radiosity, s);
+}
 
-  start = std::chrono::steady_clock::now();
-  if (progress) progress("direct light", 0, 1);
-  if (!options.precise_patches) {
-    s.shadow_rays = replace_emitter_columns(scene, caster, options.direct_light, rows);
-  } else {
-    CheapDirectLight cheap{std::vector<bool>(scene.patches.size(), true), options.other_direct_light};
-    cheap.options.seed = options.direct_light.seed;
-    cheap.options.threads = options.direct_light.threads;
-    for (int p : *options.precise_patches) cheap.rows.at(static_cast<std::size_t>(p)) = false;  // rows are all patches, in order
-    s.shadow_rays = replace_emitter_columns(scene, caster, options.direct_light, rows, &cheap);
-  }
-  if (progress) progress("direct light", 1, 1);
-  s.direct_light_seconds = seconds_since(start);
-
-  if (progress) progress("radiosity solve (Gauss-Seidel)", 0, 1);
-  out.radiosity = solve_radiosity(scene, rows.F, options.radiosity);
-  if (progress) progress("radiosity solve (Gauss-Seidel)", 1, 1);
-  s.solve_seconds = out.radiosity.seconds;
-  s.iterations = out.radiosity.iterations;
-  s.relative_residual = out.radiosity.relative_residual;
-  account_flux(scene, rows, out.radiosity, s);
-  return out;
+ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, const ProgressCallback& progress) {
+  // Every row at its final ray count at once: nothing to refine.
+  ProgressiveExactSolve solve(scene, options, options.other_rays_per_patch, progress);
+  return solve.solution();
 }
 
 std::ostream& operator<<(std::ostream& os, const ExactSolveSummary& s) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -56,6 +57,42 @@ struct ExactSolution {
 };
 
 ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, const ProgressCallback& progress = {});
+
+// The exact solve refined in steps, for a verification that stops when its goals are
+// decided: the rows of the patches outside options.precise_patches start at
+// `first_other_rays` rays and each refine() adds as many new rays again (an independent
+// stream: another seed), up to options.other_rays_per_patch; the merged row of 2n rays
+// is the mean of its two n-ray rows, an unbiased estimate like one row of 2n rays. The
+// precise rows and the luminaires' direct light are computed once; each step solves the
+// radiosity again. Without precise_patches or other_rays_per_patch, every row is cast
+// at once (like solve_exact) and there is nothing to refine.
+class ProgressiveExactSolve {
+ public:
+  ProgressiveExactSolve(const Scene& scene, const ExactSolveOptions& options, int first_other_rays,
+                        const ProgressCallback& progress = {});
+  ~ProgressiveExactSolve();
+  ProgressiveExactSolve(const ProgressiveExactSolve&) = delete;
+  ProgressiveExactSolve& operator=(const ProgressiveExactSolve&) = delete;
+
+  const ExactSolution& solution() const { return solution_; }
+  const RayCaster& caster() const { return *caster_; }
+  int other_rays() const { return other_rays_; }  // rays per row outside the precise patches, so far
+  bool can_refine() const;
+  void refine();  // doubles other_rays() (capped at options.other_rays_per_patch) and solves again
+
+ private:
+  void solve();
+  const Scene& scene_;
+  ExactSolveOptions options_;
+  ProgressCallback progress_;
+  std::unique_ptr<RayCaster> caster_;
+  std::vector<int> others_;    // patches refined, ascending
+  FormFactorRows raw_;         // every row, luminaire columns as cast
+  EmitterLight emitter_;
+  int other_rays_ = 0;
+  int level_ = 0;
+  ExactSolution solution_;
+};
 
 std::ostream& operator<<(std::ostream& os, const ExactSolveSummary& summary);
 

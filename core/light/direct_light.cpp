@@ -487,11 +487,26 @@ LuminaireLight row_light(const Scene& scene, const RayCaster& caster, std::span<
 
 }  // namespace
 
+EmitterLight emitter_light(const Scene& scene, const RayCaster& caster, const DirectLightOptions& options,
+                           const FormFactorRows& rows, const CheapDirectLight* cheap_rows) {
+  EmitterLight out;
+  out.row_patches = rows.row_patches;
+  out.surfaces = luminaire_surfaces(scene);
+  if (!out.surfaces.empty()) out.light = row_light(scene, caster, out.surfaces, options, rows, cheap_rows);
+  return out;
+}
+
 std::uint64_t replace_emitter_columns(const Scene& scene, const RayCaster& caster, const DirectLightOptions& options,
                                       FormFactorRows& rows, const CheapDirectLight* cheap_rows) {
-  const std::vector<int> surfaces = luminaire_surfaces(scene);
+  return apply_emitter_columns(scene, emitter_light(scene, caster, options, rows, cheap_rows), rows);
+}
+
+std::uint64_t apply_emitter_columns(const Scene& scene, const EmitterLight& emitter, FormFactorRows& rows) {
+  if (emitter.row_patches != rows.row_patches)
+    throw std::invalid_argument("apply_emitter_columns: the light was computed for other rows");
+  const std::vector<int>& surfaces = emitter.surfaces;
   if (surfaces.empty()) return 0;
-  const LuminaireLight light = row_light(scene, caster, surfaces, options, rows, cheap_rows);
+  const LuminaireLight& light = emitter.light;
   // One column per opening patch: lux per lm x the patch's area, so F B = illuminance.
   std::vector<int> emitters, emitter_luminaire;
   std::vector<int> slot_of_surface(scene.surfaces.size(), -1);

@@ -116,6 +116,18 @@ struct CheapDirectLight {
   DirectLightOptions options;
 };
 // Returns the shadow rays cast.
+//
+// In two steps, for rows refined by more rays while the luminaires stay (the exact
+// solve's progressive refinement): emitter_light computes the light once, and
+// apply_emitter_columns applies it to rows of the same patches in the same order.
+struct EmitterLight {
+  std::vector<int> row_patches;  // the rows it was computed for
+  std::vector<int> surfaces;     // luminaire_surfaces(scene)
+  LuminaireLight light;
+};
+EmitterLight emitter_light(const Scene& scene, const RayCaster& caster, const DirectLightOptions& options,
+                           const FormFactorRows& rows, const CheapDirectLight* cheap_rows = nullptr);
+std::uint64_t apply_emitter_columns(const Scene& scene, const EmitterLight& emitter, FormFactorRows& rows);
 std::uint64_t replace_emitter_columns(const Scene& scene, const RayCaster& caster, const DirectLightOptions& options,
                                       FormFactorRows& rows, const CheapDirectLight* cheap_rows = nullptr);
 

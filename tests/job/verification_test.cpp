@@ -36,6 +36,12 @@ TEST(Verification, IndirectRowsKeepEveryGoalWithinHalfAPercentOfTheFullSolve) {
 
   const Verification v = verify_layout(prepared, layout);
   ASSERT_EQ(v.method, "exact");
+  // Progressive (verification.first_indirect_rays 16): doubled at least once, and
+  // stopped before the cap once no goal moved by more than its error allows.
+  EXPECT_EQ(v.first_indirect_rays, 16);
+  EXPECT_GE(v.indirect_rays_per_patch, 32);
+  EXPECT_LT(v.indirect_rays_per_patch, 128);
+  EXPECT_GT(v.refinement_change, 0.0);
   const Eigen::VectorXd fast = verified_goal_lux(prepared.model, v);
 
   Scene scene = prepared.loaded.scene;
