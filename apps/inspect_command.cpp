@@ -134,6 +134,7 @@ double print_cost_estimates(const JobConfig& job, const RunOptions& run, const S
     if (!costed.refusal.empty()) std::cout << "  would be refused: " << costed.refusal << "\n";
   }
   // Each variant (product x rotation) builds its own operator and runs its own verification.
+  whole_run_s = whole_run_seconds(job, scene, plans, budget);  // the figure `ilp run` prints, from the same function
   if (plans.size() > 1)
     std::cout << "cost estimate of the whole run: about " << fixed(whole_run_s, 1) << " s for its " << plans.size()
               << " variants, one after another\n";

@@ -114,6 +114,7 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
                                                          : CostCounts::Verify::none;
   c.verify_rays = job.verification.rays_per_patch;
   c.verify_indirect_rays = job.verification.indirect_rays_per_patch;
+  c.verify_first_indirect_rays = job.verification.first_indirect_rays;
   c.verify_sample_size = static_cast<std::size_t>(plan.sample_size);
   c.verify_rounds = plan.method == VerificationMethod::none ? 1 : job.verification.rounds;
   return c;
@@ -145,6 +146,7 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
     if (grids.empty()) return;
     CostedGeometry c;
     c.counts = job_cost_counts(job, job_scene, partial, bytes, &grids);
+    c.counts.photometric = !spec.candidates.type.lambertian();
     c.estimate = estimate_job_cost(c.counts);
     c.refusal = refusal_of(c.estimate, budget, job.path);
     if (!c.refusal.empty()) {
@@ -159,9 +161,17 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
     return std::move(refused.costed);
   }
   out.counts = job_cost_counts(job, job_scene, out.model, bytes);
+  out.counts.photometric = !spec.candidates.type.lambertian();
   out.estimate = estimate_job_cost(out.counts);
   out.refusal = refusal_of(out.estimate, budget, job.path);
   return out;
+}
+
+double whole_run_seconds(const JobConfig& job, const Scene& job_scene, const std::vector<VariantPlan>& plans,
+                         const std::optional<MemoryBudget>& budget) {
+  double seconds = 0.0;
+  for (const VariantPlan& plan : plans) seconds += costed_geometry(job, job_scene, plan.model, budget).estimate.total_seconds();
+  return seconds;
 }
 
 }  // namespace ilp

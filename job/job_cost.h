@@ -8,6 +8,7 @@
 #include <string>
 
 #include "job/config.h"
+#include "job/plan.h"
 #include "core/operator/cost_model.h"
 #include "core/scene/scene.h"
 #include "optimizer/lighting_model.h"
@@ -47,5 +48,11 @@ struct CostedGeometry {
 };
 CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, const ModelSpec& spec,
                                const std::optional<MemoryBudget>& budget);
+
+// The whole run's time before any work: the sum of its variants' estimates (each
+// variant builds its own operator and verifies its own layout), on `job_scene`. What
+// `ilp inspect` and `ilp run` print for a job of several variants.
+double whole_run_seconds(const JobConfig& job, const Scene& job_scene, const std::vector<VariantPlan>& plans,
+                         const std::optional<MemoryBudget>& budget);
 
 }  // namespace ilp

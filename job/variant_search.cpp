@@ -6,6 +6,8 @@
 #include <numeric>
 #include <sstream>
 
+#include "job/job_cost.h"
+#include "job/job_scene.h"
 #include "job/result_mapping.h"
 
 namespace ilp {
@@ -62,6 +64,16 @@ std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vecto
                                           const std::string& cache_dir, const LogSink& log,
                                           const std::function<void(const PreparedJob&)>& prepared_log) {
   std::vector<PreparedJob> out;
+  if (plans.size() > 1 && log) {
+    // The whole run's estimate before the first variant: what a user plans with.
+    const JobScene loaded = load_job_scene(job);
+    std::ostringstream line;
+    line << "estimate: the whole run, building every variant's operator and verifying its layout: about "
+         << std::fixed << std::setprecision(1)
+         << whole_run_seconds(job, loaded.scene, plans, memory_budget(run.max_memory_bytes)) << " s for its "
+         << plans.size() << " variants, one after another";
+    log(line.str());
+  }
   for (const VariantPlan& plan : plans) {
     if (plan.listed && log) {
       std::ostringstream line;
