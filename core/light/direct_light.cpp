@@ -161,9 +161,10 @@ struct Unoccluded {
 };
 
 Unoccluded unoccluded_light(const Scene& scene, const LuminaireGeometry& g, const Eigen::Vector3d& x,
-                            const Eigen::Vector3d& n) {
+                            const Eigen::Vector3d& n, bool form_factors) {
   Unoccluded out;
-  for (int p : g.patches) out.form_factor += point_to_triangle_form_factor(x, n, scene.patches[static_cast<std::size_t>(p)]);
+  if (form_factors || g.lambertian)
+    for (int p : g.patches) out.form_factor += point_to_triangle_form_factor(x, n, scene.patches[static_cast<std::size_t>(p)]);
   if (g.lambertian) {
     out.lux_per_lm = out.form_factor / g.area_m2;  // reciprocity: E = M F(x -> opening), M = 1 lm / A
     return out;
@@ -386,7 +387,7 @@ LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std:
           const ReceiverPoint point = point_of(r, s);
           double brightest = 0.0;
           for (std::size_t l = 0; l < geometry.size(); ++l) {
-            unoccluded[l] = unoccluded_light(scene, geometry[l], point.position_m, point.normal);
+            unoccluded[l] = unoccluded_light(scene, geometry[l], point.position_m, point.normal, options.form_factors);
             brightest = std::max(brightest, unoccluded[l].lux_per_lm);
           }
           for (std::size_t l = 0; l < geometry.size(); ++l) {
@@ -567,7 +568,7 @@ std::uint64_t apply_emitter_columns(const Scene& scene, const EmitterLight& emit
   return light.shadow_rays_cast;
 }
 
-static_assert(field_count<DirectLightOptions>() == 6, "DirectLightOptions changed: hash the new field here (or say why not)");
+static_assert(field_count<DirectLightOptions>() == 7, "DirectLightOptions changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const DirectLightOptions& o) {
   k.field("receiver_points", o.receiver_points).field("shadow_rays", o.shadow_rays).field("seed", o.seed);
   // Not threads, progress or progress_label: the same light for any of them.

@@ -28,6 +28,12 @@ struct DirectLightOptions {
   // stratified points of the opening (the cheap estimate).
   int shadow_rays = 8;
   std::uint64_t seed = 1;
+  // The luminaires' form factors from the receiver (what they absorb of its light):
+  // off where only the light is read (the patches the operator's rows hit), which
+  // spares a photometric opening's polygon form factors; a Lambertian opening's light
+  // comes from its form factor, so it always has them. Not in the cache key: the light
+  // is the same.
+  bool form_factors = true;
   int threads = 0;          // 0: all cores
   // Called from worker threads as blocks of receivers finish (may be empty): a long
   // phase (100K goal patches x candidates) says how far it is.

@@ -278,6 +278,7 @@ HitDirect direct_light_at_hits(const Scene& scene, const RayCaster& caster, cons
   cheap_options.threads = options.direct_light.threads;
   cheap_options.progress = progress;
   cheap_options.progress_label = "direct light (patches the rows hit)";
+  cheap_options.form_factors = false;  // only D is read here
   const Eigen::MatrixXd D_cheap = direct_light(
       scene, caster, cheap, sources.size(), table,
       Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(cheap.size()), static_cast<Eigen::Index>(table.gathered.size())),

@@ -212,6 +212,7 @@ TEST(KeyHash, DirectLightOptionsCoverEveryField) {
       {"shadow_rays", [](DirectLightOptions& o) { o.shadow_rays = 16; }},
       {"seed", [](DirectLightOptions& o) { o.seed = 9; }},
       left_out<DirectLightOptions>("threads", [](DirectLightOptions& o) { o.threads = 3; }),
+      left_out<DirectLightOptions>("form_factors", [](DirectLightOptions& o) { o.form_factors = false; }),
       left_out<DirectLightOptions>("progress",
                                    [](DirectLightOptions& o) { o.progress = [](std::string_view, std::size_t, std::size_t) {}; }),
       left_out<DirectLightOptions>("progress_label", [](DirectLightOptions& o) { o.progress_label = "goal points"; }),

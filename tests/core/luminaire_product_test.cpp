@@ -133,6 +133,30 @@ ProductSetting product(const std::string& name, const std::string& path) {
   return p;
 }
 
+// Where only the light is read (the patches the operator's rows hit), a photometric
+// opening's form factors are left out: the light is bit for bit the same, the form
+// factors 0; a Lambertian opening's light is its form factor, so it keeps them.
+TEST(PhotometricLuminaire, LeavingOutTheFormFactorsKeepsTheLight) {
+  for (bool lambertian : {false, true}) {
+    Scene scene = reference::make_closed_box(V(0, 0, 0), V(4, 3, 3), 0.6, 0.5);
+    const LuminaireType type = lambertian ? LuminaireType::square_lambertian(0.6)
+                                          : photometric_luminaire_type("pendant", photometry(kData + "linear_led_2112lm.ldt"));
+    add_luminaire(scene, "lamp", type, {V(2, 1.5, 2.2), 30.0}, 2000.0);
+    const RayCaster caster(scene);
+    std::vector<int> walls;
+    for (std::size_t i = 0; i < scene.patches.size(); ++i)
+      if (!scene.surfaces[scene.patches[i].surface].is_luminaire()) walls.push_back(static_cast<int>(i));
+    DirectLightOptions with = cheap_direct_light_options(), without = with;
+    without.form_factors = false;
+    const LuminaireLight a = compute_luminaire_light(scene, caster, walls, luminaire_surfaces(scene), with);
+    const LuminaireLight b = compute_luminaire_light(scene, caster, walls, luminaire_surfaces(scene), without);
+    EXPECT_EQ(a.lux_per_lm, b.lux_per_lm) << (lambertian ? "Lambertian" : "photometric");
+    ASSERT_GT(a.form_factor.sum(), 0.0);
+    if (lambertian) EXPECT_EQ(b.form_factor, a.form_factor);
+    else EXPECT_EQ(b.form_factor.sum(), 0.0);
+  }
+}
+
 TEST(ProductVariants, RotationsWattsAndFluxComeFromTheFileUnlessGiven) {
   ProductSetting iku = product("iku", kData + "erco_iku_downlight.ldt");
   ProductSetting linear = product("linear", kData + "linear_led_2112lm.ldt");
