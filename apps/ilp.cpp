@@ -8,6 +8,7 @@
 
 #include "apps/commands.h"
 #include "core/base/error.h"
+#include "dist/communicator.h"
 
 namespace {
 constexpr int kMaxThreads = 1024;  // as solver.threads of a job
@@ -243,7 +244,26 @@ int main(int argc, char** argv) {
     // (CLI11's own codes, 105 and up, would mean something else to a caller).
     return app.exit(e) == 0 ? 0 : 1;
   }
+  // Under mpirun (docs/cluster.md) every rank gets here; a plain start makes no MPI call.
+  ilp::dist::Communicator& comm = ilp::dist::Communicator::world();
+  struct Finalize {
+    ilp::dist::Communicator& comm;
+    ~Finalize() { comm.finalize(); }
+  } finalize{comm};
   try {
+    // A building's rooms are spread over the ranks (run_job); the other commands run
+    // on rank 0 alone, the other ranks wait for its exit code.
+    if (comm.distributed() && !*run)
+      return ilp::dist::on_root_only(comm, [&] {
+        if (*solve) return ilp::cli::run_solve(solve_args);
+        if (*accuracy) return ilp::cli::run_accuracy(acc);
+        if (*sweep) return ilp::cli::run_sweep(sweep_args);
+        if (*print) return ilp::cli::run_print(print_args);
+        if (*bench) return ilp::cli::run_bench(bench_args);
+        if (*inspect) return ilp::cli::run_inspect(inspect_args);
+        if (*ugr_table) return ilp::cli::run_ugr_table(ugr_table_args);
+        return 0;
+      });
     if (*solve) return ilp::cli::run_solve(solve_args);
     if (*accuracy) return ilp::cli::run_accuracy(acc);
     if (*run) return ilp::cli::run_job(run_args);
@@ -252,6 +272,8 @@ int main(int argc, char** argv) {
     if (*bench) return ilp::cli::run_bench(bench_args);
     if (*inspect) return ilp::cli::run_inspect(inspect_args);
     if (*ugr_table) return ilp::cli::run_ugr_table(ugr_table_args);
+  } catch (const ilp::dist::FailedElsewhere&) {
+    return 1;  // rank 0 prints the one message
   } catch (const std::bad_alloc&) {
     std::cerr << "error: out of memory (a smaller job: larger scene.max_patch_edge_m, fewer rays or candidates)\n";
     return 1;

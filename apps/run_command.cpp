@@ -27,6 +27,7 @@
 #include "job/variant_search.h"
 #include "output/atomic_file.h"
 #include "output/building_record.h"
+#include "dist/communicator.h"
 #include "output/colour_map.h"
 #include "output/plan_svg.h"
 #include "output/ply_writer.h"
@@ -442,11 +443,29 @@ void stage_room_outputs(OutputSet& set, const JobConfig& job, const RoomRun& roo
   stage_outputs(set, {room.prepared(), job, room.chosen.outcome, room.record, room.grids});
 }
 
+int run_single_room(const RunArgs& args, const JobConfig& job);
+
 bool room_met(const RoomRun& room) { return room.record.all_met && room.record.no_layout.empty(); }
 
 int run_job(const RunArgs& args) {
+  const dist::Communicator& comm = dist::Communicator::world();
+  if (comm.distributed()) {
+    // Every rank reads the job; a bad file is one message (rank 0's), every rank exit 1.
+    JobConfig job;
+    dist::on_every_rank(comm, [&] { job = load_job_config(args.config); });
+    if (!job.rooms.empty()) return run_building(args, job);
+    // A single-room job is not spread over ranks yet (docs/cluster.md): rank 0 runs it.
+    if (comm.is_root())
+      std::cerr << "note: a single-room job runs on rank 0 alone; the other " << comm.size() - 1
+                << " ranks wait (rooms of a building job are spread over ranks)\n";
+    return dist::on_root_only(comm, [&] { return run_single_room(args, job); });
+  }
   const JobConfig job = load_job_config(args.config);
   if (!job.rooms.empty()) return run_building(args, job);
+  return run_single_room(args, job);
+}
+
+int run_single_room(const RunArgs& args, const JobConfig& job) {
   const RunOptions run = run_options(args.threads, args.max_memory);
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.
