@@ -164,7 +164,12 @@ int run_building_distributed(const RunArgs& args, const JobConfig& job, const di
   std::exception_ptr failure;
   try {
     std::vector<RankReport> all{std::move(mine)};
-    for (std::size_t k = 1; k < reports.size(); ++k) all.push_back(decode_rank_report(reports[k]));
+    std::size_t received = 0;
+    for (std::size_t k = 1; k < reports.size(); ++k) {
+      received += reports[k].size();
+      all.push_back(decode_rank_report(reports[k]));
+    }
+    std::cerr << "gathered " << received << " bytes of rooms' results from " << reports.size() - 1 << " ranks\n";
     const RoomFailure* first = nullptr;
     for (const RankReport& report : all)
       if (report.failure && (first == nullptr || report.failure->room < first->room)) first = &*report.failure;
