@@ -6,7 +6,8 @@
 #     masked, in case a future version adds one);
 #  2. a building whose second room (run by rank 1) names a mounting surface the model
 #     lacks: exit 1, one "error:" line, no output folder;
-#  3. a rank killed mid-run: the job ends (non-zero exit) and writes no output folder.
+#  3. a sweep under mpirun (run by rank 0 alone) gives the single-process sweep.csv;
+#  4. a rank killed mid-run: the job ends (non-zero exit) and writes no output folder.
 # Needs build/ilp and Open MPI (scripts/setup.sh installs libopenmpi-dev openmpi-bin).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -42,6 +43,22 @@ PY
 [ -f "$tmp/two/timings.json" ] || fail "the 2-rank run wrote no timings.json"
 files=$(cd "$tmp/one" && find . -type f | wc -l)
 echo "mpi_check: ok, $files files identical (timings.json aside)"
+
+# A sweep under mpirun (not spread over ranks yet: rank 0 runs it, the other waits) gives
+# the single-process sweep.csv, its time columns (*_s) masked.
+sweep=(sweep configs/office.yaml --set goals.work_plane.average_lux=300,500 --cache "$tmp/cache" --threads 1 -q)
+"$ilp" "${sweep[@]}" --out "$tmp/sweep_one" > "$tmp/sweep_one.log" 2>&1 || { cat "$tmp/sweep_one.log"; fail "the sweep failed"; }
+"${mpi[@]}" "$ilp" "${sweep[@]}" --out "$tmp/sweep_two" > "$tmp/sweep_two.log" 2>&1 \
+  || { cat "$tmp/sweep_two.log"; fail "the sweep under mpirun failed"; }
+python3 - "$tmp/sweep_one/sweep.csv" "$tmp/sweep_two/sweep.csv" <<'PY' || fail "sweep.csv differs (times masked)"
+import csv, sys
+def rows(path):
+    table = list(csv.reader(open(path)))
+    keep = [i for i, name in enumerate(table[0]) if not name.endswith("_s")]
+    return [[row[i] for i in keep] for row in table]
+sys.exit(0 if rows(sys.argv[1]) == rows(sys.argv[2]) else 1)
+PY
+echo "mpi_check: ok, the sweep under mpirun gives the same sweep.csv (times masked)"
 
 # A room that only rank 1 sees fail: its mounting surface is not in the model.
 mkdir -p "$tmp/bad/configs"
