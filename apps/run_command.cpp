@@ -455,7 +455,8 @@ void warm_variant_cache(const RunArgs& args, const JobConfig& job, const dist::C
   const std::string cache = cache_folder(args.cache_dir, args.no_cache);
   const RunOptions run = run_options(args.threads, args.max_memory);
   std::vector<VariantPlan> plans;
-  if (job.groups.empty() && !cache.empty()) plans = plan_job(job, run);
+  // Every rank plans alike (the same job and arguments); an error is rank 0's one message.
+  if (job.groups.empty() && !cache.empty()) dist::on_every_rank(comm, [&] { plans = plan_job(job, run); });
   if (plans.size() < 2) {
     if (comm.is_root())
       std::cerr << "note: this job runs on rank 0 alone, the other " << comm.size() - 1 << " ranks wait ("
