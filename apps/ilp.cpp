@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <iostream>
 #include <streambuf>
+#include <string>
 
 #include "apps/commands.h"
 #include "core/base/error.h"
+#include "dist/communicator.h"
 
 namespace {
 constexpr int kMaxThreads = 1024;  // as solver.threads of a job
@@ -44,6 +46,36 @@ class PrintableBuf : public std::streambuf {
 
  private:
   std::streambuf* to_;
+};
+
+// Under mpirun, a rank's stderr goes out a line at a time (one write each), so the
+// ranks' lines are not cut into one another by the launcher's forwarding.
+class LineBuf : public std::streambuf {
+ public:
+  explicit LineBuf(std::streambuf* to) : to_(to) {}
+  ~LineBuf() override { write(line_.size()); }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    line_.push_back(traits_type::to_char_type(c));
+    if (line_.back() == '\n' && write(line_.size()) != 0) return traits_type::eof();
+    return c;
+  }
+  // std::cerr flushes after every <<: only whole lines go out then.
+  int sync() override { return 0; }
+
+ private:
+  int write(std::size_t count) {
+    if (count == 0) return 0;
+    const auto n = static_cast<std::streamsize>(count);
+    const bool ok = to_->sputn(line_.data(), n) == n;
+    line_.erase(0, count);
+    return ok && to_->pubsync() == 0 ? 0 : -1;
+  }
+
+  std::streambuf* to_;
+  std::string line_;
 };
 
 // Puts a stream's own buffer back (flushed) before the PrintableBuf goes away.
@@ -213,7 +245,10 @@ CLI::App* add_ugr_table_command(CLI::App& app, ilp::cli::UgrTableArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  PrintableBuf out(std::cout.rdbuf()), err(std::cerr.rdbuf());
+  // Every rank of an mpirun starts MPI here (a plain start makes no MPI call).
+  ilp::dist::Communicator& comm = ilp::dist::Communicator::world();
+  LineBuf err_lines(std::cerr.rdbuf());
+  PrintableBuf out(std::cout.rdbuf()), err(comm.distributed() ? static_cast<std::streambuf*>(&err_lines) : std::cerr.rdbuf());
   const StreamRestore restore_out{std::cout, std::cout.rdbuf(&out)}, restore_err{std::cerr, std::cerr.rdbuf(&err)};
   CLI::App app{"ilp: inverse lighting through a sample-based radiosity inverse"};
   app.require_subcommand(1);
@@ -243,7 +278,24 @@ int main(int argc, char** argv) {
     // (CLI11's own codes, 105 and up, would mean something else to a caller).
     return app.exit(e) == 0 ? 0 : 1;
   }
+  struct Finalize {
+    ilp::dist::Communicator& comm;
+    ~Finalize() { comm.finalize(); }
+  } finalize{comm};
   try {
+    // A building's rooms are spread over the ranks (run_job); the other commands run
+    // on rank 0 alone, the other ranks wait for its exit code.
+    if (comm.distributed() && !*run)
+      return ilp::dist::on_root_only(comm, [&] {
+        if (*solve) return ilp::cli::run_solve(solve_args);
+        if (*accuracy) return ilp::cli::run_accuracy(acc);
+        if (*sweep) return ilp::cli::run_sweep(sweep_args);
+        if (*print) return ilp::cli::run_print(print_args);
+        if (*bench) return ilp::cli::run_bench(bench_args);
+        if (*inspect) return ilp::cli::run_inspect(inspect_args);
+        if (*ugr_table) return ilp::cli::run_ugr_table(ugr_table_args);
+        return 0;
+      });
     if (*solve) return ilp::cli::run_solve(solve_args);
     if (*accuracy) return ilp::cli::run_accuracy(acc);
     if (*run) return ilp::cli::run_job(run_args);
@@ -252,6 +304,8 @@ int main(int argc, char** argv) {
     if (*bench) return ilp::cli::run_bench(bench_args);
     if (*inspect) return ilp::cli::run_inspect(inspect_args);
     if (*ugr_table) return ilp::cli::run_ugr_table(ugr_table_args);
+  } catch (const ilp::dist::FailedElsewhere&) {
+    return 1;  // rank 0 prints the one message
   } catch (const std::bad_alloc&) {
     std::cerr << "error: out of memory (a smaller job: larger scene.max_patch_edge_m, fewer rays or candidates)\n";
     return 1;

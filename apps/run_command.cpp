@@ -27,6 +27,7 @@
 #include "job/variant_search.h"
 #include "output/atomic_file.h"
 #include "output/building_record.h"
+#include "dist/communicator.h"
 #include "output/colour_map.h"
 #include "output/plan_svg.h"
 #include "output/ply_writer.h"
@@ -442,11 +443,70 @@ void stage_room_outputs(OutputSet& set, const JobConfig& job, const RoomRun& roo
   stage_outputs(set, {room.prepared(), job, room.chosen.outcome, room.record, room.grids});
 }
 
+int run_single_room(const RunArgs& args, const JobConfig& job);
+
+namespace {
+
+// Under mpirun: the variants' operators built into the cache over the ranks, every rank
+// waiting for the others at the end. A rank's failure here is only a note (rank 0's run
+// builds what is missing and meets any real error itself). Nothing without a cache or
+// with luminaire groups or a single variant (rank 0 alone then, as the note says).
+void warm_variant_cache(const RunArgs& args, const JobConfig& job, const dist::Communicator& comm) {
+  const std::string cache = cache_folder(args.cache_dir, args.no_cache);
+  const RunOptions run = run_options(args.threads, args.max_memory);
+  std::vector<VariantPlan> plans;
+  // Every rank plans alike (the same job and arguments); an error is rank 0's one message.
+  if (job.groups.empty() && !cache.empty()) dist::on_every_rank(comm, [&] { plans = plan_job(job, run); });
+  if (plans.size() < 2) {
+    if (comm.is_root())
+      std::cerr << "note: this job runs on rank 0 alone, the other " << comm.size() - 1 << " ranks wait ("
+                << (cache.empty() ? "--no-cache: no operator cache to share variants through"
+                    : !job.groups.empty() ? "luminaire groups are not spread over ranks"
+                                          : "one product variant")
+                << "; a building's rooms are spread over ranks)\n";
+    return;
+  }
+  std::vector<VariantPlan> mine;
+  for (std::size_t v = 0; v < plans.size(); ++v)
+    if (static_cast<int>(v % static_cast<std::size_t>(comm.size())) == comm.rank()) mine.push_back(plans[v]);
+  if (comm.is_root())
+    std::cerr << "variants over ranks: " << plans.size() << " variants' operators built over " << comm.size()
+              << " ranks into " << cache << ", then the job runs on rank 0\n";
+  dist::on_every_rank(comm, [&] {
+    if (mine.empty()) return;
+    try {
+      (void)prepare_variants(job, mine, run, make_progress(args.quiet), cache, log_line, log_build);
+    } catch (const std::exception& e) {
+      std::cerr << "note: rank " << comm.rank() << " could not build its variants' operators (" << e.what()
+                << "); rank 0 builds them\n";
+    }
+  });
+}
+
+}  // namespace
+
 bool room_met(const RoomRun& room) { return room.record.all_met && room.record.no_layout.empty(); }
 
 int run_job(const RunArgs& args) {
+  const dist::Communicator& comm = dist::Communicator::world();
+  if (comm.distributed()) {
+    // Every rank reads the job; a bad file is one message (rank 0's), every rank exit 1.
+    JobConfig job;
+    dist::on_every_rank(comm, [&] { job = load_job_config(args.config); });
+    if (!job.rooms.empty()) return run_building(args, job);
+    // A single-room job's product variants: each rank builds the operators of its share
+    // (variant v on rank v mod N) into the operator cache, then rank 0 runs the job as
+    // one process does, loading them (docs/cluster.md). Its search and verification are
+    // rank 0's alone.
+    warm_variant_cache(args, job, comm);
+    return dist::on_root_only(comm, [&] { return run_single_room(args, job); });
+  }
   const JobConfig job = load_job_config(args.config);
   if (!job.rooms.empty()) return run_building(args, job);
+  return run_single_room(args, job);
+}
+
+int run_single_room(const RunArgs& args, const JobConfig& job) {
   const RunOptions run = run_options(args.threads, args.max_memory);
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.

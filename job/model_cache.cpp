@@ -304,8 +304,21 @@ std::string lighting_model_key(const JobConfig& job, const ModelSpec& model) {
 
 namespace {
 
-// Temporaries "KEY.ilpmodel.tmp.PID.N" of processes that no longer run (killed while
-// writing) are removed; a running process's are left alone.
+// This machine's name, in a temporary's name: a cache folder shared by the nodes of a
+// cluster (docs/cluster.md) holds other machines' temporaries, whose process ids mean
+// nothing here.
+std::string host_name() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0 || name[0] == '\0') return "host";
+  std::string out(name);
+  for (char& c : out)
+    if (c == '/' || c == '.') c = '_';
+  return out;
+}
+
+// Temporaries "KEY.ilpmodel.tmp.PID.N[.HOST]" of this machine's processes that no longer
+// run (killed while writing) are removed; a running process's, and another machine's,
+// are left alone.
 void remove_stale_temporaries(const fs::path& folder) {
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
@@ -316,6 +329,7 @@ void remove_stale_temporaries(const fs::path& folder) {
     char* stop = nullptr;
     const long pid = std::strtol(rest.c_str(), &stop, 10);
     if (stop == rest.c_str() || *stop != '.' || pid <= 0 || pid == ::getpid()) continue;
+    if (const char* host = std::strchr(stop + 1, '.'); host != nullptr && host_name() != host + 1) continue;
     if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
     std::error_code ignored;
     fs::remove(it->path(), ignored);
@@ -339,7 +353,7 @@ void save_lighting_model(const std::string& path, const LightingModel& model, co
   // A name of this process's own, so that two runs writing the same model (a sweep
   // in parallel) never write into one temporary file.
   static std::atomic<unsigned> serial{0};
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(serial++);
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(serial++) + "." + host_name();
   auto fail = [&](const std::string& why) {
     std::error_code ec;
     fs::remove(tmp, ec);

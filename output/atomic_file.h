@@ -62,6 +62,9 @@ class OutputSet {
   std::vector<std::string> commit();
 
   const std::string& folder() const { return folder_; }
+  // The full names staged so far, in order (a rank of a distributed run reads their
+  // bytes from staging_path to send them to rank 0, docs/cluster.md).
+  const std::vector<std::string>& staged_names() const { return written_; }
 
   // Names given from now on are in this sub-folder of the set ("rooms/office_1": a
   // building's room writes its usual file names there; "" the folder itself). The

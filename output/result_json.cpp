@@ -420,6 +420,24 @@ void write_timings_json(const std::string& path, const ResultRecord& result) {
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
 
+std::string result_record_bytes(const ResultRecord& result) {
+  json j;
+  j["result"] = to_json(result);
+  j["timings"] = timings_to_json(result);
+  return j.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+ResultRecord result_record_from_bytes(const std::string& bytes) {
+  try {
+    const json j = json::parse(bytes);
+    ResultRecord r = from_json(j.at("result"));
+    read_timings(j.at("timings"), r);
+    return r;
+  } catch (const json::exception& e) {
+    throw std::runtime_error(std::string("a room's record as received: ") + e.what());
+  }
+}
+
 namespace {
 
 // The JSON document at `path` (`what`: "result" or "timings", for messages) given to `use`.

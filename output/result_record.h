@@ -211,6 +211,11 @@ struct ResultRecord {
 void write_result_json(const std::string& path, const ResultRecord& result);
 void write_timings_json(const std::string& path, const ResultRecord& result);
 ResultRecord read_result_json(const std::string& path);
+// The record as bytes and back (result.json's document with timings.json's beside it,
+// doubles in their shortest round-trip form): what a rank sends rank 0 for each room
+// (docs/cluster.md). Throws std::runtime_error on malformed bytes.
+std::string result_record_bytes(const ResultRecord& result);
+ResultRecord result_record_from_bytes(const std::string& bytes);
 
 // The report `ilp run` and `ilp print` show: layout table, goals (target, predicted,
 // verified), power, timings.

@@ -11,6 +11,7 @@ packages=(g++ cmake make pkg-config
           librsvg2-dev fonts-dejavu-core libassimp-dev
           poppler-utils)  # pdftotext, pdffonts, pdftoppm: the report tests read report.pdf back
 packages+=(libdxflib-dev)  # tests: dxflib reads the DXF plan back (tests/data/import/README.md: assimp-utils remakes the converted office)
+packages+=(libopenmpi-dev openmpi-bin)  # MPI: mpirun -np N ilp run (docs/cluster.md)
 packages+=(clang)  # the libFuzzer harnesses (scripts/fuzz_photometry.sh)
 missing=()
 for p in "${packages[@]}"; do

@@ -11,6 +11,7 @@
 #include "job/building.h"
 #include "job/config.h"
 #include "job/job_scene.h"
+#include "job/room_exchange.h"
 #include "tests/building_scene.h"
 #include "tests/test_support.h"
 
@@ -217,6 +218,65 @@ TEST(BuildingSummary, TotalsAreSumsAndDensitiesAreAreaWeighted) {
   met[1] = record(40, 10, 300, true, {led_full});
   EXPECT_TRUE(ilp::summarize_building("ilp test", building, met).all_met);
   EXPECT_THROW((void)ilp::summarize_building("ilp test", building, {rooms[0]}), std::invalid_argument);
+}
+
+// What a rank sends rank 0 in a distributed building run (docs/cluster.md): its rooms'
+// records, times and files, or its first failure, read back as they were; the
+// building's result.json from the records received is the bytes of the one from the
+// records themselves.
+TEST(RoomExchange, ARanksReportRoundTrips) {
+  ilp::JobConfig building;
+  building.path = "floor.yaml";
+  building.rooms.resize(2);
+  building.rooms[0].name = "office";
+  building.rooms[1].name = "hall";
+  const ilp::BillLine led{.product = "led", .source = "led.ldt", .count = 4, .rated_flux_lm = 2111.37,
+                          .unit_power_w = 22.3, .output_fraction = 0.4912345678901234, .total_power_w = 43.817};
+  std::vector<ilp::ResultRecord> rooms{record(43.817, 30.000000001, 401.1 / 3.0, true, {led}),
+                                       record(1.0 / 3.0, 9.7, 300, false, {led})};
+  rooms[1].timings_s = {{"prepare", 1.25}, {"search", 0.1}};
+  rooms[1].no_layout = "";
+  ilp::RankReport report;
+  report.rooms.push_back({0, 3.5, rooms[0], {{"rooms/office/result.json", "{}\n"}, {"rooms/office/plan.png", std::string("\0\x89PNG\r\n", 7)}}});
+  report.rooms.push_back({1, 0.25, rooms[1], {}});
+  const ilp::RankReport back = ilp::decode_rank_report(ilp::encode_rank_report(report));
+  ASSERT_EQ(back.rooms.size(), 2u);
+  EXPECT_FALSE(back.failure);
+  EXPECT_EQ(back.rooms[0].room, 0u);
+  EXPECT_EQ(back.rooms[1].room, 1u);
+  EXPECT_EQ(back.rooms[0].seconds, 3.5);
+  EXPECT_EQ(back.rooms[0].files, report.rooms[0].files);
+  EXPECT_TRUE(back.rooms[1].files.empty());
+  for (std::size_t r = 0; r < 2; ++r)
+    EXPECT_EQ(ilp::result_record_bytes(back.rooms[r].record), ilp::result_record_bytes(rooms[r])) << r;
+  EXPECT_EQ(back.rooms[1].record.timings_s.size(), 2u);
+  // The building's files from the records received are the same bytes.
+  const std::vector<ilp::ResultRecord> received{back.rooms[0].record, back.rooms[1].record};
+  TempDir dir;
+  ilp::write_building_json(dir.file("a.json"), ilp::summarize_building("ilp test", building, rooms));
+  ilp::write_building_json(dir.file("b.json"), ilp::summarize_building("ilp test", building, received));
+  EXPECT_EQ(ilp::test::read_file(dir.file("a.json")), ilp::test::read_file(dir.file("b.json")));
+
+  ilp::RankReport failed;
+  failed.failure = ilp::RoomFailure{5, "floor.yaml:12:3: rooms[5].mounting_surface = x: no such surface"};
+  const ilp::RankReport f = ilp::decode_rank_report(ilp::encode_rank_report(failed));
+  ASSERT_TRUE(f.failure);
+  EXPECT_EQ(f.failure->room, 5u);
+  EXPECT_EQ(f.failure->message, failed.failure->message);
+  EXPECT_TRUE(f.rooms.empty());
+  // Bytes cut short or of something else are refused, not read as a report.
+  const std::string bytes = ilp::encode_rank_report(report);
+  EXPECT_THROW((void)ilp::decode_rank_report(bytes.substr(0, bytes.size() - 3)), std::runtime_error);
+  EXPECT_THROW((void)ilp::decode_rank_report("not a report"), std::runtime_error);
+  EXPECT_THROW((void)ilp::decode_rank_report(bytes + "x"), std::runtime_error);
+}
+
+TEST(RoomExchange, RoomsGoRoundRobinOverRanks) {
+  EXPECT_EQ(ilp::room_rank(0, 1), 0);
+  EXPECT_EQ(ilp::room_rank(6, 1), 0);
+  EXPECT_EQ(ilp::room_rank(3, 2), 1);
+  EXPECT_EQ(ilp::room_rank(4, 2), 0);
+  EXPECT_EQ(ilp::room_rank(7, 4), 3);
 }
 
 }  // namespace

@@ -349,6 +349,29 @@ TEST(ModelCache, TemporariesOfKilledRunsAreRemoved) {
   EXPECT_TRUE(std::filesystem::exists(other));
 }
 
+// A cache folder shared by a cluster's nodes (docs/cluster.md): a temporary named with
+// another machine is that machine's to remove (its process id means nothing here); one
+// named with this machine and a process that has gone is removed.
+TEST(ModelCache, AnotherMachinesTemporariesAreLeftAlone) {
+  TempDir dir;
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  char host[256] = {};
+  ASSERT_EQ(gethostname(host, sizeof host - 1), 0);
+  std::string here(host);
+  for (char& c : here)
+    if (c == '/' || c == '.') c = '_';
+  const std::string tmp = "abc.ilpmodel.tmp." + std::to_string(child) + ".0.";
+  const std::string theirs = dir.write(tmp + "node_" + here, "another node writing");
+  const std::string ours = dir.write(tmp + here, "half a model");
+  LightingModel model;
+  EXPECT_TRUE(load_lighting_model(dir.file("abc.ilpmodel"), "abc", model).has_value());
+  EXPECT_TRUE(std::filesystem::exists(theirs));
+  EXPECT_FALSE(std::filesystem::exists(ours));
+}
+
 TEST(ModelCache, FlippedByteIsCorrupt) {
   TempDir dir;
   expect_rebuilt(dir, cache_job(dir), "corrupt: checksum mismatch", [](const std::string& file, const LightingModel&) {

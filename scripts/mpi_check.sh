@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# The MPI checks (docs/cluster.md), run by .ci/run after the test suite:
+#  1. configs/floor.yaml (seven rooms) under `mpirun -np 2` gives the same files, byte
+#     for byte, as the single-process run (timings.json, the one file of wall-clock
+#     times, left out; result.json also compared with any "timings"/"seconds" key
+#     masked, in case a future version adds one);
+#  2. a building whose second room (run by rank 1) names a mounting surface the model
+#     lacks: exit 1, one "error:" line, no output folder;
+#  3. a sweep under mpirun (run by rank 0 alone) gives the single-process sweep.csv;
+#  4. a rank killed mid-run: the job ends (non-zero exit) and writes no output folder.
+# Needs build/ilp and Open MPI (scripts/setup.sh installs libopenmpi-dev openmpi-bin).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repo=$PWD
+ilp=$repo/build/ilp
+[ -x "$ilp" ] || { echo "mpi_check: build/ilp missing (bash scripts/setup.sh)" >&2; exit 1; }
+command -v mpirun > /dev/null || { echo "mpi_check: mpirun missing (apt-get install openmpi-bin)" >&2; exit 1; }
+mpi=(mpirun --oversubscribe -np 2)
+[ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
+tmp=$(mktemp -d /tmp/ilp_mpi_check.XXXXXX)
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "mpi_check: FAIL: $*" >&2; exit 1; }
+
+# The single-process run fills a fresh cache; the 2-rank run builds its operators anew.
+echo "mpi_check: configs/floor.yaml, 1 process"
+"$ilp" run configs/floor.yaml --out "$tmp/one" --cache "$tmp/cache" --threads 1 -q > "$tmp/one.log" 2>&1 \
+  || { cat "$tmp/one.log"; fail "the single-process run failed"; }
+echo "mpi_check: configs/floor.yaml, mpirun -np 2"
+"${mpi[@]}" "$ilp" run configs/floor.yaml --out "$tmp/two" --no-cache --threads 1 -q > "$tmp/two.log" 2>&1 \
+  || { cat "$tmp/two.log"; fail "the 2-rank run failed"; }
+diff -r -x timings.json "$tmp/one" "$tmp/two" > "$tmp/diff.txt" || { head -40 "$tmp/diff.txt"; fail "files differ between 1 and 2 ranks"; }
+python3 - "$tmp/one/result.json" "$tmp/two/result.json" <<'PY' || fail "result.json differs (timings masked)"
+import json, sys
+def mask(v):
+    if isinstance(v, dict):
+        return {k: ("*" if "timings" in k or "seconds" in k else mask(x)) for k, x in v.items()}
+    if isinstance(v, list):
+        return [mask(x) for x in v]
+    return v
+a, b = (mask(json.load(open(p))) for p in sys.argv[1:3])
+sys.exit(0 if a == b else 1)
+PY
+[ -f "$tmp/two/timings.json" ] || fail "the 2-rank run wrote no timings.json"
+files=$(cd "$tmp/one" && find . -type f | wc -l)
+echo "mpi_check: ok, $files files identical (timings.json aside)"
+
+# A sweep under mpirun (not spread over ranks yet: rank 0 runs it, the other waits) gives
+# the single-process sweep.csv, its time columns (*_s) masked.
+sweep=(sweep configs/office.yaml --set goals.work_plane.average_lux=300,500 --cache "$tmp/cache" --threads 1 -q)
+"$ilp" "${sweep[@]}" --out "$tmp/sweep_one" > "$tmp/sweep_one.log" 2>&1 || { cat "$tmp/sweep_one.log"; fail "the sweep failed"; }
+"${mpi[@]}" "$ilp" "${sweep[@]}" --out "$tmp/sweep_two" > "$tmp/sweep_two.log" 2>&1 \
+  || { cat "$tmp/sweep_two.log"; fail "the sweep under mpirun failed"; }
+python3 - "$tmp/sweep_one/sweep.csv" "$tmp/sweep_two/sweep.csv" <<'PY' || fail "sweep.csv differs (times masked)"
+import csv, sys
+def rows(path):
+    table = list(csv.reader(open(path)))
+    keep = [i for i, name in enumerate(table[0]) if not name.endswith("_s")]
+    return [[row[i] for i in keep] for row in table]
+sys.exit(0 if rows(sys.argv[1]) == rows(sys.argv[2]) else 1)
+PY
+echo "mpi_check: ok, the sweep under mpirun gives the same sweep.csv (times masked)"
+
+# A room that only rank 1 sees fail: its mounting surface is not in the model.
+mkdir -p "$tmp/bad/configs"
+ln -s "$repo/data" "$tmp/bad/data"
+sed 's/mounting_surface: office_2_ceiling/mounting_surface: office_2_roof/' configs/floor.yaml > "$tmp/bad/configs/floor.yaml"
+grep -q office_2_roof "$tmp/bad/configs/floor.yaml" || fail "could not make the failing job"
+set +e
+"${mpi[@]}" "$ilp" run "$tmp/bad/configs/floor.yaml" --out "$tmp/bad_out" --cache "$tmp/cache" --threads 1 -q \
+  > "$tmp/bad.log" 2> "$tmp/bad.err"
+code=$?
+set -e
+[ "$code" -eq 1 ] || { cat "$tmp/bad.err"; fail "a failing rank gave exit $code, not 1"; }
+[ "$(grep -c '^error:' "$tmp/bad.err")" -eq 1 ] || { cat "$tmp/bad.err"; fail "not exactly one error line"; }
+grep -q office_2_roof "$tmp/bad.err" || { cat "$tmp/bad.err"; fail "the error does not name the bad surface"; }
+[ ! -e "$tmp/bad_out" ] || fail "a failing rank left an output folder"
+echo "mpi_check: ok, a failing rank: exit 1, $(grep '^error:' "$tmp/bad.err" | cut -c1-100)..."
+
+# A rank killed mid-run (rank 1, a few seconds in): the job ends, nothing written.
+set +e
+"${mpi[@]}" "$ilp" run configs/floor.yaml --out "$tmp/killed" --no-cache --threads 1 -q > "$tmp/kill.log" 2>&1 &
+launcher=$!
+victim=""
+for _ in $(seq 1 100); do
+  sleep 0.1
+  for pid in $(pgrep -P "$launcher" 2> /dev/null); do
+    if tr '\0' '\n' < "/proc/$pid/environ" 2> /dev/null | grep -qx OMPI_COMM_WORLD_RANK=1; then victim=$pid; fi
+  done
+  [ -n "$victim" ] && break
+done
+[ -n "$victim" ] || { kill "$launcher"; wait "$launcher"; fail "found no rank 1 to kill"; }
+sleep 2
+kill -9 "$victim"
+wait "$launcher"
+code=$?
+set -e
+[ "$code" -ne 0 ] || fail "the job with a killed rank exited 0"
+[ ! -e "$tmp/killed" ] || fail "a killed rank left an output folder"
+echo "mpi_check: ok, a killed rank: exit $code, no output folder"
