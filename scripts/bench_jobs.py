@@ -1,0 +1,62 @@
+#!/usr/bin/env python3
+"""Times whole `ilp run` jobs from a cold start (--no-cache): the median of N runs of
+each job, its phases (timings.json), verification's share, and the estimate the run
+printed before its work, as a Markdown table (docs/benchmarks.md).
+
+    python3 scripts/bench_jobs.py [--ilp ./build/ilp] [--runs 3] configs/classroom.yaml ...
+
+Several binaries (--ilp A --ilp B) are measured side by side: each run of each job runs
+every binary in turn, so that a load that comes and goes falls on all of them."""
+import argparse, json, re, statistics, subprocess, tempfile, time, os
+
+
+def run_once(ilp, job, out):
+    start = time.monotonic()
+    p = subprocess.run([ilp, "run", job, "--no-cache", "--out", out], capture_output=True, text=True)
+    wall = time.monotonic() - start
+    if p.returncode not in (0, 2):
+        raise SystemExit(f"{ilp} run {job}: exit {p.returncode}\n{p.stderr[-2000:]}")
+    estimate = None
+    m = re.search(r"estimate: the whole run[^\n]*about ([0-9.]+) s", p.stderr)
+    if m:
+        estimate = float(m.group(1))
+    else:
+        found = re.findall(r"estimate: in all about ([0-9.]+) s", p.stderr)
+        if found:
+            estimate = sum(float(x) for x in found)
+    with open(os.path.join(out, "timings.json")) as f:
+        t = json.load(f)["timings_s"]
+    return {"wall": wall, "estimate": estimate, "verification": t.get("verification", 0.0),
+            "operator": t.get("operator", 0.0), "exit": p.returncode}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--ilp", action="append")
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("jobs", nargs="+")
+    a = ap.parse_args()
+    binaries = a.ilp or ["./build/ilp"]
+    results = {(b, j): [] for b in binaries for j in a.jobs}
+    with tempfile.TemporaryDirectory() as tmp:
+        for r in range(a.runs):
+            for j in a.jobs:
+                for i, b in enumerate(binaries):
+                    results[(b, j)].append(run_once(b, j, os.path.join(tmp, f"{i}_{r}_{os.path.basename(j)}")))
+    print("| job | binary | wall s (median of %d) | runs | operator s | verification s | verification share | estimate s | estimate / measured |" % a.runs)
+    print("|---|---|---|---|---|---|---|---|---|")
+    for j in a.jobs:
+        for b in binaries:
+            rs = results[(b, j)]
+            wall = statistics.median(x["wall"] for x in rs)
+            op = statistics.median(x["operator"] for x in rs)
+            ver = statistics.median(x["verification"] for x in rs)
+            est = rs[0]["estimate"]
+            ratio = f"{est / wall:.2f}" if est else "-"
+            each = ", ".join("%.1f" % x["wall"] for x in rs)
+            print(f"| {j} | {b} | {wall:.1f} | {each} | {op:.1f} | {ver:.1f} | "
+                  f"{100 * ver / wall:.0f} % | {est if est else '-'} | {ratio} |")
+
+
+if __name__ == "__main__":
+    main()
