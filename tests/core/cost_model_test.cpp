@@ -42,18 +42,15 @@ double phase_seconds(const CostEstimate& e, const std::string& prefix) {
 // a photometric pendant at 326 candidate positions, k = 3,353, 3 channels, 128 rays,
 // counts up to 16, 5,400 arrangements, exact verification from 16 indirect rays.
 CostCounts classroom_pendants() {
-  CostCounts c;
+  CostCounts c = classroom();
   c.patches = c.population = 167659;
+  c.goal_patches = 0;
   c.grid_points = 184;
   c.sources = 326;
   c.sample_size = 3353;
-  c.channels = 3;
-  c.rays_per_patch = 128;
   c.photometric = true;
   c.luminaires = 16;
   c.evaluations = 5400;
-  c.verify = CostCounts::Verify::exact;
-  c.verify_rays = 128;
   c.verify_indirect_rays = 128;
   c.verify_first_indirect_rays = 16;
   c.verify_rounds = 3;
