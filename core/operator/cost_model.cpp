@@ -104,13 +104,15 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
   const double D_goal = 8.0 * G * L;
   const double pair_factor = c.photometric ? m.photometric_pair_factor : 1.0;
   const std::string grid_setting = "grids[].spacing_m (fewer points) or grids[].max_points";
+  out.phases.push_back({"reading the model, meshing and the BVH", n * m.scene_patch_s, 0.0,
+                        "scene.max_patch_edge_m (fewer patches)"});
   if (c.grid_points > 0)
     out.phases.push_back({"laying grids (" + std::to_string(c.grid_points) + " points at most)",
                           P * m.grid_rays_per_cell * m.gather_ray_s + d(c.grid_outline_tests) * m.outline_test_s,
                           P * kGridPointBytes, grid_setting});
   out.phases.push_back({"goal rows and direct light at goal patches" + std::string(P > 0 ? " and grid points" : ""),
                         ((G - P) * c.rays_per_patch + P * point_rays) * m.gather_ray_s +
-                            G * L * c.direct_rays * m.precise_pair_ray_s * pair_factor,
+                            G * L * c.direct_rays * m.precise_pair_ray_s,
                         goal_nnz * kRowNnzPeakBytes + 2.0 * D_goal,
                         P > 0 ? grid_setting + ", or luminaires.candidate_spacing_m (fewer candidates)"
                               : "scene.max_patch_edge_m (fewer goal patches) or luminaires.candidate_spacing_m (fewer "
@@ -126,10 +128,10 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     phases.push_back({label + "sample rows (k = " + std::to_string(static_cast<long long>(kk)) + ")",
                       kk * c.rays_per_patch * m.gather_ray_s, held + sample_nnz * kRowNnzPeakBytes, setting});
     // The sample's direct light is the cheap estimate too, but a census's is precise.
-    const double sample_pair_s = kk >= pop ? c.direct_rays * m.precise_pair_ray_s : m.cheap_pair_s;
+    const double sample_pair_s = kk >= pop ? c.direct_rays * m.precise_pair_ray_s : m.cheap_pair_s * pair_factor;
     phases.push_back({label + "direct light at sample and hit patches (" + std::to_string(static_cast<long long>(hits)) +
                           " cheap)",
-                      (kk * sample_pair_s + hits * m.cheap_pair_s) * L * pair_factor,
+                      (kk * sample_pair_s + hits * m.cheap_pair_s * pair_factor) * L,
                       held + 2.0 * sample_nnz * kRowNnzBytes + 3.0 * 8.0 * kk * L + 2.0 * 8.0 * hits * L,
                       "luminaires.candidate_spacing_m (fewer candidates) or " + setting});
     phases.push_back({label + "k x k solve (" + std::to_string(c.channels) + (c.channels == 1 ? " channel)" : " channels)"),
@@ -173,8 +175,8 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     const int steps = first < indirect ? 2 : 1;
     const double other_rays = std::min<double>(indirect, first < indirect ? 2.0 * first : first);
     const int row_rays = n > 0.0 ? static_cast<int>(std::ceil((Gp * c.verify_rays + (n - Gp) * other_rays) / n)) : 1;
-    const double per = (n * row_rays + P * c.verify_rays) * m.gather_ray_s +
-                       (G * c.direct_rays * m.precise_pair_ray_s + n * m.cheap_pair_s) * Lv * pair_factor +
+    const double per = n * m.bvh_patch_s + (n * row_rays + P * c.verify_rays) * m.gather_ray_s +
+                       (G * c.direct_rays * m.precise_pair_ray_s + n * m.cheap_pair_s * pair_factor) * Lv +
                        steps * m.gauss_seidel_sweeps * row_nnz(n, row_rays, c.patches) * m.gauss_seidel_nnz_s;
     out.phases.push_back({"verification (exact, " + std::to_string(c.verify_rays) + " rays per goal row, " +
                               std::to_string(static_cast<int>(other_rays)) + " elsewhere (up to " +
@@ -185,7 +187,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     const double kv = d(c.verify_sample_size);
     const double hits = std::max(0.0, expected_hit_patches(kv + G, c.verify_rays, pop, m) - kv - G);
     const double per = (kv + G) * c.verify_rays * m.gather_ray_s +
-                       ((kv + G) * c.direct_rays * m.precise_pair_ray_s + hits * m.cheap_pair_s) * Lv * pair_factor +
+                       ((kv + G) * c.direct_rays * m.precise_pair_ray_s + hits * m.cheap_pair_s * pair_factor) * Lv +
                        interreflection_flops(kv, Lv, c.channels, c.verify_rays, m) * m.sparse_flop_s;
     out.phases.push_back({"verification (sample, k = " + std::to_string(c.verify_sample_size) + ", " +
                               rounds_text(c.verify_rounds) + ")",

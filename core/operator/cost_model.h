@@ -27,11 +27,16 @@ struct MachineCosts {
   int gauss_seidel_sweeps = 24;             // sweeps a typical solve needs (relative residual 1e-6)
   double hit_coverage = 0.13;               // distinct patches hit ~ pop (1 - exp(-coverage rows rays / pop)): the
                                             // classroom's 3,537 rows of 128 rays hit 49,400 of 160,000 (2026-12-03)
-  // A photometric product's direct light per pair (its intensity table looked up at each
-  // of the opening's point sources and shadow-ray targets, the opening's form factor)
-  // against a Lambertian panel's closed form: the classroom's pendant, 15.0 M cheap pairs
-  // at the patches the rows hit in 5.7 s, 3.8e-7 s a pair (2026-12-03).
+  // A photometric product's cheap direct light per pair (its intensity table looked up at
+  // each of the opening's point sources and shadow-ray targets) against a Lambertian
+  // panel's closed form: the classroom's pendant, 15.0 M cheap pairs at the patches the
+  // rows hit in 5.7 s, 3.8e-7 s a pair (2026-12-03). A precise pair's cost is its shadow
+  // rays' (office_products' goal rows: 3.3-4.3 s measured, 3.4 s estimated without it).
   double photometric_pair_factor = 6.0;
+  // Reading and meshing the model and building its BVH, per patch: the conference's
+  // 346,551 patches in 0.71 + 0.28 s, the classroom's 167,659 in 0.15-0.30 + 0.20-0.24 s.
+  double scene_patch_s = 2.8e-6;
+  double bvh_patch_s = 0.8e-6;              // the verification's own BVH (its scene holds the luminaires)
   int grid_rays_per_cell = 8;               // laying a grid: 6 inside-solid rays and 2 floor rays a cell
   double outline_test_s = 1.5e-8;           // one point against one outline triangle, 9 times (the band)
 };
