@@ -33,10 +33,6 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 // The verification's rays are independent of the operator's.
 constexpr std::uint64_t kVerificationSeedSalt = 0x5EED5EEDull;
 
-}  // namespace
-
-namespace {
-
 // The exact solve's results at every patch and, gathered from its radiosity, at the goal points.
 void take_exact_solution(const PreparedJob& prepared, const Scene& scene, const ProgressiveExactSolve& solve,
                          const ExactSolveOptions& options, const ProgressCallback& progress, Verification& out) {
