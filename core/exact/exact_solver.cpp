@@ -42,14 +42,10 @@ void account_flux(const Scene& scene, const FormFactorRows& rows, const Radiosit
   s.lost_lm = photometric(lost);
 }
 
-}  // namespace
-
-namespace {
-
 // Each refinement's rays follow their own stream.
 constexpr std::uint64_t kRefinementSeedSalt = 0x9E3779B97F4A7C15ull;
 
-// Rows `r` of `base` (in scene order) with the rows of `more` (the patches `others`,
+// The rows of `base` (every patch, in scene order) with the rows of `more` (the patches `others`,
 // ascending) merged in: (n_base x base + n_more x more) / (n_base + n_more).
 void merge_rows(FormFactorRows& base, const FormFactorRows& more, const std::vector<int>& others, int n_base,
                 int n_more) {
