@@ -83,6 +83,7 @@ struct SampleSettings {
   double pilot_fraction = 0.02;    // their size, of the reflecting patches
   int max_size_for_target = 4000;  // solver.max_sample_size: the largest k target_error or sample_fraction gives
   FileLoc max_size_loc;
+  int reflected_stride = 2;        // the candidates' reflected light at every n-th candidate (ModelSpec)
 
   // The sample-size part, as the operator's stage takes it (core/operator/sample_size.h).
   SampleSizeRule rule() const;

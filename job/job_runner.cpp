@@ -399,14 +399,41 @@ std::vector<GoalJudgement> judge(const LightingModel& model, const SearchSpec& s
   return judge_goals(model, spec, {lux, eyes.eye_indirect_lux, eyes.glare});
 }
 
-// The search layout's direct light at the goal rows, through the candidates' direct columns.
+// The search layout's direct light at the goal rows, through the candidates' direct columns
+// (and the luminaires' own at the goal points where the search checked them).
 Eigen::VectorXd predicted_direct_lux(const LightingModel& model, const LayoutEvaluation& best) {
   Eigen::VectorXd a = model.fixed_direct_lux;
   for (const PlacedLuminaire& l : best.luminaires)
     for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
       if (l.blend.candidates[k] >= 0)
         a += (l.flux_lm * l.blend.weights[k]) * model.candidate_direct_lux_per_lm.col(l.blend.candidates[k]);
-  return a.cwiseMax(0.0);
+  a = a.cwiseMax(0.0);
+  if (best.direct_correction_lux.size() == a.size()) a = (a + best.direct_correction_lux).cwiseMax(0.0);
+  return a;
+}
+
+// The search's check of its best arrangements (PointDirectLight): the luminaires at the
+// goal points as the verification computes direct light there (its options and seed),
+// each alone in a scene of its own, shadowed by the job scene through its BVH (the
+// luminaires do not shade one another, as the candidates do not).
+PointDirectLight point_direct_light(const PreparedJob& prepared, const SearchLuminaire& s) {
+  if (prepared.model.goal_points.empty() || !prepared.caster) return {};
+  DirectLightOptions options = exact_options(prepared.job, prepared.run).direct_light;
+  options.seed = prepared.job.form_factors.seed;
+  return [&prepared, s, options](const std::vector<PlacedLuminaire>& luminaires) {
+    Scene alone;
+    alone.channels = prepared.loaded.scene.channels;
+    std::vector<int> surfaces;
+    for (std::size_t j = 0; j < luminaires.size(); ++j)
+      surfaces.push_back(add_luminaire(alone, luminaire_name(j), s.type,
+                                       {luminaires[j].position_m, s.rotation_deg, s.tilt_deg}, luminaires[j].flux_lm));
+    const LuminaireLight light =
+        compute_luminaire_light_at_points(alone, *prepared.caster, prepared.model.goal_points, surfaces, options);
+    Eigen::VectorXd lux = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(prepared.model.goal_points.size()));
+    for (std::size_t j = 0; j < luminaires.size(); ++j)
+      lux += luminaires[j].flux_lm * light.lux_per_lm.col(static_cast<Eigen::Index>(j));
+    return lux;
+  };
 }
 
 // One search (at the targets of `searched`) and its verification, judged against the
@@ -417,7 +444,7 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
   const LightingModel& model = prepared.model;
   const SearchSpec& job = real;
   JobOutcome out;
-  out.search = search_layout(model, searched, progress, bounds);
+  out.search = search_layout(model, searched, progress, bounds, point_direct_light(prepared, searched.luminaire));
   if (out.search.beaten) return out;  // nothing to verify
   const LayoutEvaluation& best = out.search.best;
   out.luminaires = best.luminaires;

@@ -79,6 +79,7 @@ ModelSpec model_spec(const JobConfig& job, const ProductVariant& product, const 
   m.grids = job.grids;
   m.operator_options = operator_options(job, run);
   m.sample_size = job.sample.rule();
+  m.reflected_stride = job.sample.reflected_stride;
   m.probe_flux_lm = product.dim_max * product.rated_flux_lm;
   m.threads = worker_threads(job, run);
   return m;

@@ -38,6 +38,8 @@ std::string tried_line(const VariantPlan& plan, const JobOutcome& outcome, doubl
   line << std::fixed << std::setprecision(1) << plan.product.product << " at " << plan.product.rotation_deg << " deg: ";
   if (!outcome.search.refused.empty())
     line << "not searched: " << outcome.search.refused;
+  else if (outcome.search.beaten && !outcome.search.beaten_note.empty())
+    line << "searched, not verified: " << outcome.search.beaten_note;
   else if (outcome.search.beaten && !std::isfinite(least_w))
     line << "not searched: no count reaches an average target at full output";
   else if (outcome.search.beaten)

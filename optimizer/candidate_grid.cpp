@@ -388,4 +388,74 @@ Eigen::Vector2d CandidateGrid::nearest_candidate_m(const Eigen::Vector2d& xy_m) 
   return best;
 }
 
+namespace {
+
+// The computed nodes around index i of an axis with `last` + 1 nodes, every `stride`-th
+// and the last: (lo, hi, weight of hi); lo == hi when i is one of them.
+struct AxisSpan {
+  int lo = 0, hi = 0;
+  double t = 0.0;
+};
+AxisSpan axis_span(int i, int last, int stride) {
+  if (i % stride == 0 || i == last) return {i, i, 0.0};
+  const int lo = i - i % stride, hi = std::min(lo + stride, last);
+  return {lo, hi, static_cast<double>(i - lo) / (hi - lo)};
+}
+
+}  // namespace
+
+ReflectedBlend candidate_reflected_blend(const CandidateGrid& grid, std::size_t fixed_sources, int stride) {
+  if (stride < 1) throw std::invalid_argument("candidate_reflected_blend: stride must be >= 1");
+  const std::size_t sources = fixed_sources + grid.size();
+  if (stride == 1) return identity_blend(sources);
+  const int last_x = grid.nodes_x() - 1, last_y = grid.nodes_y() - 1;
+  // Each candidate's blend over candidates (before the computed ones are numbered).
+  std::vector<std::vector<std::pair<int, double>>> from(grid.size());
+  std::vector<bool> computed(grid.size(), false);
+  for (int j = 0; j <= last_y; ++j)
+    for (int i = 0; i <= last_x; ++i) {
+      const int c = grid.candidate_at_node(i, j);
+      if (c < 0) continue;
+      const AxisSpan x = axis_span(i, last_x, stride), y = axis_span(j, last_y, stride);
+      std::vector<std::pair<int, double>> blend;
+      bool complete = true;
+      for (const auto& [a, wa] : {std::pair{x.lo, 1.0 - x.t}, std::pair{x.hi, x.t}})
+        for (const auto& [b, wb] : {std::pair{y.lo, 1.0 - y.t}, std::pair{y.hi, y.t}}) {
+          const double w = wa * wb;
+          if (w == 0.0) continue;
+          const int n = grid.candidate_at_node(a, b);
+          if (n < 0) complete = false;
+          blend.emplace_back(n, w);
+        }
+      const bool own = blend.size() == 1 && blend[0].first == c;
+      if (!complete || own) {
+        computed[static_cast<std::size_t>(c)] = true;
+        blend = {{c, 1.0}};
+      }
+      from[static_cast<std::size_t>(c)] = std::move(blend);
+    }
+  // A blended candidate's nodes are computed ones: those with w > 0 lie on the computed
+  // lattice, where every candidate is its own blend.
+  ReflectedBlend out;
+  std::vector<int> index(sources, -1);
+  for (std::size_t s = 0; s < sources; ++s)
+    if (s < fixed_sources || computed[s - fixed_sources]) {
+      index[s] = static_cast<int>(out.computed.size());
+      out.computed.push_back(static_cast<int>(s));
+    }
+  std::vector<Eigen::Triplet<double>> w;
+  for (std::size_t s = 0; s < sources; ++s) {
+    if (s < fixed_sources) {
+      w.emplace_back(index[s], static_cast<int>(s), 1.0);
+      continue;
+    }
+    for (const auto& [c, weight] : from[s - fixed_sources])
+      w.emplace_back(index[fixed_sources + static_cast<std::size_t>(c)], static_cast<int>(s), weight);
+  }
+  out.weights.resize(static_cast<Eigen::Index>(out.computed.size()), static_cast<Eigen::Index>(sources));
+  out.weights.setFromTriplets(w.begin(), w.end());
+  check_blend(out, sources);
+  return out;
+}
+
 }  // namespace ilp

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/operator/reflected_blend.h"
 #include "core/scene/scene.h"
 
 namespace ilp {
@@ -96,6 +97,11 @@ class CandidateGrid {
   // The grid node nearest to (x, y) that holds a candidate (for layouts snapped to a
   // ceiling module); (x, y) itself when the grid is empty.
   Eigen::Vector2d nearest_candidate_m(const Eigen::Vector2d& xy_m) const;
+  // The candidate at node (i, j) of the nodes_x() x nodes_y() lattice, -1 where none fits
+  // or the node is outside it.
+  int candidate_at_node(int i, int j) const {
+    return i < 0 || j < 0 || i > nx_ || j > ny_ ? -1 : node(i, j);
+  }
 
  private:
   // The nodes' extent and spacing over a plan box (the surface's or the plane's).
@@ -111,5 +117,13 @@ class CandidateGrid {
   std::size_t ignored_patches_ = 0;
   double mounting_area_m2_ = 0.0;
 };
+
+// The candidates' reflected light (core/operator/reflected_blend.h) computed at every
+// `stride`-th node along x and y (and the last node of each axis), and blended linearly
+// (bilinearly) between those for the nodes in between; a node whose surrounding computed
+// nodes do not all hold candidates (a hole, an outline's edge) is computed itself. The
+// light sources are `fixed_sources` fixed ones (computed) and then one per candidate, in
+// candidate order. stride 1: every source computed.
+ReflectedBlend candidate_reflected_blend(const CandidateGrid& grid, std::size_t fixed_sources, int stride);
 
 }  // namespace ilp

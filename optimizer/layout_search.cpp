@@ -272,10 +272,37 @@ class Evaluator {
   }
 
   LayoutEvaluation operator()(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& w) const {
-    const SearchLuminaire& s = spec_.luminaire;
-    const std::size_t n = xy.size();
     LayoutEvaluation out;
     const Eigen::VectorXd a = blend(xy, w, out);
+    judge_light(a, w, out);
+    return out;
+  }
+
+  // The same with the luminaires' own direct light at the goal points (exact_point_direct,
+  // lux at relative fluxes w, one per goal point) in place of the blend of the candidates'
+  // direct columns; out.direct_correction_lux holds the difference at the chosen scale.
+  LayoutEvaluation with_point_direct(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& w,
+                                     const Eigen::VectorXd& exact_point_direct) const {
+    LayoutEvaluation out;
+    Eigen::VectorXd a = blend(xy, w, out);
+    const Eigen::Index Q = exact_point_direct.size(), first = a.size() - Q;
+    Eigen::VectorXd blended_direct = Eigen::VectorXd::Zero(Q);
+    for (const auto& [column, weight] : terms_)
+      blended_direct += weight * model_.candidate_direct_lux_per_lm.col(column).tail(Q);
+    Eigen::VectorXd unit_correction = Eigen::VectorXd::Zero(a.size());
+    unit_correction.tail(Q) = exact_point_direct - blended_direct.cwiseMax(0.0);
+    a = (a + unit_correction).cwiseMax(0.0);
+    judge_light(a, w, out);
+    out.direct_correction_lux = unit_correction * out.flux_scale;
+    return out;
+  }
+
+ private:
+  // Sets the flux scale for the light a at relative fluxes w, judges the goals and
+  // constraints there, and the objective.
+  void judge_light(const Eigen::VectorXd& a, const std::vector<double>& w, LayoutEvaluation& out) const {
+    const SearchLuminaire& s = spec_.luminaire;
+    const std::size_t n = w.size();
     const Eigen::VectorXd& f = model_.fixed_lux;
     const double w_max = n ? *std::max_element(w.begin(), w.end()) : 0.0;
     const double w_min = n ? *std::min_element(w.begin(), w.end()) : 0.0;
@@ -309,6 +336,7 @@ class Evaluator {
     }
     scale = std::clamp(scale, scale_lo, scale_hi);
 
+    out.flux_scale = scale;
     out.lux = f + scale * a;
     glare_at_eyes(out, terms_, scale, w);
     out.goals = judge_goals(model_, spec_, areas_, {out.lux, out.eye_indirect_lux, out.glare});
@@ -346,10 +374,8 @@ class Evaluator {
     const double reference_power_w = std::max(1e-300, static_cast<double>(n) * s.flux_max_lm / s.efficacy_lm_per_w);
     out.objective = (objective_rule(spec_.objective).minimises_power ? out.power_w / reference_power_w : deviation) +
                     kPenaltyWeight * penalty;
-    return out;
   }
 
- private:
   // By value: binding tbb::task_arena::automatic to make_unique's reference would need
   // its address, which the shared TBB library does not give a position-independent binary.
   static int arena_threads(int threads) {
@@ -760,8 +786,61 @@ std::vector<Arrangement> layout_arrangements(const LightingModel& model, const S
 
 // Field, rows and bays: every arrangement judged at its one output (no NLopt: nothing
 // moves). Min_power skips an arrangement that cannot draw less than a layout already found.
+// min_power with a power to beat: a best layout that draws no less, or misses a goal, as
+// predicted is not worth verifying (SearchResult::beaten_note).
+void beaten_by_power(const SearchSpec& spec, const SearchBounds& bounds, SearchResult& result) {
+  if (result.beaten || !objective_rule(spec.objective).minimises_power || !std::isfinite(bounds.power_to_beat_w)) return;
+  const LayoutEvaluation& best = result.best;
+  if (best.feasible && best.power_w < bounds.power_to_beat_w) return;
+  result.beaten = true;
+  result.beaten_note = best.feasible ? "its best layout as predicted draws " + watts(best.power_w) +
+                                           ", no less than the " + watts(bounds.power_to_beat_w) + " already found"
+                                     : "no layout meets every goal as predicted, and " + watts(bounds.power_to_beat_w) +
+                                           " were already found";
+}
+
+// Regular searches check at most this many of their best arrangements against the
+// luminaires' own direct light at the goal points.
+constexpr int kMaxDirectChecks = 64;
+
+// The best arrangements as predicted, best first, re-judged with the luminaires' own
+// direct light at the goal points until one meets its goals and is at least as good as
+// the next one's prediction. Returns the checked best (feasible if any check was).
+LayoutEvaluation check_direct_light(const Evaluator& evaluate, const std::vector<Arrangement>& arrangements,
+                                    std::vector<std::pair<LayoutEvaluation, std::size_t>> feasible,
+                                    const SearchSpec& spec, const PointDirectLight& point_direct, SearchResult& result) {
+  std::ranges::stable_sort(feasible, [&](const auto& a, const auto& b) { return better(a.first, b.first, spec.objective); });
+  std::optional<LayoutEvaluation> checked;
+  std::string first_missed;
+  for (std::size_t k = 0; k < feasible.size() && result.direct_checks < kMaxDirectChecks; ++k) {
+    if (checked && checked->feasible && !better(feasible[k].first, *checked, spec.objective)) break;
+    const Arrangement& a = arrangements[feasible[k].second];
+    const std::vector<double> unit(a.xy_m.size(), 1.0);
+    std::vector<PlacedLuminaire> placed = feasible[k].first.luminaires;
+    for (PlacedLuminaire& l : placed) l.flux_lm = 1.0;
+    LayoutEvaluation c = evaluate.with_point_direct(a.xy_m, unit, point_direct(placed));
+    c.arrangement = a.label;
+    c.spacing_m = a.spacing_m;
+    ++result.direct_checks;
+    if (!c.feasible && first_missed.empty()) {
+      for (const GoalJudgement& g : c.goals)
+        if (!is_target_goal(spec.objective, g.metric) && g.violation > kConstraintTolerance) {
+          std::ostringstream line;
+          line << a.label << ": " << g.name << " " << to_string(g.metric) << " " << std::setprecision(4) << g.value
+               << " with the luminaires' own direct light (predicted "
+               << feasible[k].first.goals[static_cast<std::size_t>(&g - c.goals.data())].value << ")";
+          first_missed = line.str();
+          break;
+        }
+    }
+    if (!checked || better(c, *checked, spec.objective)) checked = std::move(c);
+  }
+  result.direct_check_note = first_missed;
+  return std::move(*checked);
+}
+
 SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress,
-                            const SearchBounds& bounds) {
+                            const SearchBounds& bounds, const PointDirectLight& point_direct) {
   const auto start = Clock::now();
   const std::vector<Arrangement> arrangements = layout_arrangements(model, spec);
   const Evaluator evaluate(model, spec);
@@ -769,6 +848,7 @@ SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, 
   const bool min_power = objective_rule(spec.objective).minimises_power;
   SearchResult result;
   std::optional<LayoutEvaluation> best;
+  std::vector<std::pair<LayoutEvaluation, std::size_t>> feasible;  // with their arrangement, for the direct check
   std::string first_refusal;
   bool skipped_for_power = false;
   const std::string phase = "search " + std::to_string(arrangements.size()) + " arrangements";
@@ -799,6 +879,7 @@ SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, 
       attempt.objective = e.objective;
       stop = "evaluated (the arrangement is fixed)";
       ++result.evaluations;
+      if (e.feasible && point_direct) feasible.emplace_back(e, i);
       if (!best || better(e, *best, spec.objective)) best = std::move(e);
     }
     attempt.global_stop = attempt.local_stop = stop;
@@ -807,9 +888,12 @@ SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, 
     // lines for the classroom's fields).
     if (progress) progress(phase, i + 1, arrangements.size());
   }
+  if (!feasible.empty() && !model.goal_points.empty())
+    best = check_direct_light(evaluate, arrangements, std::move(feasible), spec, point_direct, result);
   if (!best && !skipped_for_power) result.refused = "no arrangement can be mounted or built; " + first_refusal;
   result.beaten = !best;
   if (best) result.best = std::move(*best);
+  beaten_by_power(spec, bounds, result);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }
@@ -817,9 +901,9 @@ SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, 
 }  // namespace
 
 SearchResult search_layout(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress,
-                           const SearchBounds& bounds) {
+                           const SearchBounds& bounds, const PointDirectLight& point_direct) {
   if (spec.layout.family != LayoutFamily::free && spec.layout.family != LayoutFamily::array)
-    return search_regular(model, spec, progress, bounds);
+    return search_regular(model, spec, progress, bounds, point_direct);
   const auto start = Clock::now();
   const std::optional<Clock::time_point> deadline =
       spec.options.max_seconds > 0.0
@@ -852,6 +936,7 @@ SearchResult search_layout(const LightingModel& model, const SearchSpec& spec, c
   std::ranges::stable_sort(result.attempts, {}, &CountAttempt::luminaires);
   result.beaten = !best;
   if (best) result.best = std::move(*best);
+  beaten_by_power(spec, bounds, result);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }

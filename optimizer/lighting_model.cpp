@@ -390,7 +390,7 @@ void compute_lighting_operator(LightingModel& model, const Scene& job_scene, con
   const Eigen::VectorXd fixed_flux = source_flux_lm(job_scene, fixed);
   const std::vector<LightSource> sources = scene_light_sources(model.scene);
   SampleOperatorOptions options = spec.operator_options;
-  const GoalRows goal_rows =
+  GoalRows goal_rows =
       compute_goal_rows(model.scene, caster, model.goal_patches, model.goal_points, sources, options, progress);
   // A sample size chosen for a target error is judged on every candidate at the same flux.
   Eigen::VectorXd probe_flux = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sources.size()));
@@ -399,7 +399,9 @@ void compute_lighting_operator(LightingModel& model, const Scene& job_scene, con
   const SampleSizeChoice choice = choose_sample_size(spec.sample_size, model.scene, caster, goal_rows, probe_flux, options, progress);
   if (!choice.log.empty()) model.log.push_back(choice.log);
   options.sample_size = choice.sample_size;
-  const SampleOperator op = build_sample_operator(model.scene, caster, goal_rows, options, progress);
+  const ReflectedBlend blend = candidate_reflected_blend(model.grid, fixed.size(), spec.reflected_stride);
+  const SampleOperator op =
+      build_blended_sample_operator(model.scene, caster, std::move(goal_rows), options, blend, progress);
 
   const Eigen::Index nf = static_cast<Eigen::Index>(fixed.size()), nc = static_cast<Eigen::Index>(model.grid.size());
   model.fixed_lux = op.total_lux_per_lm.leftCols(nf) * fixed_flux;

@@ -129,6 +129,9 @@ struct ModelSpec {
   std::vector<CalcGridSetting> grids;   // every grid of the job (named by goals or only reported)
   SampleOperatorOptions operator_options;  // sample_size chosen by sample_size
   SampleSizeRule sample_size;
+  // The candidates' reflected light at every n-th node of their grid, blended between
+  // (optimizer/candidate_grid.h, candidate_reflected_blend); 1: at every candidate.
+  int reflected_stride = 2;
   double probe_flux_lm = 0.0;           // each candidate's flux when a target error chooses k (the range's top)
   int threads = 0;                      // for the grids' inside-solid test; 0: every core
 };

@@ -36,10 +36,11 @@ void hash_fields(KeyWriter& k, const GoalAreaSpec& a) {
   k.field("kind", a.kind).field("eye_height_m", a.eye_height_m).field("observers", a.observers);
 }
 
-static_assert(field_count<ModelSpec>() == 7, "ModelSpec changed: hash the new field here (or say why not)");
+static_assert(field_count<ModelSpec>() == 8, "ModelSpec changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const ModelSpec& m) {
   k.field("candidates", m.candidates).field("areas", m.areas).field("grids", m.grids);
   k.field("operator_options", m.operator_options).field("sample_size", m.sample_size);
+  k.field("reflected_stride", m.reflected_stride);
   // A sample size chosen for a target error is judged with every candidate at the
   // probe flux (compute_lighting_operator): only then does it shape the operator.
   if (m.sample_size.target_error) k.field("probe_flux_lm", m.probe_flux_lm);
