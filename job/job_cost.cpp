@@ -69,6 +69,10 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
     }
   }
   c.sources = scene_light_sources(geometry.scene).size();
+  // The candidates' reflected light at every n-th node (compute_lighting_operator's blend).
+  if (geometry.grid.size() > 0 && geometry.grid.size() <= c.sources)
+    c.reflected_sources = candidate_reflected_blend(geometry.grid, c.sources - geometry.grid.size(),
+                                                    job.sample.reflected_stride).computed.size();
   c.channels = job_scene.channels;
   c.rays_per_patch = job.form_factors.rays_per_patch;
   c.exact_second_bounce = job.sample.indirect == IndirectMethod::exact_second_bounce;

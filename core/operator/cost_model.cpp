@@ -93,6 +93,7 @@ std::string rounds_text(int rounds) {
 CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
   CostEstimate out;
   const double n = d(c.patches), L = d(c.sources), k = d(c.sample_size);
+  const double Lr = c.reflected_sources > 0 ? std::min(L, d(c.reflected_sources)) : L;  // columns reflected
   const double pop = d(c.population);
   out.scene_bytes = kProcessBytes + n * (2.0 * kPatchBytes + kBvhBytesPerPatch + kIndexBytesPerPatch);
   const bool reflecting = c.population > 0 && c.sample_size > 0;
@@ -131,12 +132,12 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     const double sample_pair_s = kk >= pop ? c.direct_rays * m.precise_pair_ray_s : m.cheap_pair_s * pair_factor;
     phases.push_back({label + "direct light at sample and hit patches (" + std::to_string(static_cast<long long>(hits)) +
                           " cheap)",
-                      (kk * sample_pair_s + hits * m.cheap_pair_s * pair_factor) * L,
-                      held + 2.0 * sample_nnz * kRowNnzBytes + 3.0 * 8.0 * kk * L + 2.0 * 8.0 * hits * L,
+                      (kk * sample_pair_s + hits * m.cheap_pair_s * pair_factor) * Lr,
+                      held + 2.0 * sample_nnz * kRowNnzBytes + 3.0 * 8.0 * kk * Lr + 2.0 * 8.0 * hits * Lr,
                       "luminaires.candidate_spacing_m (fewer candidates) or " + setting});
     phases.push_back({label + "k x k solve (" + std::to_string(c.channels) + (c.channels == 1 ? " channel)" : " channels)"),
-                      interreflection_flops(kk, L, c.channels, c.rays_per_patch, m) * m.sparse_flop_s,
-                      held + 2.0 * sample_nnz * kRowNnzBytes + 6.0 * 8.0 * kk * L + 16.0 * hits * L + 4.0 * D_goal,
+                      interreflection_flops(kk, Lr, c.channels, c.rays_per_patch, m) * m.sparse_flop_s,
+                      held + 2.0 * sample_nnz * kRowNnzBytes + 6.0 * 8.0 * kk * Lr + 16.0 * hits * Lr + 4.0 * D_goal,
                       setting});
     return phases;
   };

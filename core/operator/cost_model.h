@@ -20,7 +20,9 @@ struct MachineCosts {
   double precise_pair_ray_s = 7.8e-8;       // direct light: per shadow ray of a precise receiver-source pair
   double cheap_pair_s = 6.4e-8;             // direct light: one cheap (1 point, 2 rays) receiver-source pair
   double dense_flop_s = 1.0 / 13.3e9;       // LU and triangular solves in double
-  double sparse_flop_s = 1.0 / 1.0e9;       // gathers of rows of D and X (memory-bound)
+  // Gathers of rows of D and X (memory-bound): the classroom's interreflection solve,
+  // 2.8e9 of them as interreflection_flops counts, in 0.66-0.9 s (2026-12-03).
+  double sparse_flop_s = 1.0 / 3.5e9;
   int interreflection_sweeps = 100;         // sweeps of a typical interreflection solve (q ~ 0.9, 1e-10)
   double blend_mac_s = 1.44e-10;            // search: one multiply-add of a candidate column, single precision
   double gauss_seidel_nnz_s = 2.0e-9;       // one non-zero of F per Gauss-Seidel sweep
@@ -52,6 +54,10 @@ struct CostCounts {
   std::size_t grid_points = 0;       // the grids' cells when not laid yet (the most points)
   std::size_t grid_outline_tests = 0;  // cells x outline parts (triangles or polygon edges)
   std::size_t sources = 0;           // L: fixed sources + candidates
+  // Of those, the ones whose reflected light is computed (the rest blended:
+  // core/operator/reflected_blend.h); 0: every source. The sample's and the hit
+  // patches' direct light and the k x k solve run over these columns only.
+  std::size_t reflected_sources = 0;
   std::size_t sample_size = 0;       // k (0: direct light only)
   int channels = 1;
   int rays_per_patch = 128;

@@ -983,3 +983,112 @@ TEST(FloorHeight, AGridOverATableTopIsNotTheFloorANamedFloorIs) {
 
 }  // namespace
 }  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// The blend's own direct light of placed luminaires at the goal points (what the search
+// predicts), from the candidates' direct columns.
+Eigen::VectorXd blended_point_direct(const LightingModel& model, const std::vector<PlacedLuminaire>& luminaires) {
+  const Eigen::Index Q = static_cast<Eigen::Index>(model.goal_points.size());
+  Eigen::VectorXd lux = Eigen::VectorXd::Zero(Q);
+  for (const PlacedLuminaire& l : luminaires)
+    for (int k = 0; k < GridPoint::kMaxCandidates; ++k)
+      if (l.blend.candidates[k] >= 0)
+        lux += l.flux_lm * l.blend.weights[k] * model.candidate_direct_lux_per_lm.col(l.blend.candidates[k]).tail(Q);
+  return lux.cwiseMax(0.0);
+}
+
+JobConfig field_on_grid_job(const TempDir& dir) {
+  dir.write("room.obj", room_obj({}));
+  const std::string luminaires =
+      "  size_m: 0.3\n  flux_lm: [100, 20000]\n  efficacy_lm_per_w: 100\n  mounting_surface: ceiling\n"
+      "  candidate_spacing_m: 0.5\n  wall_distance_m: 0.4\n  layout: field\n  field: {rows: [1, 3], columns: [1, 3]}\n";
+  return load_job_config(dir.write(
+      "job.yaml", room_job("0.3", luminaires, "  - grid: plane\n    average_lux: 200\n    uniformity: 0.4\n",
+                           std::string(kOptimizer) +
+                               "grids:\n  - {name: plane, over_surface: floor, height_m: 0.8, border_m: 0.3}\n")));
+}
+
+TEST(RegularLayoutSearch, TheBestArrangementsAreRejudgedWithTheLuminairesOwnDirectLight) {
+  TempDir dir;
+  const JobConfig job = field_on_grid_job(dir);
+  const PreparedJob prepared = test::prepare(job);
+  const SearchSpec spec = test::spec(job);
+  const SearchResult plain = search_layout(prepared.model, spec);
+  ASSERT_TRUE(plain.best.feasible);
+  EXPECT_EQ(plain.direct_checks, 0);
+  // A check that agrees with the blend changes nothing.
+  int calls = 0;
+  const SearchResult agreeing = search_layout(prepared.model, spec, {}, {}, [&](const auto& luminaires) {
+    ++calls;
+    return blended_point_direct(prepared.model, luminaires);
+  });
+  EXPECT_EQ(agreeing.direct_checks, 1);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(agreeing.best.arrangement, plain.best.arrangement);
+  EXPECT_NEAR(agreeing.best.power_w, plain.best.power_w, 1e-9 * plain.best.power_w);
+  EXPECT_TRUE(agreeing.direct_check_note.empty());
+  // A check that finds the predicted best's first grid point in shadow (no direct light
+  // there: its uniformity fails) sends the search to the next arrangement.
+  const std::string shadowed = plain.best.arrangement;
+  const std::size_t shadowed_count = plain.best.luminaires.size();
+  const SearchResult rejudged = search_layout(prepared.model, spec, {}, {}, [&](const auto& luminaires) {
+    Eigen::VectorXd lux = blended_point_direct(prepared.model, luminaires);
+    if (luminaires.size() == shadowed_count) lux.setZero();
+    return lux;
+  });
+  EXPECT_GE(rejudged.direct_checks, 2);
+  EXPECT_TRUE(rejudged.best.feasible);
+  EXPECT_NE(rejudged.best.luminaires.size(), shadowed_count);
+  EXPECT_GT(rejudged.best.power_w, plain.best.power_w) << "the predicted best was the cheapest";
+  EXPECT_NE(rejudged.direct_check_note.find(shadowed), std::string::npos) << rejudged.direct_check_note;
+  EXPECT_NE(rejudged.direct_check_note.find("with the luminaires' own direct light"), std::string::npos);
+  // The correction it carries is the difference at the chosen flux (0 where it agreed).
+  ASSERT_EQ(rejudged.best.direct_correction_lux.size(), rejudged.best.lux.size());
+  EXPECT_LT(rejudged.best.direct_correction_lux.cwiseAbs().maxCoeff(), 1e-6 * rejudged.best.lux.maxCoeff());
+}
+
+TEST(RegularLayoutSearch, TheRealCheckAgreesWithTheBlendInAnOpenRoom) {
+  // No obstacle near the grid: the luminaires' own direct light (job_runner's check, run
+  // through solve_prepared) and the blend's agree, so the verdict stands and the search
+  // checked one arrangement.
+  TempDir dir;
+  const JobConfig job = field_on_grid_job(dir);
+  const PreparedJob prepared = test::prepare(job);
+  const JobOutcome outcome = solve_prepared(prepared, job);
+  EXPECT_TRUE(outcome.all_met);
+  EXPECT_GE(outcome.search.direct_checks, 1);
+  const LayoutEvaluation& best = outcome.search.best;
+  ASSERT_EQ(best.direct_correction_lux.size(), best.lux.size());
+  const Eigen::Index Q = static_cast<Eigen::Index>(prepared.model.goal_points.size());
+  // Within 2 % of the direct light at each point: the Catmull-Rom blend of a smooth field.
+  const Eigen::VectorXd direct = blended_point_direct(prepared.model, best.luminaires);
+  for (Eigen::Index q = 0; q < Q; ++q)
+    EXPECT_LT(std::abs(best.direct_correction_lux.tail(Q)[q]), 0.02 * direct[q] + 1e-9) << "point " << q;
+}
+
+TEST(RegularLayoutSearch, ALayoutPredictedToDrawNoLessThanThePowerToBeatIsNotVerified) {
+  TempDir dir;
+  const JobConfig job = field_on_grid_job(dir);
+  const PreparedJob prepared = test::prepare(job);
+  const SearchSpec spec = test::spec(job);
+  const SearchResult plain = search_layout(prepared.model, spec);
+  ASSERT_TRUE(plain.best.feasible);
+  SearchBounds above, below;
+  above.power_to_beat_w = plain.best.power_w * 1.01;
+  below.power_to_beat_w = plain.best.power_w * 0.99;
+  const SearchResult kept = search_layout(prepared.model, spec, {}, above);
+  EXPECT_FALSE(kept.beaten);
+  EXPECT_TRUE(kept.beaten_note.empty());
+  const SearchResult beaten = search_layout(prepared.model, spec, {}, below);
+  EXPECT_TRUE(beaten.beaten);
+  EXPECT_NE(beaten.beaten_note.find("no less than the"), std::string::npos) << beaten.beaten_note;
+  // solve_prepared verifies nothing then.
+  const JobOutcome outcome = solve_prepared(prepared, job, {}, below.power_to_beat_w);
+  EXPECT_TRUE(outcome.search.beaten);
+  EXPECT_EQ(outcome.verification.method, "none");
+}
+
+}  // namespace
+}  // namespace ilp
