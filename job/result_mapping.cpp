@@ -240,6 +240,8 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.optimizer_seed = job.optimizer.seed;
   r.evaluations = outcome.search.evaluations;
   r.searches = outcome.searches;
+  r.direct_checks = outcome.search.direct_checks;
+  r.direct_check_note = outcome.search.direct_check_note;
   r.calibration = outcome.calibration;
   r.time_limited = outcome.search.time_limited;
   r.search_max_seconds = job.optimizer.max_seconds;

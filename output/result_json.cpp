@@ -145,6 +145,8 @@ json to_json(const ResultRecord& r) {
   j["optimizer_seed"] = r.optimizer_seed;
   j["evaluations"] = r.evaluations;
   j["searches"] = r.searches;
+  j["direct_checks"] = r.direct_checks;
+  j["direct_check_note"] = r.direct_check_note;
   j["calibration"] = r.calibration;
   j["time_limited"] = r.time_limited;
   j["search_max_seconds"] = r.search_max_seconds > 0.0 ? json(r.search_max_seconds) : json(nullptr);
@@ -324,6 +326,8 @@ ResultRecord from_json(const json& j) {
   r.optimizer_seed = j.at("optimizer_seed").get<unsigned long long>();
   r.evaluations = j.at("evaluations").get<int>();
   r.searches = j.at("searches").get<int>();
+  if (j.contains("direct_checks")) r.direct_checks = j.at("direct_checks").get<int>();
+  if (j.contains("direct_check_note")) r.direct_check_note = j.at("direct_check_note").get<std::string>();
   r.calibration = j.at("calibration").get<std::vector<std::string>>();
   r.time_limited = j.at("time_limited").get<bool>();
   if (j.contains("search_max_seconds") && j.at("search_max_seconds").is_number())
@@ -657,6 +661,11 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
     os << "; wall-clock limit " << fixed(r.search_max_seconds, 1) << " s (optimizer.max_seconds): the layout may depend on "
        << "the machine's speed and load" << (r.time_limited ? ", and the limit ended a stage" : "");
   os << "\n";
+  if (r.direct_checks > 0)
+    os << "  " << r.direct_checks << (r.direct_checks == 1 ? " arrangement" : " arrangements")
+       << " checked against the luminaires' own direct light at the grid points"
+       << (r.direct_check_note.empty() ? " (the blend's prediction held)" : "; first missed: " + r.direct_check_note)
+       << "\n";
   for (const std::string& line : r.calibration) os << "  " << line << "\n";
   print_arrangements(os, r.attempts);
   for (const AttemptRecord& a : r.attempts) {

@@ -187,6 +187,10 @@ struct ResultRecord {
   unsigned long long optimizer_seed = 0;
   int evaluations = 0;
   int searches = 1;                         // search rounds (verification-driven re-searches + 1)
+  // Regular layouts: arrangements re-judged with the luminaires' own direct light at the
+  // grid points, and the first goal such a check found missed (empty: none).
+  int direct_checks = 0;
+  std::string direct_check_note;
   std::vector<std::string> calibration;     // what each extra round changed
   bool time_limited = false;                // the wall-clock budget ended a search stage
   double search_max_seconds = 0.0;          // optimizer.max_seconds; 0: none (the layout is the machine's own when set)

@@ -106,6 +106,7 @@ TEST(CacheKey, ModelSpecCoversEveryField) {
       {"grids", [](ModelSpec& m) { m.grids[0].height_m = 0.75; }},
       {"operator_options", [](ModelSpec& m) { m.operator_options.form_factors.rays_per_patch = 64; }},
       {"sample_size", [](ModelSpec& m) { m.sample_size.fraction = 0.2; }},
+      {"reflected_stride", [](ModelSpec& m) { m.reflected_stride = 1; }},
       {"probe_flux_lm", [](ModelSpec& m) { m.probe_flux_lm = 5000.0; }},
       left_out<ModelSpec>("threads", [](ModelSpec& m) { m.threads = 1; }),
   });

@@ -36,6 +36,8 @@ ResultRecord sample_record() {
   r.optimizer_seed = 9007199254740993ull;  // above 2^53: must survive as an integer
   r.evaluations = 70654;
   r.searches = 2;
+  r.direct_checks = 3;
+  r.direct_check_note = "2 x 4 field: work_plane uniformity 0.41 with the luminaires' own direct light (predicted 0.64)";
   r.calibration = {"round 1: floor minimum predicted 100, verified 88.66; the next search aims at 113 for 100"};
   r.timings_s = {{"scene", 0.01}, {"operator", 1.41}, {"total", 8.27}};
   r.attempts = {{4, 6643, 0.32, true, 123.4, "evaluation budget used", "step tolerance reached"}};
@@ -62,6 +64,8 @@ TEST(ResultJson, RoundTripsEveryField) {
   ASSERT_EQ(back.timings_s.size(), 3u);
   EXPECT_EQ(back.timings_s[1].first, "operator") << "phases keep their order";
   EXPECT_EQ(back.calibration, r.calibration);
+  EXPECT_EQ(back.direct_checks, 3);
+  EXPECT_EQ(back.direct_check_note, r.direct_check_note);
   EXPECT_EQ(back.attempts[0].local_stop, "step tolerance reached");
   EXPECT_EQ(back.attempts[0].seconds, 0.32) << "from timings.json";
   EXPECT_EQ(back.search_max_seconds, 60.0);
