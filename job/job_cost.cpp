@@ -58,7 +58,12 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
                            std::optional<double> budget, const std::vector<CalcGridSize>* grids) {
   CostCounts c;
   c.patches = job_scene.patches.size();
-  c.population = reflecting_patches(job_scene).size();
+  const std::vector<int> population = reflecting_patches(job_scene);
+  c.population = population.size();
+  std::vector<double> areas;
+  areas.reserve(population.size());
+  for (int p : population) areas.push_back(job_scene.patches[static_cast<std::size_t>(p)].area_m2);
+  c.area_shares = area_share_bins(areas);
   c.goal_patches = geometry.goal_patches.size();
   c.grid_points = geometry.goal_points.size();
   if (grids) {
@@ -121,6 +126,7 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
   c.verify_first_indirect_rays = job.verification.first_indirect_rays;
   c.verify_sample_size = static_cast<std::size_t>(plan.sample_size);
   c.verify_rounds = plan.method == VerificationMethod::none ? 1 : job.verification.rounds;
+  c.output_patches = job.output.ply || job.output.csv ? c.patches : 0;
   return c;
 }
 
@@ -173,8 +179,17 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
 
 double whole_run_seconds(const JobConfig& job, const Scene& job_scene, const std::vector<VariantPlan>& plans,
                          const std::optional<MemoryBudget>& budget) {
+  // Every variant's operator; the first variant's verification rounds in full and half of
+  // each later one's (min_power verifies a later variant only when it is predicted to
+  // draw less than one already met: about every other one on the shipped jobs); the
+  // outputs once.
   double seconds = 0.0;
-  for (const VariantPlan& plan : plans) seconds += costed_geometry(job, job_scene, plan.model, budget).estimate.total_seconds();
+  for (std::size_t v = 0; v < plans.size(); ++v)
+    for (const PhaseEstimate& p : costed_geometry(job, job_scene, plans[v].model, budget).estimate.phases) {
+      if (p.name == kOutputPhase && v > 0) continue;
+      const bool later_verification = v > 0 && p.name.starts_with("verification");
+      seconds += later_verification && objective_rule(job.objective).minimises_power ? 0.5 * p.seconds : p.seconds;
+    }
   return seconds;
 }
 

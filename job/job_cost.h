@@ -50,7 +50,9 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
                                const std::optional<MemoryBudget>& budget);
 
 // The whole run's time before any work: the sum of its variants' estimates (each
-// variant builds its own operator and verifies its own layout), on `job_scene`. What
+// variant builds its own operator; the first verifies its layout in full, each later one
+// half of it on average, as min_power skips a variant predicted to lose; the outputs are
+// written once), on `job_scene`. What
 // `ilp inspect` and `ilp run` print for a job of several variants.
 double whole_run_seconds(const JobConfig& job, const Scene& job_scene, const std::vector<VariantPlan>& plans,
                          const std::optional<MemoryBudget>& budget);

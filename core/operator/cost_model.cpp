@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -46,6 +47,31 @@ double interreflection_flops(double k, double sources, int channels, int rays_pe
 double expected_hit_patches(double rows, double rays, double population, const MachineCosts& costs) {
   if (!(population > 0.0)) return 0.0;
   return population * (1.0 - std::exp(-costs.hit_coverage * rows * rays / population));
+}
+
+AreaShareBins area_share_bins(const std::vector<double>& areas_m2) {
+  double total = 0.0;
+  for (double a : areas_m2) total += a;
+  if (!(total > 0.0)) return {};
+  // Bins of a quarter of a binary order of magnitude of the share.
+  constexpr double kBinsPerOctave = 4.0;
+  std::map<int, std::pair<double, double>> bins;  // bin -> (count, sum of shares)
+  for (double a : areas_m2) {
+    if (!(a > 0.0)) continue;
+    const double share = a / total;
+    auto& b = bins[static_cast<int>(std::floor(std::log2(share) * kBinsPerOctave))];
+    b.first += 1.0;
+    b.second += share;
+  }
+  AreaShareBins out;
+  for (const auto& [bin, b] : bins) out.emplace_back(b.first, b.second / b.first);
+  return out;
+}
+
+double expected_hit_patches(double rows, double rays, const AreaShareBins& bins, const MachineCosts& costs) {
+  double hit = 0.0;
+  for (const auto& [count, share] : bins) hit += count * (1.0 - std::exp(-costs.hit_area_factor * rows * rays * share));
+  return hit;
 }
 
 double exact_verification_bytes(std::size_t patches, int rays_per_patch) {
@@ -118,11 +144,12 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                         P > 0 ? grid_setting + ", or luminaires.candidate_spacing_m (fewer candidates)"
                               : "scene.max_patch_edge_m (fewer goal patches) or luminaires.candidate_spacing_m (fewer "
                                 "candidates)"});
+  auto hit_patches = [&](double rows, double rays) {
+    return c.area_shares.empty() ? expected_hit_patches(rows, rays, pop, m) : expected_hit_patches(rows, rays, c.area_shares, m);
+  };
   // One sample-based build of size kk on top of the goal rows.
   auto build = [&](double kk, const std::string& label, const std::string& setting) {
-    const double hits = c.exact_second_bounce
-                            ? std::max(0.0, expected_hit_patches(kk + G, c.rays_per_patch, pop, m) - kk - G)
-                            : 0.0;
+    const double hits = c.exact_second_bounce ? std::max(0.0, hit_patches(kk + G, c.rays_per_patch) - kk - G) : 0.0;
     const double sample_nnz = row_nnz(kk, c.rays_per_patch, c.patches);
     const double held = goal_nnz * kRowNnzBytes + D_goal;
     std::vector<PhaseEstimate> phases;
@@ -186,8 +213,8 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                           "verification.rays_per_patch or verification.method"});
   } else if (c.verify == CostCounts::Verify::sample) {
     const double kv = d(c.verify_sample_size);
-    const double hits = std::max(0.0, expected_hit_patches(kv + G, c.verify_rays, pop, m) - kv - G);
-    const double per = (kv + G) * c.verify_rays * m.gather_ray_s +
+    const double hits = std::max(0.0, hit_patches(kv + G, c.verify_rays) - kv - G);
+    const double per = n * m.bvh_patch_s + (kv + G) * c.verify_rays * m.gather_ray_s +
                        ((kv + G) * c.direct_rays * m.precise_pair_ray_s + hits * m.cheap_pair_s * pair_factor) * Lv +
                        interreflection_flops(kv, Lv, c.channels, c.verify_rays, m) * m.sparse_flop_s;
     out.phases.push_back({"verification (sample, k = " + std::to_string(c.verify_sample_size) + ", " +
@@ -198,6 +225,9 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                                                        c.verify_rays),
                           "verification.sample_fraction or verification.method"});
   }
+  if (c.writes_outputs)
+    out.phases.push_back({kOutputPhase, m.output_base_s + d(c.output_patches) * m.output_patch_s, 0.0,
+                          "output.formats (ply, csv write every patch)"});
   return out;
 }
 

@@ -27,6 +27,9 @@ struct MachineCosts {
   double blend_mac_s = 1.44e-10;            // search: one multiply-add of a candidate column, single precision
   double gauss_seidel_nnz_s = 2.0e-9;       // one non-zero of F per Gauss-Seidel sweep
   int gauss_seidel_sweeps = 24;             // sweeps a typical solve needs (relative residual 1e-6)
+  // With the patches' area shares (CostCounts::area_shares): the effective share of rays
+  // that strike a reflecting patch, 0.5 from the classroom (46,050 cheap hits).
+  double hit_area_factor = 0.5;
   double hit_coverage = 0.13;               // distinct patches hit ~ pop (1 - exp(-coverage rows rays / pop)): the
                                             // classroom's 3,537 rows of 128 rays hit 49,400 of 160,000 (2026-12-03)
   // A photometric product's cheap direct light per pair (its intensity table looked up at
@@ -39,6 +42,12 @@ struct MachineCosts {
   // 346,551 patches in 0.71 + 0.28 s, the classroom's 167,659 in 0.15-0.30 + 0.20-0.24 s.
   double scene_patch_s = 2.8e-6;
   double bvh_patch_s = 0.8e-6;              // the verification's own BVH (its scene holds the luminaires)
+  // Writing the outputs: a fixed part (result.json, plans, isolux PNGs, the PDF: 0.3-0.5 s
+  // on the office) and, where the formats write every patch (scene.ply, illuminance.csv),
+  // a part per patch (the classroom's 167,659 and the conference's 346,461 patches: 0.8
+  // and 1.3 s between the timings' total and the process's wall clock, 2026-12-03).
+  double output_base_s = 0.35;
+  double output_patch_s = 2.8e-6;
   int grid_rays_per_cell = 8;               // laying a grid: 6 inside-solid rays and 2 floor rays a cell
   double outline_test_s = 1.5e-8;           // one point against one outline triangle, 9 times (the band)
 };
@@ -47,6 +56,7 @@ struct MachineCosts {
 struct CostCounts {
   std::size_t patches = 0;           // n, in the job scene
   std::size_t population = 0;        // reflecting patches
+  std::vector<std::pair<double, double>> area_shares;  // their area shares, binned (area_share_bins); empty: unknown
   std::size_t goal_patches = 0;      // G
   // Calculation-grid points P: goal rows too (their own gather rows of kPointRayFactor x
   // rays, direct light, rows of D and T), and laid first (the inside-solid and floor
@@ -77,6 +87,9 @@ struct CostCounts {
   int verify_first_indirect_rays = 1 << 30;  // exact: where the progressive refinement starts (one doubling assumed)
   std::size_t verify_sample_size = 0;  // sample verification: k
   int verify_rounds = 1;
+  // outputs
+  bool writes_outputs = true;        // the run writes its output set (the last phase)
+  std::size_t output_patches = 0;    // patches the formats write one by one (scene.ply, illuminance.csv)
 };
 
 struct PhaseEstimate {
@@ -95,12 +108,24 @@ struct CostEstimate {
 };
 
 CostEstimate estimate_job_cost(const CostCounts& counts, const MachineCosts& costs = {});
+// The name of the last phase, writing the output set (once a run, whatever its variants).
+inline constexpr const char* kOutputPhase = "writing the outputs";
 
 // Memory of the verification alone (peak), for choosing its method.
 double exact_verification_bytes(std::size_t patches, int rays_per_patch);
 double sample_verification_bytes(std::size_t k, std::size_t goal_patches, std::size_t sources, int rays_per_patch);
 // Distinct patches hit by `rows` rows of `rays` rays each, of `population` (a fit).
 double expected_hit_patches(double rows, double rays, double population, const MachineCosts& costs = {});
+// The reflecting patches' areas as shares of their total area, binned: (patches, mean
+// share) per bin. A ray strikes a patch about in proportion to its area, so a model of
+// many small patches (a chair's) and a few large ones (walls) is struck on fewer
+// distinct patches than one of even patches (a nave): the classroom's 523,000 rows'
+// rays strike 49,600 of its 167,659 patches, Sibenik's 282,000 strike 76,500 of 204,572.
+using AreaShareBins = std::vector<std::pair<double, double>>;
+AreaShareBins area_share_bins(const std::vector<double>& areas_m2);
+// Distinct patches hit, from the area shares: sum over patches of 1 - exp(-c R share),
+// R = rows x rays, c = costs.hit_area_factor.
+double expected_hit_patches(double rows, double rays, const AreaShareBins& bins, const MachineCosts& costs = {});
 
 // Lines for the run log: one per phase (s, GB) and a total.
 std::vector<std::string> format_estimate(const CostEstimate& estimate);

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/base/error.h"
 #include "tests/test_support.h"
 
@@ -123,6 +125,54 @@ TEST(CostModel, MachineMemoryIsReadFromProcMeminfo) {
   ASSERT_TRUE(available.has_value());
   EXPECT_GT(*available, 1e7);
   EXPECT_DOUBLE_EQ(*memory_budget_bytes(1e6), 1e6);  // the smaller of the two
+}
+
+// Distinct patches hit from the patches' area shares: even patches give the plain
+// occupancy formula, and the same area cut into a few large and many small patches is
+// struck on fewer distinct patches (the large ones take most rays).
+TEST(CostModel, HitPatchesFollowThePatchesAreas) {
+  const MachineCosts m;
+  const std::vector<double> even(10000, 0.1);
+  const AreaShareBins even_bins = area_share_bins(even);
+  ASSERT_EQ(even_bins.size(), 1u);
+  EXPECT_DOUBLE_EQ(even_bins[0].first, 10000.0);
+  const double rays = 20000.0;
+  EXPECT_NEAR(expected_hit_patches(rays, 1.0, even_bins, m),
+              10000.0 * (1.0 - std::exp(-m.hit_area_factor * rays / 10000.0)), 1e-6);
+  std::vector<double> uneven(100, 9.0);        // 900 m2 in 100 large patches
+  uneven.insert(uneven.end(), 9900, 100.0 / 9900.0);  // 100 m2 in 9,900 small ones
+  const double even_hits = expected_hit_patches(rays, 1.0, area_share_bins(even), m);
+  const double uneven_hits = expected_hit_patches(rays, 1.0, area_share_bins(uneven), m);
+  EXPECT_LT(uneven_hits, 0.5 * even_hits);
+  // Within the bins' resolution of the sum over every patch.
+  double exact = 0.0;
+  for (double a : uneven) exact += 1.0 - std::exp(-m.hit_area_factor * rays * a / 1000.0);
+  EXPECT_NEAR(uneven_hits, exact, 0.02 * exact);
+  // No area: nothing.
+  EXPECT_TRUE(area_share_bins({}).empty());
+  EXPECT_EQ(expected_hit_patches(rays, 1.0, AreaShareBins{}, m), 0.0);
+}
+
+// The blended candidates (reflected_sources) run the sample's and hits' direct light and
+// the k x k solve over fewer columns; the goal rows' direct light stays every source's.
+TEST(CostModel, BlendedSourcesShrinkTheReflectedPhasesOnly) {
+  CostCounts c;
+  c.patches = c.population = 100000;
+  c.goal_patches = 500;
+  c.sources = 300;
+  c.sample_size = 2000;
+  auto phase = [](const CostEstimate& e, const std::string& start) {
+    for (const PhaseEstimate& p : e.phases)
+      if (p.name.starts_with(start)) return p.seconds;
+    return -1.0;
+  };
+  const CostEstimate every = estimate_job_cost(c);
+  c.reflected_sources = 100;
+  const CostEstimate blended = estimate_job_cost(c);
+  EXPECT_NEAR(phase(blended, "direct light at sample"), phase(every, "direct light at sample") / 3.0, 1e-9);
+  EXPECT_NEAR(phase(blended, "k x k solve"), phase(every, "k x k solve") / 3.0, 1e-9);
+  EXPECT_EQ(phase(blended, "goal rows"), phase(every, "goal rows"));
+  EXPECT_GT(phase(every, "writing the outputs"), 0.0);
 }
 
 }  // namespace
