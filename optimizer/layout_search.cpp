@@ -285,7 +285,7 @@ class Evaluator {
                                      const Eigen::VectorXd& exact_point_direct) const {
     LayoutEvaluation out;
     Eigen::VectorXd a = blend(xy, w, out);
-    const Eigen::Index Q = exact_point_direct.size(), first = a.size() - Q;
+    const Eigen::Index Q = exact_point_direct.size();
     Eigen::VectorXd blended_direct = Eigen::VectorXd::Zero(Q);
     for (const auto& [column, weight] : terms_)
       blended_direct += weight * model_.candidate_direct_lux_per_lm.col(column).tail(Q);
@@ -784,8 +784,6 @@ std::vector<Arrangement> layout_arrangements(const LightingModel& model, const S
   return arrangements;
 }
 
-// Field, rows and bays: every arrangement judged at its one output (no NLopt: nothing
-// moves). Min_power skips an arrangement that cannot draw less than a layout already found.
 // min_power with a power to beat: a best layout that draws no less, or misses a goal, as
 // predicted is not worth verifying (SearchResult::beaten_note).
 void beaten_by_power(const SearchSpec& spec, const SearchBounds& bounds, SearchResult& result) {
@@ -839,6 +837,8 @@ LayoutEvaluation check_direct_light(const Evaluator& evaluate, const std::vector
   return std::move(*checked);
 }
 
+// Field, rows and bays: every arrangement judged at its one output (no NLopt: nothing
+// moves). Min_power skips an arrangement that cannot draw less than a layout already found.
 SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, const ProgressCallback& progress,
                             const SearchBounds& bounds, const PointDirectLight& point_direct) {
   const auto start = Clock::now();
@@ -879,7 +879,13 @@ SearchResult search_regular(const LightingModel& model, const SearchSpec& spec, 
       attempt.objective = e.objective;
       stop = "evaluated (the arrangement is fixed)";
       ++result.evaluations;
-      if (e.feasible && point_direct) feasible.emplace_back(e, i);
+      if (e.feasible && point_direct) {  // kept without its light vectors: the check recomputes them
+        LayoutEvaluation kept = e;
+        kept.lux.resize(0);
+        kept.eye_indirect_lux.resize(0);
+        kept.glare.resize(0);
+        feasible.emplace_back(std::move(kept), i);
+      }
       if (!best || better(e, *best, spec.objective)) best = std::move(e);
     }
     attempt.global_stop = attempt.local_stop = stop;
