@@ -471,6 +471,7 @@ TEST(ModelCache, EverySolverSettingThatChangesTheOperatorReachesTheKey) {
       {"pilot_fraction", [](SampleSettings& s) { s.pilot_fraction = 0.04; }},
       {"max_size_for_target", [](SampleSettings& s) { s.max_size_for_target = 100; }},
       left_out<SampleSettings>("max_size_loc", [&](SampleSettings& s) { s.max_size_loc = at; }),
+      {"hit_block_patches", [](SampleSettings& s) { s.hit_block_patches = 97; }},
   }, [&](const SampleSettings& sample) {
     JobConfig j = job;
     j.sample = sample;
