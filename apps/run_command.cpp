@@ -402,7 +402,7 @@ std::string default_cache_dir() {
 }
 
 RoomRun run_room(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
-                 const std::string& cache, std::vector<PreparedJob> prebuilt) {
+                 const std::string& cache, std::vector<PreparedJob> prebuilt, double prebuilt_seconds) {
   const auto start = Clock::now();
   RoomRun out;
   // Several groups: every group's variants prepared, searched together (job/group_runner.h).
@@ -427,7 +427,7 @@ RoomRun run_room(const JobConfig& job, const RunOptions& run, const ProgressCall
       {prepared.loaded_from_cache ? "operator from cache" : "operator", operator_s},
       {"search", out.chosen.search_seconds},
       {"verification", out.chosen.verify_seconds},
-      {"total", seconds_since(start)}};
+      {"total", prebuilt_seconds + seconds_since(start)}};
   // No layout (every count screened out): nothing lit to report per grid.
   const bool no_layout = outcome.search.beaten;
   if (!no_layout) out.grids = run_grid_results(prepared, job, outcome);
@@ -445,7 +445,8 @@ void stage_room_outputs(OutputSet& set, const JobConfig& job, const RoomRun& roo
   stage_outputs(set, {room.prepared(), job, room.chosen.outcome, room.record, room.grids});
 }
 
-int run_single_room(const RunArgs& args, const JobConfig& job, std::vector<PreparedJob> prepared = {});
+int run_single_room(const RunArgs& args, const JobConfig& job, std::vector<PreparedJob> prepared = {},
+                    double prepared_seconds = 0.0);
 
 namespace {
 
@@ -521,51 +522,27 @@ int run_split_room(const RunArgs& args, const JobConfig& job, const dist::Commun
               << " ranks (scene and BVH on every rank, the patches the rows hit in blocks); the search and "
                  "verification then run on rank 0\n";
   std::vector<PreparedJob> prepared;
+  const auto build_start = Clock::now();
   dist::in_agreed_steps(comm, [&] {
     if (comm.is_root()) prepared = prepare_all(job, run, make_progress(args.quiet), cache);
     else prepared = prepare_variants(job, plan_job(job, run), run, {}, cache, {});
   });
   if (!comm.is_root()) prepared.clear();  // rank 0 alone searches: the others hold nothing more
   print_peak_memory_per_rank(comm, "after the operator build");
-  const int code = dist::on_root_only(comm, [&] { return run_single_room(args, job, std::move(prepared)); });
+  const double build_seconds = seconds_since(build_start);
+  const int code =
+      dist::on_root_only(comm, [&] { return run_single_room(args, job, std::move(prepared), build_seconds); });
   print_peak_memory_per_rank(comm, "at the end");
   return code;
 }
 
-// Under mpirun: the variants' operators built into the cache over the ranks, every rank
-// waiting for the others at the end. A rank's failure here is only a note (rank 0's run
-// builds what is missing and meets any real error itself). Nothing without a cache or
-// with luminaire groups or a single variant (rank 0 alone then, as the note says).
-void warm_variant_cache(const RunArgs& args, const JobConfig& job, const dist::Communicator& comm) {
-  const std::string cache = cache_folder(args.cache_dir, args.no_cache);
-  const RunOptions run = run_options(args.threads, args.max_memory);
-  std::vector<VariantPlan> plans;
-  // Every rank plans alike (the same job and arguments); an error is rank 0's one message.
-  if (job.groups.empty() && !cache.empty()) dist::on_every_rank(comm, [&] { plans = plan_job(job, run); });
-  if (plans.size() < 2) {
-    if (comm.is_root())
-      std::cerr << "note: this job runs on rank 0 alone, the other " << comm.size() - 1 << " ranks wait ("
-                << (cache.empty() ? "--no-cache: no operator cache to share variants through"
-                    : !job.groups.empty() ? "luminaire groups are not spread over ranks"
-                                          : "one product variant")
-                << "; a building's rooms are spread over ranks)\n";
-    return;
-  }
-  std::vector<VariantPlan> mine;
-  for (std::size_t v = 0; v < plans.size(); ++v)
-    if (static_cast<int>(v % static_cast<std::size_t>(comm.size())) == comm.rank()) mine.push_back(plans[v]);
+// Under mpirun, a single-room job with luminaire groups runs on rank 0 alone (its
+// groups' operators are not split over the ranks): a note says so.
+void note_root_alone(const dist::Communicator& comm) {
   if (comm.is_root())
-    std::cerr << "variants over ranks: " << plans.size() << " variants' operators built over " << comm.size()
-              << " ranks into " << cache << ", then the job runs on rank 0\n";
-  dist::on_every_rank(comm, [&] {
-    if (mine.empty()) return;
-    try {
-      (void)prepare_variants(job, mine, run, make_progress(args.quiet), cache, log_line, log_build);
-    } catch (const std::exception& e) {
-      std::cerr << "note: rank " << comm.rank() << " could not build its variants' operators (" << e.what()
-                << "); rank 0 builds them\n";
-    }
-  });
+    std::cerr << "note: this job runs on rank 0 alone, the other " << comm.size() - 1
+              << " ranks wait (luminaire groups are not spread over ranks; a building's rooms are, and a "
+                 "single room's operator build without groups)\n";
 }
 
 }  // namespace
@@ -580,11 +557,8 @@ int run_job(const RunArgs& args) {
     dist::on_every_rank(comm, [&] { job = load_job_config(args.config); });
     if (!job.rooms.empty()) return run_building(args, job);
     if (job.groups.empty()) return run_split_room(args, job, comm);
-    // A single-room job with luminaire groups, its product variants: each rank builds the operators of its share
-    // (variant v on rank v mod N) into the operator cache, then rank 0 runs the job as
-    // one process does, loading them (docs/cluster.md). Its search and verification are
-    // rank 0's alone.
-    warm_variant_cache(args, job, comm);
+    // A single-room job with luminaire groups: rank 0 alone (docs/cluster.md).
+    note_root_alone(comm);
     return dist::on_root_only(comm, [&] { return run_single_room(args, job); });
   }
   const JobConfig job = load_job_config(args.config);
@@ -592,12 +566,14 @@ int run_job(const RunArgs& args) {
   return run_single_room(args, job);
 }
 
-int run_single_room(const RunArgs& args, const JobConfig& job, std::vector<PreparedJob> prepared) {
+int run_single_room(const RunArgs& args, const JobConfig& job, std::vector<PreparedJob> prepared,
+                    double prepared_seconds) {
   const RunOptions run = run_options(args.threads, args.max_memory);
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.
   OutputSet set(output_directory(job, args.out_dir), run_output_names(job, false));
-  const RoomRun room = run_room(job, run, progress, cache_folder(args.cache_dir, args.no_cache), std::move(prepared));
+  const RoomRun room = run_room(job, run, progress, cache_folder(args.cache_dir, args.no_cache), std::move(prepared),
+                                prepared_seconds);
   print_result(std::cout, room.record);
   stage_room_outputs(set, job, room);
   for (const std::string& file : set.commit()) std::cout << "wrote " << file << "\n";

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes data/hall.obj and data/hall.mtl: a warehouse hall with five rack rows, the
 single large room of configs/hall.yaml (docs/cluster.md: an operator build split over
-MPI ranks; at its max_patch_edge_m of 0.09 m the hall meshes into about 1M patches).
+MPI ranks; at configs/hall.yaml's max_patch_edge_m of 0.19 m the hall meshes into about 1M patches).
 
     python3 scripts/make_hall.py [--out DIR]     # default: the repository's data/
 

@@ -175,6 +175,52 @@ DirectRows point_direct_light(const Scene& scene, const RayCaster& caster, std::
   return out;
 }
 
+// direct_light at the goal patches in blocks of options.hit_block_patches receivers,
+// each block computed by the share that owns it (options.share) and every block's rows
+// gathered on every share. A receiver's light depends on its patch alone (its random
+// points are seeded by the patch), so the rows have the same bits whatever the split.
+DirectRows direct_light_in_blocks(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
+                                  std::size_t source_count, const SourceTable& sources, const Eigen::MatrixXd& gathered,
+                                  DirectLightOptions light, const SampleOperatorOptions& options) {
+  const WorkShare& share = options.share;
+  if (share.count == 1) return direct_light(scene, caster, receivers, source_count, sources, gathered, light);
+  const std::size_t block_size = static_cast<std::size_t>(std::max(1, options.hit_block_patches));
+  const std::size_t blocks = (receivers.size() + block_size - 1) / block_size;
+  const auto L = static_cast<Eigen::Index>(source_count);
+  const ProgressCallback progress = light.progress;
+  std::size_t mine = 0, done = 0;
+  for (std::size_t b = static_cast<std::size_t>(share.index); b < blocks; b += static_cast<std::size_t>(share.count))
+    mine += std::min(receivers.size(), (b + 1) * block_size) - b * block_size;
+  if (progress)
+    light.progress = [&](std::string_view label, std::size_t now, std::size_t) { progress(label, done + now, mine); };
+  const std::vector<double> all = gather_blocks(blocks, share, [&](std::size_t b) {
+    const std::size_t first = b * block_size, count = std::min(receivers.size(), first + block_size) - first;
+    const DirectRows rows = direct_light(scene, caster, receivers.subspan(first, count), source_count, sources,
+                                         gathered.middleRows(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(count)),
+                                         light);
+    done += count;
+    std::vector<double> out(2 * count * static_cast<std::size_t>(L));
+    Eigen::Map<RowMajorMatrix>(out.data(), static_cast<Eigen::Index>(count), L) = rows.D;
+    Eigen::Map<RowMajorMatrix>(out.data() + count * static_cast<std::size_t>(L), static_cast<Eigen::Index>(count), L) = rows.absorbed;
+    return out;
+  });
+  const auto R = static_cast<Eigen::Index>(receivers.size());
+  if (all.size() != 2 * receivers.size() * static_cast<std::size_t>(L))
+    throw std::logic_error("direct light in blocks: " + std::to_string(all.size()) + " values gathered, expected " +
+                           std::to_string(2 * receivers.size() * static_cast<std::size_t>(L)));
+  DirectRows out{Eigen::MatrixXd(R, L), Eigen::MatrixXd(R, L)};
+  std::size_t at = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t first = b * block_size, count = std::min(receivers.size(), first + block_size) - first;
+    const auto rows = static_cast<Eigen::Index>(count);
+    out.D.middleRows(static_cast<Eigen::Index>(first), rows) = Eigen::Map<const RowMajorMatrix>(all.data() + at, rows, L);
+    out.absorbed.middleRows(static_cast<Eigen::Index>(first), rows) =
+        Eigen::Map<const RowMajorMatrix>(all.data() + at + count * static_cast<std::size_t>(L), rows, L);
+    at += 2 * count * static_cast<std::size_t>(L);
+  }
+  return out;
+}
+
 }  // namespace
 
 SampleRows cast_sample_rows(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
@@ -405,7 +451,8 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
   DirectLightOptions goal_light = options.direct_light;
   goal_light.progress = progress;
   goal_light.progress_label = "direct light (goals)";
-  DirectRows direct = direct_light(scene, caster, goal_patches, sources.size(), table, sums.gathered, goal_light);
+  DirectRows direct = direct_light_in_blocks(scene, caster, goal_patches, sources.size(), table, sums.gathered, goal_light,
+                                             options);
   goals.direct_lux_per_lm = std::move(direct.D);
   goals.luminaire_form_factor = std::move(direct.absorbed);
   goals.kept_scale = apply_closed_form_loss(sums, goals.direct_lux_per_lm, goals.luminaire_form_factor, table);

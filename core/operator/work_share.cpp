@@ -46,4 +46,23 @@ std::vector<double> reduce_blocks(std::size_t blocks, const WorkShare& share,
   return total;
 }
 
+std::vector<double> gather_blocks(std::size_t blocks, const WorkShare& share,
+                                  const std::function<std::vector<double>(std::size_t block)>& values) {
+  if (std::string error; !share.is_valid(&error)) throw std::invalid_argument(error);
+  std::vector<double> all;
+  for (std::size_t round = 0; round < share.rounds(blocks); ++round) {
+    const std::size_t block = share.block_of_round(round);
+    std::vector<double> mine = block < blocks ? values(block) : std::vector<double>();
+    if (share.count == 1) {
+      all.insert(all.end(), mine.begin(), mine.end());
+      continue;
+    }
+    const std::vector<std::vector<double>> round_blocks = share.gather(std::move(mine));
+    if (share.is_root())
+      for (const std::vector<double>& b : round_blocks) all.insert(all.end(), b.begin(), b.end());
+  }
+  if (share.count > 1) all = share.broadcast(std::move(all));
+  return all;
+}
+
 }  // namespace ilp

@@ -46,4 +46,10 @@ void add_blocks_in_order(std::vector<double>& total, const std::vector<std::vect
 std::vector<double> reduce_blocks(std::size_t blocks, const WorkShare& share,
                                   const std::function<std::vector<double>(std::size_t block)>& partial);
 
+// Every block's values concatenated in block order, on every share: block b's from
+// values(b), computed by the share that owns it (rows computed each on its own, such as
+// a block of receivers' direct light: no sum, so any split gives the same bits).
+std::vector<double> gather_blocks(std::size_t blocks, const WorkShare& share,
+                                  const std::function<std::vector<double>(std::size_t block)>& values);
+
 }  // namespace ilp
