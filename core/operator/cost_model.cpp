@@ -148,7 +148,8 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     phases.push_back({label + "k x k solve (" + std::to_string(c.channels) + (c.channels == 1 ? " channel)" : " channels)"),
                       interreflection_flops(kk, L, c.channels, c.rays_per_patch, m) * m.sparse_flop_s,
                       held + 2.0 * sample_nnz * kRowNnzBytes + 6.0 * 8.0 * kk * L + first_bytes + 4.0 * D_goal,
-                      setting});
+                      // The first reflection's total has a row per goal row: grid points count.
+                      P > 0 && first_bytes > 0.0 ? setting + ", or " + grid_setting : setting});
     return phases;
   };
   const std::string k_setting = "solver.sample_fraction, solver.sample_size or solver.target_error (k)";
