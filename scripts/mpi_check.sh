@@ -147,4 +147,4 @@ set -e
 [ "$code" -eq 1 ] || { cat "$tmp/split_oom.err"; fail "a rank out of memory gave exit $code, not 1"; }
 [ "$(grep -c '^error:' "$tmp/split_oom.err")" -eq 1 ] || { cat "$tmp/split_oom.err"; fail "not exactly one error line"; }
 [ ! -e "$tmp/split_oom" ] || fail "a rank out of memory left an output folder"
-echo "mpi_check: ok, a rank out of memory in the split build: exit 1, $(grep '^error:' "$tmp/split_oom.err" | cut -c1-100)"
+echo "mpi_check: ok, a rank out of memory in the split preparation: exit 1, $(grep '^error:' "$tmp/split_oom.err" | cut -c1-100)"
