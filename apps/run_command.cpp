@@ -1,6 +1,7 @@
 // ilp run, ilp sweep, ilp print: the inverse-lighting job from a YAML file to the
 // layout table and the files of the output folder.
 #include <algorithm>
+#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -401,11 +402,12 @@ std::string default_cache_dir() {
 }
 
 RoomRun run_room(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
-                 const std::string& cache) {
+                 const std::string& cache, std::vector<PreparedJob> prebuilt, double prebuilt_seconds) {
   const auto start = Clock::now();
   RoomRun out;
   // Several groups: every group's variants prepared, searched together (job/group_runner.h).
-  if (job.groups.empty()) out.groups.prepared = prepare_all(job, run, progress, cache);
+  if (!prebuilt.empty()) out.groups.prepared = std::move(prebuilt);
+  else if (job.groups.empty()) out.groups.prepared = prepare_all(job, run, progress, cache);
   else out.groups = prepare_groups(job, run, progress, cache, log_line, log_build);
   const std::vector<PreparedJob>& all = out.groups.prepared;
   out.chosen = job.groups.empty() ? solve_variants(all, job, progress, log_line)
@@ -425,7 +427,7 @@ RoomRun run_room(const JobConfig& job, const RunOptions& run, const ProgressCall
       {prepared.loaded_from_cache ? "operator from cache" : "operator", operator_s},
       {"search", out.chosen.search_seconds},
       {"verification", out.chosen.verify_seconds},
-      {"total", seconds_since(start)}};
+      {"total", prebuilt_seconds + seconds_since(start)}};
   // No layout (every count screened out): nothing lit to report per grid.
   const bool no_layout = outcome.search.beaten;
   if (!no_layout) out.grids = run_grid_results(prepared, job, outcome);
@@ -443,44 +445,104 @@ void stage_room_outputs(OutputSet& set, const JobConfig& job, const RoomRun& roo
   stage_outputs(set, {room.prepared(), job, room.chosen.outcome, room.record, room.grids});
 }
 
-int run_single_room(const RunArgs& args, const JobConfig& job);
+int run_single_room(const RunArgs& args, const JobConfig& job, std::vector<PreparedJob> prepared = {},
+                    double prepared_seconds = 0.0);
 
 namespace {
 
-// Under mpirun: the variants' operators built into the cache over the ranks, every rank
-// waiting for the others at the end. A rank's failure here is only a note (rank 0's run
-// builds what is missing and meets any real error itself). Nothing without a cache or
-// with luminaire groups or a single variant (rank 0 alone then, as the note says).
-void warm_variant_cache(const RunArgs& args, const JobConfig& job, const dist::Communicator& comm) {
-  const std::string cache = cache_folder(args.cache_dir, args.no_cache);
-  const RunOptions run = run_options(args.threads, args.max_memory);
-  std::vector<VariantPlan> plans;
-  // Every rank plans alike (the same job and arguments); an error is rank 0's one message.
-  if (job.groups.empty() && !cache.empty()) dist::on_every_rank(comm, [&] { plans = plan_job(job, run); });
-  if (plans.size() < 2) {
+std::string to_bytes(const std::vector<double>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
+}
+
+std::vector<double> from_bytes(const std::string& bytes) {
+  std::vector<double> values(bytes.size() / sizeof(double));
+  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(double));
+  return values;
+}
+
+// This rank's share of an operator build (core/operator/work_share.h) over dist::agree:
+// a round's partial sums gathered to rank 0 as raw doubles (the ranks of one job share
+// a byte order), the total broadcast from it. A failure anywhere fails the step on
+// every rank (dist::in_agreed_steps).
+WorkShare operator_share(const dist::Communicator& comm) {
+  WorkShare share;
+  share.index = comm.rank();
+  share.count = comm.size();
+  share.gather = [&comm](std::vector<double> mine) {
+    std::vector<std::vector<double>> out;
+    dist::agree(comm, {true, to_bytes(mine)}, [&out](std::vector<std::string> all) {
+      for (const std::string& bytes : all) out.push_back(from_bytes(bytes));
+      return std::string();
+    });
+    return out;
+  };
+  share.broadcast = [&comm](std::vector<double> values) {
+    return from_bytes(dist::agree(comm, {true, comm.is_root() ? to_bytes(values) : std::string()},
+                                  [](std::vector<std::string> all) { return std::move(all[0]); }));
+  };
+  return share;
+}
+
+// "peak memory per rank <when>: 0: 1.23 GB, 1: 0.98 GB" on rank 0: each rank's resident
+// peak so far (getrusage's maxrss), one gather.
+void print_peak_memory_per_rank(const dist::Communicator& comm, const std::string& when) {
+  std::ostringstream mine;
+  mine << std::fixed << std::setprecision(2) << peak_memory_gb();
+  const std::vector<std::string> all = comm.gather(mine.str());
+  if (!comm.is_root()) return;
+  std::cout << "peak memory per rank " << when << ":";
+  for (std::size_t r = 0; r < all.size(); ++r) std::cout << (r == 0 ? " " : ", ") << r << ": " << all[r] << " GB";
+  std::cout << "\n" << std::flush;
+}
+
+// Under mpirun, a single-room job without luminaire groups: every rank loads the scene
+// and BVH and computes its blocks of each operator build (the patches the rows hit:
+// their direct light and its first reflection into T; core/operator/work_share.h); rank
+// 0 then searches and verifies alone while the others wait (docs/cluster.md).
+int run_split_room(const RunArgs& args, const JobConfig& job, const dist::Communicator& comm) {
+  RunOptions run = run_options(args.threads, args.max_memory);
+  run.operator_share = operator_share(comm);
+  // The ranks on one node share its memory: without --max-memory each may use its share of
+  // what the node has (rank 0's figure on every rank, so that every rank plans alike).
+  if (!run.max_memory_bytes && comm.node_size() > 1) {
+    std::string node;
     if (comm.is_root())
-      std::cerr << "note: this job runs on rank 0 alone, the other " << comm.size() - 1 << " ranks wait ("
-                << (cache.empty() ? "--no-cache: no operator cache to share variants through"
-                    : !job.groups.empty() ? "luminaire groups are not spread over ranks"
-                                          : "one product variant")
-                << "; a building's rooms are spread over ranks)\n";
-    return;
-  }
-  std::vector<VariantPlan> mine;
-  for (std::size_t v = 0; v < plans.size(); ++v)
-    if (static_cast<int>(v % static_cast<std::size_t>(comm.size())) == comm.rank()) mine.push_back(plans[v]);
-  if (comm.is_root())
-    std::cerr << "variants over ranks: " << plans.size() << " variants' operators built over " << comm.size()
-              << " ranks into " << cache << ", then the job runs on rank 0\n";
-  dist::on_every_rank(comm, [&] {
-    if (mine.empty()) return;
-    try {
-      (void)prepare_variants(job, mine, run, make_progress(args.quiet), cache, log_line, log_build);
-    } catch (const std::exception& e) {
-      std::cerr << "note: rank " << comm.rank() << " could not build its variants' operators (" << e.what()
-                << "); rank 0 builds them\n";
+      if (const std::optional<double> bytes = memory_budget_bytes(std::nullopt)) node = std::to_string(*bytes);
+    node = comm.broadcast(node);
+    if (!node.empty()) {
+      run.max_memory_bytes = std::stod(node) / comm.node_size();
+      if (comm.is_root())
+        std::cerr << "memory per rank: " << format_bytes(*run.max_memory_bytes) << " (what this node has, over its "
+                  << comm.node_size() << " ranks; --max-memory sets it per rank)\n";
     }
+  }
+  const std::string cache = cache_folder(args.cache_dir, args.no_cache);
+  if (comm.is_root())
+    std::cerr << "operator build split over " << comm.size()
+              << " ranks (scene and BVH on every rank, the patches the rows hit in blocks); the search and "
+                 "verification then run on rank 0\n";
+  std::vector<PreparedJob> prepared;
+  const auto build_start = Clock::now();
+  dist::in_agreed_steps(comm, [&] {
+    if (comm.is_root()) prepared = prepare_all(job, run, make_progress(args.quiet), cache);
+    else prepared = prepare_variants(job, plan_job(job, run), run, {}, cache, {});
   });
+  if (!comm.is_root()) prepared.clear();  // rank 0 alone searches: the others hold nothing more
+  print_peak_memory_per_rank(comm, "after the operator build");
+  const double build_seconds = seconds_since(build_start);
+  const int code =
+      dist::on_root_only(comm, [&] { return run_single_room(args, job, std::move(prepared), build_seconds); });
+  print_peak_memory_per_rank(comm, "at the end");
+  return code;
+}
+
+// Under mpirun, a single-room job with luminaire groups runs on rank 0 alone (its
+// groups' operators are not split over the ranks): a note says so.
+void note_root_alone(const dist::Communicator& comm) {
+  if (comm.is_root())
+    std::cerr << "note: this job runs on rank 0 alone, the other " << comm.size() - 1
+              << " ranks wait (luminaire groups are not spread over ranks; a building's rooms are, and a "
+                 "single room's operator build without groups)\n";
 }
 
 }  // namespace
@@ -494,11 +556,9 @@ int run_job(const RunArgs& args) {
     JobConfig job;
     dist::on_every_rank(comm, [&] { job = load_job_config(args.config); });
     if (!job.rooms.empty()) return run_building(args, job);
-    // A single-room job's product variants: each rank builds the operators of its share
-    // (variant v on rank v mod N) into the operator cache, then rank 0 runs the job as
-    // one process does, loading them (docs/cluster.md). Its search and verification are
-    // rank 0's alone.
-    warm_variant_cache(args, job, comm);
+    if (job.groups.empty()) return run_split_room(args, job, comm);
+    // A single-room job with luminaire groups: rank 0 alone (docs/cluster.md).
+    note_root_alone(comm);
     return dist::on_root_only(comm, [&] { return run_single_room(args, job); });
   }
   const JobConfig job = load_job_config(args.config);
@@ -506,12 +566,14 @@ int run_job(const RunArgs& args) {
   return run_single_room(args, job);
 }
 
-int run_single_room(const RunArgs& args, const JobConfig& job) {
+int run_single_room(const RunArgs& args, const JobConfig& job, std::vector<PreparedJob> prepared,
+                    double prepared_seconds) {
   const RunOptions run = run_options(args.threads, args.max_memory);
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.
   OutputSet set(output_directory(job, args.out_dir), run_output_names(job, false));
-  const RoomRun room = run_room(job, run, progress, cache_folder(args.cache_dir, args.no_cache));
+  const RoomRun room = run_room(job, run, progress, cache_folder(args.cache_dir, args.no_cache), std::move(prepared),
+                                prepared_seconds);
   print_result(std::cout, room.record);
   stage_room_outputs(set, job, room);
   for (const std::string& file : set.commit()) std::cout << "wrote " << file << "\n";

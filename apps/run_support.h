@@ -28,9 +28,11 @@ struct RoomRun {
   const PreparedJob& prepared() const { return groups.prepared[chosen.variant]; }
 };
 
-// Prepares, searches and verifies `job` (a single-room job), logging to stderr.
+// Prepares, searches and verifies `job` (a single-room job), logging to stderr; with
+// `prebuilt` (its variants, prepared already: a split build, which took prebuilt_seconds)
+// it searches and verifies those.
 RoomRun run_room(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
-                 const std::string& cache);
+                 const std::string& cache, std::vector<PreparedJob> prebuilt = {}, double prebuilt_seconds = 0.0);
 
 // Every file `ilp run` may write for a single-room job (all formats), or those its
 // output.formats selects; the names are the folder's own (result.json, plan.svg, ...).

@@ -124,6 +124,50 @@ void on_every_rank(const Communicator& comm, const std::function<void()>& step) 
   throw FailedElsewhere();
 }
 
+std::string agree(const Communicator& comm, const StepPart& mine,
+                  const std::function<std::string(std::vector<std::string> all)>& combine) {
+  if (!comm.distributed()) {
+    if (!mine.ok) throw AgreedFailure(mine.bytes);
+    return combine({mine.bytes});
+  }
+  std::vector<std::string> all = comm.gather((mine.ok ? "o" : "e") + mine.bytes);
+  std::string verdict;
+  if (comm.is_root()) {
+    for (const std::string& part : all)
+      if (part.empty() || part[0] != 'o') {
+        verdict = part.empty() ? "ea rank sent nothing" : part;
+        break;
+      }
+    if (verdict.empty()) {
+      for (std::string& part : all) part.erase(0, 1);
+      try {
+        verdict = "o" + combine(std::move(all));
+      } catch (...) {
+        verdict = "e" + failure_message(std::current_exception());
+      }
+    }
+  }
+  verdict = comm.broadcast(verdict);
+  if (!verdict.empty() && verdict[0] == 'o') return verdict.substr(1);
+  if (comm.is_root()) throw AgreedFailure(verdict.substr(1));
+  throw FailedElsewhere();
+}
+
+void in_agreed_steps(const Communicator& comm, const std::function<void()>& work) {
+  if (!comm.distributed()) return work();
+  const auto nothing = [](const std::vector<std::string>&) { return std::string(); };
+  try {
+    work();
+  } catch (const AgreedFailure&) {
+    throw;  // every rank knows already
+  } catch (const FailedElsewhere&) {
+    throw;
+  } catch (...) {
+    agree(comm, {false, failure_message(std::current_exception())}, nothing);  // throws
+  }
+  agree(comm, {true, ""}, nothing);
+}
+
 int on_root_only(const Communicator& comm, const std::function<int()>& work) {
   if (!comm.distributed()) return work();
   int code = 1;

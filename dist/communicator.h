@@ -50,6 +50,12 @@ struct FailedElsewhere : std::runtime_error {
   FailedElsewhere() : std::runtime_error("failed on another rank") {}
 };
 
+// Thrown on rank 0 when a step agreed on by every rank (agree) failed somewhere: the
+// message is the lowest failed rank's; the other ranks throw FailedElsewhere.
+struct AgreedFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // The message a failure shows (std::bad_alloc as out of memory).
 std::string failure_message(const std::exception_ptr& failure);
 
@@ -57,6 +63,26 @@ std::string failure_message(const std::exception_ptr& failure);
 // std::runtime_error with the message of the lowest rank that failed and every other
 // rank throws FailedElsewhere. One rank: `step` as is.
 void on_every_rank(const Communicator& comm, const std::function<void()>& step);
+
+// One step every rank reaches, done or failed: each rank gives its bytes (ok) or the
+// message of its failure (!ok). When every rank is ok, rank 0 maps their bytes (in rank
+// order) with `combine` and every rank gets the result; otherwise, or when `combine`
+// throws, rank 0 throws AgreedFailure (the lowest failed rank's message) and the others
+// FailedElsewhere. Always one gather and one broadcast, so a rank that failed before the
+// step the others are in meets them there with its failure. One rank: combine({bytes}).
+struct StepPart {
+  bool ok = true;
+  std::string bytes;  // the failure's message when !ok
+};
+std::string agree(const Communicator& comm, const StepPart& mine,
+                  const std::function<std::string(std::vector<std::string> all)>& combine);
+
+// Runs `work`, a sequence of agree() steps that every rank takes alike (a split operator
+// build), on every rank. A throw that is not an agreed failure meets the other ranks at
+// their current step as a failure; on success every rank meets at a closing step. So a
+// failure anywhere ends `work` on every rank: rank 0 throws AgreedFailure, the others
+// FailedElsewhere, and no rank is left waiting. One rank: `work` as is.
+void in_agreed_steps(const Communicator& comm, const std::function<void()>& work);
 
 // Runs `work` on rank 0 only (a command not spread over ranks) and gives its exit code
 // to every rank; a throw on rank 0 is rethrown there, FailedElsewhere elsewhere.

@@ -886,6 +886,8 @@ void read_solver(const Map& solver, JobConfig& job) {
     sample.max_size_loc = v->loc();
   }
   if (auto v = solver.get("reflected_stride")) sample.reflected_stride = static_cast<int>(v->integer(1, 64));
+  if (auto v = solver.get("hit_block_patches"))
+    sample.hit_block_patches = static_cast<int>(v->integer(1, 1'000'000'000));
   if (auto v = solver.get("error_samples")) sample.error_samples = static_cast<int>(v->integer(2, 64));
   if (auto v = solver.get("pilot_fraction")) {
     sample.pilot_fraction = v->number_in(0.0, 1.0, false, "(0, 1]");
@@ -1011,7 +1013,8 @@ JobConfig load_job_config(const std::string& path) {
       read_solver(Map(*v, {"method", "rays_per_patch", "seed", "threads", "relative_residual", "max_iterations",
                            "direct_receiver_points", "direct_shadow_rays", "sample_size", "sample_fraction",
                            "sampling", "sample_seed", "indirect", "target_error", "error_samples",
-                           "pilot_fraction", "max_sample_size", "reflected_stride"}),
+                           "pilot_fraction", "max_sample_size", "reflected_stride",
+                           "hit_block_patches"}),
                   job);
     if (auto v = top.get("optimizer"))
       read_optimizer(Map(*v, {"global_algorithm", "local_algorithm", "max_evaluations", "local_max_evaluations",

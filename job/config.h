@@ -84,6 +84,9 @@ struct SampleSettings {
   int max_size_for_target = 4000;  // solver.max_sample_size: the largest k target_error or sample_fraction gives
   FileLoc max_size_loc;
   int reflected_stride = 2;        // the candidates' reflected light at every n-th candidate (ModelSpec)
+  // solver.hit_block_patches: the patches the rows hit are taken in blocks of this many
+  // (SampleOperatorOptions::hit_block_patches): what a split build spreads over ranks.
+  int hit_block_patches = 1 << 14;
 
   // The sample-size part, as the operator's stage takes it (core/operator/sample_size.h).
   SampleSizeRule rule() const;

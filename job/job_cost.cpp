@@ -157,6 +157,8 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
     CostedGeometry c;
     c.counts = job_cost_counts(job, job_scene, partial, bytes, &grids);
     c.counts.photometric = !spec.candidates.type.lambertian();
+    c.counts.shares = spec.operator_options.share.count;
+    c.counts.hit_block_patches = static_cast<std::size_t>(spec.operator_options.hit_block_patches);
     c.estimate = estimate_job_cost(c.counts);
     c.refusal = refusal_of(c.estimate, budget, job.path);
     if (!c.refusal.empty()) {
@@ -172,6 +174,8 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
   }
   out.counts = job_cost_counts(job, job_scene, out.model, bytes);
   out.counts.photometric = !spec.candidates.type.lambertian();
+  out.counts.shares = spec.operator_options.share.count;
+  out.counts.hit_block_patches = static_cast<std::size_t>(spec.operator_options.hit_block_patches);
   out.estimate = estimate_job_cost(out.counts);
   out.refusal = refusal_of(out.estimate, budget, job.path);
   return out;

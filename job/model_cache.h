@@ -24,7 +24,7 @@ namespace ilp {
 
 // Bump whenever the file layout, the key's canonical text or the way the operator
 // is computed changes: files of another version are not used (and the key differs).
-inline constexpr std::uint32_t kLightingModelCacheVersion = 7;  // 2: duplicate triangles dropped in meshing; 3: luminaire direct light by type; 4: grid points as goal rows; 5: interreflection solved by iteration; 6: the key from the stage inputs (KeyWriter); 7: shadows by the opening's refined grid, patches cut along contact lines
+inline constexpr std::uint32_t kLightingModelCacheVersion = 8;  // 2: duplicate triangles dropped in meshing; 3: luminaire direct light by type; 4: grid points as goal rows; 5: interreflection solved by iteration; 6: the key from the stage inputs (KeyWriter); 7: shadows by the opening's refined grid, patches cut along contact lines; 8: the first reflection summed in blocks of hit patches
 
 // 32 lowercase hex digits: XXH3-128 of lighting_model_key_text. Never throws for a
 // missing or unreadable file (it contributes a marker instead).

@@ -78,6 +78,7 @@ ModelSpec model_spec(const JobConfig& job, const ProductVariant& product, const 
   m.areas = area_specs(job);
   m.grids = job.grids;
   m.operator_options = operator_options(job, run);
+  m.operator_options.share = run.operator_share;
   m.sample_size = job.sample.rule();
   m.reflected_stride = job.sample.reflected_stride;
   m.probe_flux_lm = product.dim_max * product.rated_flux_lm;
@@ -124,6 +125,7 @@ SampleOperatorOptions operator_options(const JobConfig& job, const RunOptions& r
   options.strategy = job.sample.strategy;
   options.sample_seed = job.sample.seed;
   options.indirect = job.sample.indirect;
+  options.hit_block_patches = job.sample.hit_block_patches;
   options.form_factors = job.form_factors;
   options.direct_light = job.direct_light;
   options.form_factors.threads = options.direct_light.threads = worker_threads(job, run);

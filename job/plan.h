@@ -21,6 +21,9 @@ namespace ilp {
 struct RunOptions {
   std::optional<int> threads;               // --threads: replaces solver.threads (0: every core)
   std::optional<double> max_memory_bytes;   // --max-memory: a budget below the machine's
+  // Under mpirun, a single-room job's operator builds split over the ranks (the lighting
+  // model's only: the verification's operator stays whole on rank 0). Default: one process.
+  WorkShare operator_share;
 };
 
 // Worker threads: --threads, else solver.threads.

@@ -157,15 +157,27 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                       kk * c.rays_per_patch * m.gather_ray_s, held + sample_nnz * kRowNnzPeakBytes, setting});
     // The sample's direct light is the cheap estimate too, but a census's is precise.
     const double sample_pair_s = kk >= pop ? c.direct_rays * m.precise_pair_ray_s : m.cheap_pair_s * pair_factor;
+    // The hits in blocks: one block's direct light held at a time; this rank computes
+    // every shares-th block; a block's partial sums of F(rows,:) B1 (k + G rows per
+    // channel), rank 0 holding one from each rank in a round, and their total.
+    const double shares = std::max(1, c.shares);
+    const double block = std::min(hits, d(std::max<std::size_t>(1, c.hit_block_patches)));
+    const double blocks = block > 0.0 ? std::ceil(hits / block) : 0.0;
+    const double my_hits = std::min(hits, std::ceil(blocks / shares) * block);
+    const double first_bytes = c.exact_second_bounce ? 8.0 * c.channels * (kk + G) * Lr : 0.0;
     phases.push_back({label + "direct light at sample and hit patches (" + std::to_string(static_cast<long long>(hits)) +
-                          " cheap)",
-                      (kk * sample_pair_s + hits * m.cheap_pair_s * pair_factor) * Lr,
-                      held + 2.0 * sample_nnz * kRowNnzBytes + 3.0 * 8.0 * kk * Lr + 2.0 * 8.0 * hits * Lr,
+                          " cheap" +
+                          (shares > 1 ? ", " + std::to_string(static_cast<long long>(my_hits)) + " on this rank" : "") +
+                          ")",
+                      (kk * sample_pair_s + my_hits * m.cheap_pair_s * pair_factor) * Lr,
+                      held + 2.0 * sample_nnz * kRowNnzBytes + 3.0 * 8.0 * kk * Lr + 2.0 * 8.0 * block * Lr +
+                          (2.0 + (shares > 1 ? shares : 0.0)) * first_bytes,
                       "luminaires.candidate_spacing_m (fewer candidates) or " + setting});
     phases.push_back({label + "k x k solve (" + std::to_string(c.channels) + (c.channels == 1 ? " channel)" : " channels)"),
                       interreflection_flops(kk, Lr, c.channels, c.rays_per_patch, m) * m.sparse_flop_s,
-                      held + 2.0 * sample_nnz * kRowNnzBytes + 6.0 * 8.0 * kk * Lr + 16.0 * hits * Lr + 4.0 * D_goal,
-                      setting});
+                      held + 2.0 * sample_nnz * kRowNnzBytes + 6.0 * 8.0 * kk * Lr + first_bytes + 4.0 * D_goal,
+                      // The first reflection's total has a row per goal row: grid points count.
+                      P > 0 && first_bytes > 0.0 ? setting + ", or " + grid_setting : setting});
     return phases;
   };
   const std::string k_setting = "solver.sample_fraction, solver.sample_size or solver.target_error (k)";

@@ -74,6 +74,12 @@ struct CostCounts {
   bool exact_second_bounce = true;
   int direct_rays = 64;              // receiver points x shadow rays of precise direct light
   bool photometric = false;          // the candidates' product has a photometric file (not a Lambertian panel)
+  // A split build (core/operator/work_share.h): the patches the rows hit in blocks of
+  // hit_block_patches, block b on rank b mod shares. The estimate is one rank's: the
+  // scene and BVH and every other phase replicated, its share of the hits' direct light,
+  // and rank 0's round of partial sums (one block's from each rank).
+  int shares = 1;
+  std::size_t hit_block_patches = std::size_t{1} << 14;
   int pilot_builds = 0;              // target_error: pilot operators built before the real one
   std::size_t pilot_size = 0;
   // search

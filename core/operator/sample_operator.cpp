@@ -174,12 +174,12 @@ SampleOperator build_in_arena(const Scene& scene, const RayCaster& caster, const
   SampleRows rows = cast_sample_rows(scene, caster, goals, op.sample, table, options, progress, st);
   const auto direct_start = std::chrono::steady_clock::now();
   const SampleDirect direct = direct_light_at_sample(scene, caster, goals, op.sample, rows, table, options, progress, st);
-  const HitDirect hits =
-      refine ? direct_light_at_hits(scene, caster, goals, rows, direct, table, options, progress, st) : HitDirect{};
+  const FirstReflection first =
+      refine ? first_reflection_at_rows(scene, caster, goals, rows, direct, table, options, progress, st) : FirstReflection{};
   st.direct_seconds = seconds_since(direct_start);
   GatherWeights weights = compute_gather_weights(scene, goals, op.sample, rows, st);
   const IndirectLight indirect =
-      solve_indirect_light(scene, goals, op.sample, rows, direct, hits, table, weights, options, progress, st);
+      solve_indirect_light(scene, goals, op.sample, direct, first, table, weights, options, progress, st);
   assemble_response(scene, goals, indirect, op);
 
   op.log = sample_operator_log(st, options, {weights.sample.W.nonZeros(), indirect.solve_sweeps});
@@ -233,13 +233,15 @@ SampleOperator build_sample_operator(const Scene& scene, const RayCaster& caster
   return arena.execute([&] { return build_in_arena(scene, caster, goals, options, progress); });
 }
 
-static_assert(field_count<SampleOperatorOptions>() == 8,
+// Not hashed: share (which process computes which block never changes the bits).
+static_assert(field_count<SampleOperatorOptions>() == 10,
               "SampleOperatorOptions changed: hash the new field here (or say why not)");
 void hash_fields(KeyWriter& k, const SampleOperatorOptions& o) {
   k.field("sample_size", o.sample_size).field("strategy", o.strategy).field("sample_seed", o.sample_seed);
   k.field("indirect", o.indirect).field("form_factors", o.form_factors).field("direct_light", o.direct_light);
   k.field("hit_direct_light", o.hit_direct_light);
   k.field("sample_direct_light", o.sample_direct_light);
+  k.field("hit_block_patches", o.hit_block_patches);
 }
 
 }  // namespace ilp

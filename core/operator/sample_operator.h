@@ -37,6 +37,7 @@
 #include "core/base/progress.h"
 #include "core/light/direct_light.h"
 #include "core/operator/patch_sample.h"
+#include "core/operator/work_share.h"
 #include "core/rays/form_factors.h"
 #include "core/rays/ray_caster.h"
 #include "core/scene/scene.h"
@@ -82,6 +83,14 @@ struct SampleOperatorOptions {
   // precision than the stratum's spread. Receiver points are random on the patch and
   // shadow rays stratified over the opening: the cheap estimate is unbiased.
   DirectLightOptions sample_direct_light = cheap_direct_light_options();
+  // exact_second_bounce: the patches the rows hit are taken in fixed blocks of this many
+  // (the first reflection's partial sums are added in block order): a block's direct
+  // light is held at a time, and the blocks are what a split build spreads. Changes the
+  // last bits of T (the order of the sums), never with share or threads.
+  int hit_block_patches = 1 << 14;
+  // Which blocks this process computes and how the partial sums meet (one process by
+  // default; docs/cluster.md). Not in the cache key: the bits do not depend on it.
+  WorkShare share;
 };
 
 // The operator cache's key (core/base/key_hash.h): every field (the nested options

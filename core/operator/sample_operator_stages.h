@@ -97,19 +97,26 @@ SampleDirect direct_light_at_sample(const Scene& scene, const RayCaster& caster,
                                     const SampleOperatorOptions& options, const ProgressCallback& progress,
                                     SampleOperatorStats& stats);
 
-// IndirectMethod::exact_second_bounce: direct light at every reflecting patch the
-// sample, goal and point rows hit (the first reflection B1 = R D is gathered there).
-struct HitDirect {
-  std::vector<int> slot;           // per scene patch: its row of D, or -1
-  RowMajorMatrix D;                // #hit patches by #sources; gathered sources' columns 0
+// IndirectMethod::exact_second_bounce: the first reflection B1 = R D gathered through
+// the full rows, F(rows,:) B1, for the sample, goal and point rows, B1 known at every
+// reflecting patch those rows hit. Per colour channel, #rows by #sources (gathered
+// sources' columns 0), before the rows' kept_scale.
+struct FirstReflection {
+  std::vector<Eigen::MatrixXd> at_sample;  // per channel: k by #sources
+  std::vector<Eigen::MatrixXd> at_goals;   // per channel: #goal patches by #sources
+  std::vector<Eigen::MatrixXd> at_points;  // per channel: #goal points by #sources (empty without point rows)
 };
 
-// Goal and sample patches reuse their direct light; the others get options.hit_direct_light.
-// Fills stats.cheap_direct_rows.
-HitDirect direct_light_at_hits(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
-                               const SampleRows& rows, const SampleDirect& direct, const SourceTable& table,
-                               const SampleOperatorOptions& options, const ProgressCallback& progress,
-                               SampleOperatorStats& stats);
+// The hit patches, in the order the rows first hit them, are cut into blocks of
+// options.hit_block_patches; each block's direct light (goal and sample patches reuse
+// theirs, the others get options.hit_direct_light) is gathered into the rows' partial
+// sums and dropped, and the partial sums are added in block order (reduce_blocks), so
+// no process holds the hits' direct light whole and the bits do not depend on
+// options.share. Fills stats.cheap_direct_rows (every block's, whatever the share).
+FirstReflection first_reflection_at_rows(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                                         const SampleRows& rows, const SampleDirect& direct, const SourceTable& table,
+                                         const SampleOperatorOptions& options, const ProgressCallback& progress,
+                                         SampleOperatorStats& stats);
 
 // ---- Gather weights (gather_weights.cpp).
 
@@ -145,7 +152,7 @@ struct IndirectLight {
 // condition_bound_inf, solve_seconds and response_seconds. Throws NumericalError where
 // energy would be created or a value becomes non-finite.
 IndirectLight solve_indirect_light(const Scene& scene, const GoalRows& goals, const PatchSample& sample,
-                                   const SampleRows& rows, const SampleDirect& direct, const HitDirect& hits,
+                                   const SampleDirect& direct, const FirstReflection& first,
                                    const SourceTable& table, GatherWeights& weights,
                                    const SampleOperatorOptions& options, const ProgressCallback& progress,
                                    SampleOperatorStats& stats);

@@ -1,12 +1,17 @@
 // How the rows behind the sample operator are cast and read: the goal rows (once per
 // set of goals), the sample's rows, their sums split by what the rays struck, and the
 // direct light at goal, sample and hit patches with the closed-form luminaire loss.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
 #include "core/light/direct_light.h"
 #include "core/operator/sample_operator.h"
 #include "core/operator/sample_operator_stages.h"
+#include "core/operator/work_share.h"
 #include "core/rays/point_gather.h"
 
 namespace ilp {
@@ -170,6 +175,52 @@ DirectRows point_direct_light(const Scene& scene, const RayCaster& caster, std::
   return out;
 }
 
+// direct_light at the goal patches in blocks of options.hit_block_patches receivers,
+// each block computed by the share that owns it (options.share) and every block's rows
+// gathered on every share. A receiver's light depends on its patch alone (its random
+// points are seeded by the patch), so the rows have the same bits whatever the split.
+DirectRows direct_light_in_blocks(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
+                                  std::size_t source_count, const SourceTable& sources, const Eigen::MatrixXd& gathered,
+                                  DirectLightOptions light, const SampleOperatorOptions& options) {
+  const WorkShare& share = options.share;
+  if (share.count == 1) return direct_light(scene, caster, receivers, source_count, sources, gathered, light);
+  const std::size_t block_size = static_cast<std::size_t>(std::max(1, options.hit_block_patches));
+  const std::size_t blocks = (receivers.size() + block_size - 1) / block_size;
+  const auto L = static_cast<Eigen::Index>(source_count);
+  const ProgressCallback progress = light.progress;
+  std::size_t mine = 0, done = 0;
+  for (std::size_t b = static_cast<std::size_t>(share.index); b < blocks; b += static_cast<std::size_t>(share.count))
+    mine += std::min(receivers.size(), (b + 1) * block_size) - b * block_size;
+  if (progress)
+    light.progress = [&](std::string_view label, std::size_t now, std::size_t) { progress(label, done + now, mine); };
+  const std::vector<double> all = gather_blocks(blocks, share, [&](std::size_t b) {
+    const std::size_t first = b * block_size, count = std::min(receivers.size(), first + block_size) - first;
+    const DirectRows rows = direct_light(scene, caster, receivers.subspan(first, count), source_count, sources,
+                                         gathered.middleRows(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(count)),
+                                         light);
+    done += count;
+    std::vector<double> out(2 * count * static_cast<std::size_t>(L));
+    Eigen::Map<RowMajorMatrix>(out.data(), static_cast<Eigen::Index>(count), L) = rows.D;
+    Eigen::Map<RowMajorMatrix>(out.data() + count * static_cast<std::size_t>(L), static_cast<Eigen::Index>(count), L) = rows.absorbed;
+    return out;
+  });
+  const auto R = static_cast<Eigen::Index>(receivers.size());
+  if (all.size() != 2 * receivers.size() * static_cast<std::size_t>(L))
+    throw std::logic_error("direct light in blocks: " + std::to_string(all.size()) + " values gathered, expected " +
+                           std::to_string(2 * receivers.size() * static_cast<std::size_t>(L)));
+  DirectRows out{Eigen::MatrixXd(R, L), Eigen::MatrixXd(R, L)};
+  std::size_t at = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t first = b * block_size, count = std::min(receivers.size(), first + block_size) - first;
+    const auto rows = static_cast<Eigen::Index>(count);
+    out.D.middleRows(static_cast<Eigen::Index>(first), rows) = Eigen::Map<const RowMajorMatrix>(all.data() + at, rows, L);
+    out.absorbed.middleRows(static_cast<Eigen::Index>(first), rows) =
+        Eigen::Map<const RowMajorMatrix>(all.data() + at + count * static_cast<std::size_t>(L), rows, L);
+    at += 2 * count * static_cast<std::size_t>(L);
+  }
+  return out;
+}
+
 }  // namespace
 
 SampleRows cast_sample_rows(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
@@ -239,18 +290,37 @@ SampleDirect direct_light_at_sample(const Scene& scene, const RayCaster& caster,
   return out;
 }
 
+namespace {
+
+// Adds F(rows,:) B1 over the hits in slots [first, first + D.rows()) to `out` (rows by
+// #sources), B1_j = rho_j(channel) D(slot j - first,:). Rows are split among threads;
+// each row's sum is its own, in the row's column order, so the split changes nothing.
+void gather_block(const Scene& scene, const SparseRows& F, const std::vector<int>& slot, int first,
+                  const RowMajorMatrix& D, int channel, RowMajorMatrix& out) {
+  const int last = first + static_cast<int>(D.rows());
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, F.rows(), 64), [&](const tbb::blocked_range<Eigen::Index>& r) {
+    for (Eigen::Index row = r.begin(); row < r.end(); ++row)
+      for (SparseRows::InnerIterator it(F, row); it; ++it)
+        if (const int s = slot[it.col()]; s >= first && s < last)
+          out.row(row) += it.value() * scene.reflectance(static_cast<int>(it.col()), channel) * D.row(s - first);
+  });
+}
+
+}  // namespace
+
 // Refinement: direct light at every reflecting patch the sample and goal rows hit.
 // Goal and sample patches reuse theirs; the others are only ever read through a
 // row's average over its hits, so a cheaper estimate (hit_direct_light) serves.
-HitDirect direct_light_at_hits(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
-                               const SampleRows& rows, const SampleDirect& direct, const SourceTable& table,
-                               const SampleOperatorOptions& options, const ProgressCallback& progress,
-                               SampleOperatorStats& st) {
+FirstReflection first_reflection_at_rows(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                                         const SampleRows& rows, const SampleDirect& direct, const SourceTable& table,
+                                         const SampleOperatorOptions& options, const ProgressCallback& progress,
+                                         SampleOperatorStats& st) {
+  if (options.hit_block_patches < 1)
+    throw std::invalid_argument("hit_block_patches = " + std::to_string(options.hit_block_patches) + ": must be >= 1");
   const std::span<const LightSource> sources = goals.sources;
   const Eigen::Index L = static_cast<Eigen::Index>(sources.size());
   std::vector<int> hit_slot(scene.patches.size(), -1);
-  std::vector<int> hit, cheap;
-  std::vector<Eigen::Index> cheap_slot;
+  std::vector<int> hit;
   auto collect = [&](const SparseRows& F) {
     for (Eigen::Index r = 0; r < F.rows(); ++r)
       for (SparseRows::InnerIterator it(F, r); it; ++it)
@@ -262,32 +332,86 @@ HitDirect direct_light_at_hits(const Scene& scene, const RayCaster& caster, cons
   collect(rows.rows.F);
   collect(goals.rows->F);
   if (goals.point_rows) collect(goals.point_rows->F);
-  Eigen::MatrixXd D_hit(static_cast<Eigen::Index>(hit.size()), L);
-  for (std::size_t h = 0; h < hit.size(); ++h) {
-    const auto slot = static_cast<Eigen::Index>(h);
-    if (rows.sample_slot[hit[h]] >= 0) D_hit.row(slot) = direct.D_P.row(rows.sample_slot[hit[h]]);
-    else if (rows.goal_slot[hit[h]] >= 0) D_hit.row(slot) = goals.direct_lux_per_lm.row(rows.goal_slot[hit[h]]);
-    else {
-      cheap.push_back(hit[h]);
-      cheap_slot.push_back(slot);
-    }
-  }
+  auto is_cheap = [&](int patch) { return rows.sample_slot[patch] < 0 && rows.goal_slot[patch] < 0; };
+  st.cheap_direct_rows = static_cast<std::size_t>(std::count_if(hit.begin(), hit.end(), is_cheap));
+
   // Gathered sources keep the plain form (their direct light is known only where rows were cast).
   DirectLightOptions cheap_options = options.hit_direct_light;
   cheap_options.seed = options.direct_light.seed;
   cheap_options.threads = options.direct_light.threads;
-  cheap_options.progress = progress;
-  cheap_options.progress_label = "direct light (patches the rows hit)";
   cheap_options.form_factors = false;  // only D is read here
-  const Eigen::MatrixXd D_cheap = direct_light(
-      scene, caster, cheap, sources.size(), table,
-      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(cheap.size()), static_cast<Eigen::Index>(table.gathered.size())),
-      cheap_options).D;
-  for (std::size_t m = 0; m < cheap.size(); ++m) D_hit.row(cheap_slot[m]) = D_cheap.row(static_cast<Eigen::Index>(m));
-  for (std::size_t e = 0; e < table.gathered.size(); ++e) D_hit.col(table.gathered[e]).setZero();
-  st.cheap_direct_rows = cheap.size();
-  require_finite(D_hit, "direct light", scene, hit, sources);
-  return {std::move(hit_slot), RowMajorMatrix(D_hit)};
+  cheap_options.progress_label = "direct light (patches the rows hit)";
+  const std::size_t block_size = static_cast<std::size_t>(options.hit_block_patches);
+  const std::size_t blocks = (hit.size() + block_size - 1) / block_size;
+  // This share's cheap patches, for the progress line.
+  std::size_t mine = 0, done = 0;
+  for (std::size_t b = 0; b < blocks; ++b)
+    if (b % static_cast<std::size_t>(options.share.count) == static_cast<std::size_t>(options.share.index))
+      mine += static_cast<std::size_t>(std::count_if(hit.begin() + static_cast<std::ptrdiff_t>(b * block_size),
+                                                     hit.begin() + static_cast<std::ptrdiff_t>(std::min(hit.size(), (b + 1) * block_size)),
+                                                     is_cheap));
+  if (progress)
+    cheap_options.progress = [&](std::string_view label, std::size_t now, std::size_t) { progress(label, done + now, mine); };
+
+  const Eigen::Index k = rows.rows.F.rows(), G = goals.rows->F.rows();
+  const Eigen::Index Q = goals.point_rows ? goals.point_rows->F.rows() : 0;
+  const int channels = scene.channels;
+  const std::size_t per_channel = static_cast<std::size_t>((k + G + Q) * L);
+  // Block b's partial sums: per channel, the sample's, goals' and points' rows (row-major).
+  auto partial = [&](std::size_t b) {
+    const std::size_t first = b * block_size, last = std::min(hit.size(), first + block_size);
+    RowMajorMatrix D(static_cast<Eigen::Index>(last - first), L);
+    std::vector<int> cheap;
+    std::vector<Eigen::Index> cheap_row;
+    for (std::size_t h = first; h < last; ++h) {
+      const auto row = static_cast<Eigen::Index>(h - first);
+      if (rows.sample_slot[hit[h]] >= 0) D.row(row) = direct.D_P.row(rows.sample_slot[hit[h]]);
+      else if (rows.goal_slot[hit[h]] >= 0) D.row(row) = goals.direct_lux_per_lm.row(rows.goal_slot[hit[h]]);
+      else {
+        cheap.push_back(hit[h]);
+        cheap_row.push_back(row);
+      }
+    }
+    const Eigen::MatrixXd D_cheap = direct_light(
+        scene, caster, cheap, sources.size(), table,
+        Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(cheap.size()), static_cast<Eigen::Index>(table.gathered.size())),
+        cheap_options).D;
+    done += cheap.size();
+    for (std::size_t m = 0; m < cheap.size(); ++m) D.row(cheap_row[m]) = D_cheap.row(static_cast<Eigen::Index>(m));
+    for (std::size_t e = 0; e < table.gathered.size(); ++e) D.col(table.gathered[e]).setZero();
+    const std::vector<int> labels(hit.begin() + static_cast<std::ptrdiff_t>(first), hit.begin() + static_cast<std::ptrdiff_t>(last));
+    require_finite(Eigen::MatrixXd(D), "direct light", scene, labels, sources);
+    std::vector<double> out(per_channel * static_cast<std::size_t>(channels), 0.0);
+    for (int c = 0; c < channels; ++c) {
+      double* at = out.data() + per_channel * static_cast<std::size_t>(c);
+      Eigen::Map<RowMajorMatrix> S(at, k, L), Fg(at + k * L, G, L), Fq(at + (k + G) * L, Q, L);
+      RowMajorMatrix sum = RowMajorMatrix::Zero(k, L);
+      gather_block(scene, rows.rows.F, hit_slot, static_cast<int>(first), D, c, sum);
+      S = sum;
+      sum = RowMajorMatrix::Zero(G, L);
+      gather_block(scene, goals.rows->F, hit_slot, static_cast<int>(first), D, c, sum);
+      Fg = sum;
+      if (Q > 0) {
+        sum = RowMajorMatrix::Zero(Q, L);
+        gather_block(scene, goals.point_rows->F, hit_slot, static_cast<int>(first), D, c, sum);
+        Fq = sum;
+      }
+    }
+    return out;
+  };
+  std::vector<double> total = reduce_blocks(blocks, options.share, partial);
+  if (total.empty()) total.assign(per_channel * static_cast<std::size_t>(channels), 0.0);  // no hit at all
+  if (total.size() != per_channel * static_cast<std::size_t>(channels))
+    throw std::logic_error("first_reflection_at_rows: " + std::to_string(total.size()) + " values reduced, expected " +
+                           std::to_string(per_channel * static_cast<std::size_t>(channels)));
+  FirstReflection out;
+  for (int c = 0; c < channels; ++c) {
+    const double* at = total.data() + per_channel * static_cast<std::size_t>(c);
+    out.at_sample.push_back(Eigen::Map<const RowMajorMatrix>(at, k, L));
+    out.at_goals.push_back(Eigen::Map<const RowMajorMatrix>(at + k * L, G, L));
+    if (goals.point_rows) out.at_points.push_back(Eigen::Map<const RowMajorMatrix>(at + (k + G) * L, Q, L));
+  }
+  return out;
 }
 
 }  // namespace detail
@@ -327,7 +451,8 @@ GoalRows compute_goal_rows(const Scene& scene, const RayCaster& caster, std::spa
   DirectLightOptions goal_light = options.direct_light;
   goal_light.progress = progress;
   goal_light.progress_label = "direct light (goals)";
-  DirectRows direct = direct_light(scene, caster, goal_patches, sources.size(), table, sums.gathered, goal_light);
+  DirectRows direct = direct_light_in_blocks(scene, caster, goal_patches, sources.size(), table, sums.gathered, goal_light,
+                                             options);
   goals.direct_lux_per_lm = std::move(direct.D);
   goals.luminaire_form_factor = std::move(direct.absorbed);
   goals.kept_scale = apply_closed_form_loss(sums, goals.direct_lux_per_lm, goals.luminaire_form_factor, table);

@@ -17,22 +17,6 @@
 namespace ilp::detail {
 namespace {
 
-// F(rows,:) B1 where B1_j = rho_j(channel) D(j,:) is known at the patches in `at`
-// (dense index `slot`): the first reflection gathered through full rows.
-// Row-major: each hit adds a whole row of D, and rows are split among threads (each
-// row's sum is its own, so the result does not depend on the split).
-Eigen::MatrixXd gather_first_reflection(const Scene& scene, const SparseRows& F, const std::vector<int>& slot,
-                                        const RowMajorMatrix& D, int channel) {
-  RowMajorMatrix out = RowMajorMatrix::Zero(F.rows(), D.cols());
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, F.rows(), 64), [&](const tbb::blocked_range<Eigen::Index>& r) {
-    for (Eigen::Index row = r.begin(); row < r.end(); ++row)
-      for (SparseRows::InnerIterator it(F, row); it; ++it)
-        if (const int s = slot[it.col()]; s >= 0)
-          out.row(row) += it.value() * scene.reflectance(static_cast<int>(it.col()), channel) * D.row(s);
-  });
-  return out;
-}
-
 // (I - K) X = rhs. By iteration (core/contraction_solve.h) when K's contraction
 // factor lets it converge in kMaxSweeps or k is too large for a dense k x k matrix
 // (memory grows as k, not k^2), else by a dense LU. The condition figure in the stats
@@ -96,7 +80,7 @@ struct ChannelSolution {
 };
 
 ChannelSolution solve_channel(const Scene& scene, const GoalRows& goals, const PatchSample& sample,
-                              const SampleRows& rows, const SampleDirect& direct, const HitDirect& hits,
+                              const SampleDirect& direct, const FirstReflection& first,
                               const SourceTable& table, bool refine, int c, ContractionSystem& W_PP,
                               SampleOperatorStats& st, int& solve_sweeps) {
   const std::vector<int>& P = sample.patches;
@@ -113,8 +97,8 @@ ChannelSolution solve_channel(const Scene& scene, const GoalRows& goals, const P
   Eigen::MatrixXd rhs = rho.asDiagonal() * direct.D_P;
   ChannelSolution out;
   if (refine) {
-    const Eigen::MatrixXd S = direct.kept_scale.asDiagonal() * gather_first_reflection(scene, rows.rows.F, hits.slot, hits.D, c);
-    out.first_at_goals = goals.kept_scale.asDiagonal() * gather_first_reflection(scene, goals.rows->F, hits.slot, hits.D, c);
+    const Eigen::MatrixXd S = direct.kept_scale.asDiagonal() * first.at_sample[static_cast<std::size_t>(c)];
+    out.first_at_goals = goals.kept_scale.asDiagonal() * first.at_goals[static_cast<std::size_t>(c)];
     for (Eigen::Index l = 0; l < L; ++l)
       if (table.emitting_index[l] < 0) rhs.col(l) = rho.asDiagonal() * S.col(l);
   }
@@ -125,7 +109,7 @@ ChannelSolution solve_channel(const Scene& scene, const GoalRows& goals, const P
 
 // The goal patches' and points' gather of one channel's Bʳ_P (plus, refined, the
 // first reflection), added to `sum` with the channel's luminance weight.
-void add_channel_response(const Scene& scene, const GoalRows& goals, const HitDirect& hits, const SourceTable& table,
+void add_channel_response(const Scene& scene, const GoalRows& goals, const FirstReflection& first, const SourceTable& table,
                           const GatherWeights& W, bool refine, int c, const ChannelSolution& solved,
                           IndirectLight& sum) {
   const Eigen::Index L = static_cast<Eigen::Index>(goals.sources.size());
@@ -142,10 +126,9 @@ void add_channel_response(const Scene& scene, const GoalRows& goals, const HitDi
   if (Q > 0) {
     Eigen::MatrixXd at_points = W.points * reflected + W.point_fallback_scale * (ambient.transpose() * reflected);
     if (refine && goals.point_rows) {
-      const Eigen::MatrixXd first =
-          goals.point_kept_scale.asDiagonal() * gather_first_reflection(scene, goals.point_rows->F, hits.slot, hits.D, c);
+      const Eigen::MatrixXd at_first = goals.point_kept_scale.asDiagonal() * first.at_points[static_cast<std::size_t>(c)];
       for (Eigen::Index l = 0; l < L; ++l)
-        if (table.emitting_index[l] < 0) at_points.col(l) += first.col(l);
+        if (table.emitting_index[l] < 0) at_points.col(l) += at_first.col(l);
     }
     sum.at_points += weight * at_points;
   }
@@ -190,7 +173,7 @@ void append_point_rows(const GoalRows& goals, const Eigen::MatrixXd& point_total
 }  // namespace
 
 IndirectLight solve_indirect_light(const Scene& scene, const GoalRows& goals, const PatchSample& sample,
-                                   const SampleRows& rows, const SampleDirect& direct, const HitDirect& hits,
+                                   const SampleDirect& direct, const FirstReflection& first,
                                    const SourceTable& table, GatherWeights& weights,
                                    const SampleOperatorOptions& options, const ProgressCallback& progress,
                                    SampleOperatorStats& st) {
@@ -204,10 +187,10 @@ IndirectLight solve_indirect_light(const Scene& scene, const GoalRows& goals, co
     if (progress) progress("k x k solve", static_cast<std::size_t>(c), channels);
     const auto solve_start = std::chrono::steady_clock::now();
     const ChannelSolution solved =
-        solve_channel(scene, goals, sample, rows, direct, hits, table, refine, c, weights.sample, st, sum.solve_sweeps);
+        solve_channel(scene, goals, sample, direct, first, table, refine, c, weights.sample, st, sum.solve_sweeps);
     st.solve_seconds += seconds_since(solve_start);
     const auto response_start = std::chrono::steady_clock::now();
-    add_channel_response(scene, goals, hits, table, weights, refine, c, solved, sum);
+    add_channel_response(scene, goals, first, table, weights, refine, c, solved, sum);
     st.response_seconds += seconds_since(response_start);
   }
   if (progress) progress("k x k solve", channels, channels);

@@ -229,6 +229,8 @@ TEST(KeyHash, SampleOperatorOptionsCoverEveryField) {
       {"direct_light", [](SampleOperatorOptions& o) { o.direct_light.shadow_rays = 2; }},
       {"hit_direct_light", [](SampleOperatorOptions& o) { o.hit_direct_light.receiver_points = 2; }},
       {"sample_direct_light", [](SampleOperatorOptions& o) { o.sample_direct_light.shadow_rays = 9; }},
+      {"hit_block_patches", [](SampleOperatorOptions& o) { o.hit_block_patches = 97; }},
+      left_out<SampleOperatorOptions>("share", [](SampleOperatorOptions& o) { o.share.count = 2; }),
   });
   // The nested options' threads and progress stay out.
   const SampleOperatorOptions base;

@@ -472,6 +472,7 @@ TEST(ModelCache, EverySolverSettingThatChangesTheOperatorReachesTheKey) {
       {"max_size_for_target", [](SampleSettings& s) { s.max_size_for_target = 100; }},
       left_out<SampleSettings>("max_size_loc", [&](SampleSettings& s) { s.max_size_loc = at; }),
       {"reflected_stride", [](SampleSettings& s) { s.reflected_stride = 3; }},
+      {"hit_block_patches", [](SampleSettings& s) { s.hit_block_patches = 97; }},
   }, [&](const SampleSettings& sample) {
     JobConfig j = job;
     j.sample = sample;
