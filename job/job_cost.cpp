@@ -82,6 +82,7 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
   c.rays_per_patch = job.form_factors.rays_per_patch;
   c.exact_second_bounce = job.sample.indirect == IndirectMethod::exact_second_bounce;
   c.direct_rays = job.direct_light.receiver_points * job.direct_light.shadow_rays;
+  c.point_direct_rays = job.direct_light.shadow_rays;
   if (c.population > 0) {
     if (job.sample.target_error) {
       c.pilot_builds = job.sample.error_samples;
@@ -127,6 +128,7 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
   c.verify_sample_size = static_cast<std::size_t>(plan.sample_size);
   c.verify_rounds = plan.method == VerificationMethod::none ? 1 : job.verification.rounds;
   c.output_patches = job.output.ply || job.output.csv ? c.patches : 0;
+  c.output_renders = job.output.plan_png || job.output.isolux_png || job.output.pdf;
   return c;
 }
 

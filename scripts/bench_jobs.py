@@ -16,14 +16,16 @@ def run_once(ilp, job, out):
     wall = time.monotonic() - start
     if p.returncode not in (0, 2):
         raise SystemExit(f"{ilp} run {job}: exit {p.returncode}\n{p.stderr[-2000:]}")
+    # Per room of a building job ("room K of N:" starts each), else the whole log: the
+    # whole run's line of a job of several variants, else the sum of its variants' totals
+    # (one variant; luminaire groups print one per group's variant).
     estimate = None
-    m = re.search(r"estimate: the whole run[^\n]*about ([0-9.]+) s", p.stderr)
-    if m:
-        estimate = float(m.group(1))
-    else:
-        found = re.findall(r"estimate: in all about ([0-9.]+) s", p.stderr)
+    for part in re.split(r"\nroom [0-9]+ of [0-9]+:", p.stderr):
+        m = re.search(r"estimate: the whole run[^\n]*about ([0-9.]+) s", part)
+        found = [m.group(1)] if m else [str(sum(float(x) for x in re.findall(r"estimate: in all about ([0-9.]+) s", part)))]
+        found = [x for x in found if float(x) > 0.0]
         if found:
-            estimate = sum(float(x) for x in found)
+            estimate = (estimate or 0.0) + float(found[0])
     with open(os.path.join(out, "timings.json")) as f:
         t = json.load(f)["timings_s"]
     return {"wall": wall, "estimate": estimate, "verification": t.get("verification", 0.0),

@@ -139,7 +139,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                           P * kGridPointBytes, grid_setting});
   out.phases.push_back({"goal rows and direct light at goal patches" + std::string(P > 0 ? " and grid points" : ""),
                         ((G - P) * c.rays_per_patch + P * point_rays) * m.gather_ray_s +
-                            G * L * c.direct_rays * m.precise_pair_ray_s,
+                            ((G - P) * c.direct_rays + P * c.point_direct_rays) * L * m.precise_pair_ray_s,
                         goal_nnz * kRowNnzPeakBytes + 2.0 * D_goal,
                         P > 0 ? grid_setting + ", or luminaires.candidate_spacing_m (fewer candidates)"
                               : "scene.max_patch_edge_m (fewer goal patches) or luminaires.candidate_spacing_m (fewer "
@@ -216,7 +216,8 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     const double other_rays = std::min<double>(indirect, first < indirect ? 2.0 * first : first);
     const int row_rays = n > 0.0 ? static_cast<int>(std::ceil((Gp * c.verify_rays + (n - Gp) * other_rays) / n)) : 1;
     const double per = n * m.bvh_patch_s + (n * row_rays + P * c.verify_rays) * m.gather_ray_s +
-                       (G * c.direct_rays * m.precise_pair_ray_s + n * m.cheap_pair_s * pair_factor) * Lv +
+                       (((G - P) * c.direct_rays + P * c.point_direct_rays) * m.precise_pair_ray_s +
+                        n * m.cheap_pair_s * pair_factor) * Lv +
                        steps * m.gauss_seidel_sweeps * row_nnz(n, row_rays, c.patches) * m.gauss_seidel_nnz_s;
     out.phases.push_back({"verification (exact, " + std::to_string(c.verify_rays) + " rays per goal row, " +
                               std::to_string(static_cast<int>(other_rays)) + " elsewhere (up to " +
@@ -238,7 +239,10 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                           "verification.sample_fraction or verification.method"});
   }
   if (c.writes_outputs)
-    out.phases.push_back({kOutputPhase, m.output_base_s + d(c.output_patches) * m.output_patch_s, 0.0,
+    out.phases.push_back({kOutputPhase,
+                          m.output_base_s + (c.output_renders ? m.output_render_s : 0.0) +
+                              d(c.output_patches) * m.output_patch_s,
+                          0.0,
                           "output.formats (ply, csv write every patch)"});
   return out;
 }

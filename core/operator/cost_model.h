@@ -42,11 +42,12 @@ struct MachineCosts {
   // 346,551 patches in 0.71 + 0.28 s, the classroom's 167,659 in 0.15-0.30 + 0.20-0.24 s.
   double scene_patch_s = 2.8e-6;
   double bvh_patch_s = 0.8e-6;              // the verification's own BVH (its scene holds the luminaires)
-  // Writing the outputs: a fixed part (result.json, plans, isolux PNGs, the PDF: 0.3-0.5 s
-  // on the office) and, where the formats write every patch (scene.ply, illuminance.csv),
+  // Writing the outputs: a fixed part (result.json, SVG plans: 0.05 s; rendering PNGs and the
+  // PDF: 0.3 s more on the office) and, where the formats write every patch (scene.ply, illuminance.csv),
   // a part per patch (the classroom's 167,659 and the conference's 346,461 patches: 0.8
   // and 1.3 s between the timings' total and the process's wall clock, 2026-12-03).
-  double output_base_s = 0.35;
+  double output_base_s = 0.05;
+  double output_render_s = 0.3;             // when plans, isolux maps are rendered to PNG or the PDF is written
   double output_patch_s = 2.8e-6;
   int grid_rays_per_cell = 8;               // laying a grid: 6 inside-solid rays and 2 floor rays a cell
   double outline_test_s = 1.5e-8;           // one point against one outline triangle, 9 times (the band)
@@ -73,6 +74,7 @@ struct CostCounts {
   int rays_per_patch = 128;
   bool exact_second_bounce = true;
   int direct_rays = 64;              // receiver points x shadow rays of precise direct light
+  int point_direct_rays = 8;         // a grid point's: one receiver point, its shadow rays
   bool photometric = false;          // the candidates' product has a photometric file (not a Lambertian panel)
   // A split build (core/operator/work_share.h): the patches the rows hit in blocks of
   // hit_block_patches, block b on rank b mod shares. The estimate is one rank's: the
@@ -96,6 +98,7 @@ struct CostCounts {
   // outputs
   bool writes_outputs = true;        // the run writes its output set (the last phase)
   std::size_t output_patches = 0;    // patches the formats write one by one (scene.ply, illuminance.csv)
+  bool output_renders = false;       // PNG plans or isolux maps, or the PDF report
 };
 
 struct PhaseEstimate {
