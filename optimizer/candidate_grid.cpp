@@ -407,7 +407,7 @@ AxisSpan axis_span(int i, int last, int stride) {
 ReflectedBlend candidate_reflected_blend(const CandidateGrid& grid, std::size_t fixed_sources, int stride) {
   if (stride < 1) throw std::invalid_argument("candidate_reflected_blend: stride must be >= 1");
   const std::size_t sources = fixed_sources + grid.size();
-  if (stride == 1) return identity_blend(sources);
+  if (stride == 1 || grid.size() == 0) return identity_blend(sources);
   const int last_x = grid.nodes_x() - 1, last_y = grid.nodes_y() - 1;
   // Each candidate's blend over candidates (before the computed ones are numbered).
   std::vector<std::vector<std::pair<int, double>>> from(grid.size());

@@ -100,7 +100,7 @@ class CandidateGrid {
   // The candidate at node (i, j) of the nodes_x() x nodes_y() lattice, -1 where none fits
   // or the node is outside it.
   int candidate_at_node(int i, int j) const {
-    return i < 0 || j < 0 || i > nx_ || j > ny_ ? -1 : node(i, j);
+    return i < 0 || j < 0 || i > nx_ || j > ny_ || candidate_of_node_.empty() ? -1 : node(i, j);
   }
 
  private:

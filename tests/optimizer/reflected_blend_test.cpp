@@ -67,8 +67,10 @@ TEST(ReflectedBlend, ABlendedCandidateSitsWhereItsWeightsPutIt) {
   const auto nx = static_cast<std::size_t>(grid.nodes_x()), ny = static_cast<std::size_t>(grid.nodes_y());
   EXPECT_EQ(blend.computed.size(), ((nx + 2) / 2) * ((ny + 2) / 2)) << nx << " x " << ny << " nodes";
   EXPECT_EQ(blended + blend.computed.size(), grid.size());
-  // Stride 1: every candidate computed.
+  // Stride 1: every candidate computed; an empty grid: the fixed sources alone.
   EXPECT_EQ(candidate_reflected_blend(grid, 3, 1).computed.size(), grid.size() + 3);
+  EXPECT_EQ(candidate_reflected_blend(CandidateGrid(), 2, 2).computed.size(), 2u);
+  EXPECT_EQ(CandidateGrid().candidate_at_node(0, 0), -1);
 }
 
 TEST(ReflectedBlend, CandidatesBesideAHoleAreComputed) {
