@@ -1010,12 +1010,20 @@ JobConfig field_on_grid_job(const TempDir& dir) {
                                "grids:\n  - {name: plane, over_surface: floor, height_m: 0.8, border_m: 0.3}\n")));
 }
 
-TEST(RegularLayoutSearch, TheBestArrangementsAreRejudgedWithTheLuminairesOwnDirectLight) {
+// The field job prepared, and its search without a check or a power to beat.
+struct FieldOnGrid {
   TempDir dir;
-  const JobConfig job = field_on_grid_job(dir);
-  const PreparedJob prepared = test::prepare(job);
-  const SearchSpec spec = test::spec(job);
-  const SearchResult plain = search_layout(prepared.model, spec);
+  JobConfig job = field_on_grid_job(dir);
+  PreparedJob prepared = test::prepare(job);
+  SearchSpec spec = test::spec(job);
+  SearchResult plain = search_layout(prepared.model, spec);
+};
+
+TEST(RegularLayoutSearch, TheBestArrangementsAreRejudgedWithTheLuminairesOwnDirectLight) {
+  const FieldOnGrid f;
+  const PreparedJob& prepared = f.prepared;
+  const SearchSpec& spec = f.spec;
+  const SearchResult& plain = f.plain;
   ASSERT_TRUE(plain.best.feasible);
   EXPECT_EQ(plain.direct_checks, 0);
   // A check that agrees with the blend changes nothing.
@@ -1069,11 +1077,11 @@ TEST(RegularLayoutSearch, TheRealCheckAgreesWithTheBlendInAnOpenRoom) {
 }
 
 TEST(RegularLayoutSearch, ALayoutPredictedToDrawNoLessThanThePowerToBeatIsNotVerified) {
-  TempDir dir;
-  const JobConfig job = field_on_grid_job(dir);
-  const PreparedJob prepared = test::prepare(job);
-  const SearchSpec spec = test::spec(job);
-  const SearchResult plain = search_layout(prepared.model, spec);
+  const FieldOnGrid f;
+  const PreparedJob& prepared = f.prepared;
+  const JobConfig& job = f.job;
+  const SearchSpec& spec = f.spec;
+  const SearchResult& plain = f.plain;
   ASSERT_TRUE(plain.best.feasible);
   SearchBounds above, below;
   above.power_to_beat_w = plain.best.power_w * 1.01;
