@@ -720,6 +720,7 @@ void read_verification(const Map& verification, JobConfig& job) {
     s.indirect_rays_per_patch = static_cast<int>(v->integer(1, 1 << 24));
   if (auto v = verification.get("first_indirect_rays"))
     s.first_indirect_rays = static_cast<int>(v->integer(1, 1 << 24));
+  if (auto v = verification.get("decisive_rays")) s.decisive_rays = static_cast<int>(v->integer(0, 1 << 24));
   if (auto v = verification.get("rounds")) s.rounds = static_cast<int>(v->integer(1, 10));
   if (auto v = verification.get("margin")) s.margin = v->number_in(0.0, 0.2, false, "[0, 0.2]");
   if (auto v = verification.get("max_exact_patches"))
@@ -1021,7 +1022,7 @@ JobConfig load_job_config(const std::string& path) {
                               "max_seconds", "seed"}),
                      job);
     if (auto v = top.get("verification"))
-      read_verification(Map(*v, {"method", "rays_per_patch", "indirect_rays_per_patch", "first_indirect_rays", "rounds", "max_exact_patches", "sample_fraction", "margin"}), job);
+      read_verification(Map(*v, {"method", "rays_per_patch", "indirect_rays_per_patch", "first_indirect_rays", "decisive_rays", "rounds", "max_exact_patches", "sample_fraction", "margin"}), job);
     if (auto v = top.get("output")) read_output(Map(*v, {"directory", "formats", "plan_cut_height_m"}), job, top.get("rooms").has_value());
     if (auto v = top.get("sweep")) read_sweep(*v, top.key_loc("sweep"), job);
     if (auto v = top.get("rooms")) read_rooms(*v, job);

@@ -258,6 +258,13 @@ struct VerificationSettings {
   // light is smooth, so a few rays per patch often decide it. = indirect_rays_per_patch:
   // one step.
   int first_indirect_rays = 16;
+  // Exact: the grid points that decide a minimum, uniformity or maximum goal (within 5 %
+  // of the lowest or highest, or within 3 of their own standard errors) gather again with
+  // this many rays (at least rays_per_patch), and the patches each gathers at least
+  // 0.2 % of its reflected light from get precise direct light and rows of a sixteenth
+  // as many (at least rays_per_patch): a minimum is one point, whose gather and few
+  // nearby patches' cheap light and rows would otherwise be its error. 0: off.
+  int decisive_rays = 16384;
   // Searches at most: when a goal fails only on verification, the search runs again
   // with that goal's target scaled by predicted / verified (a defect correction).
   int rounds = 3;

@@ -125,6 +125,7 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
   c.verify_rays = job.verification.rays_per_patch;
   c.verify_indirect_rays = job.verification.indirect_rays_per_patch;
   c.verify_first_indirect_rays = job.verification.first_indirect_rays;
+  c.verify_decisive_rays = job.verification.decisive_rays;
   c.verify_sample_size = static_cast<std::size_t>(plan.sample_size);
   c.verify_rounds = plan.method == VerificationMethod::none ? 1 : job.verification.rounds;
   c.output_patches = job.output.ply || job.output.csv ? c.patches : 0;

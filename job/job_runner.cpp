@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -33,21 +34,56 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 // The verification's rays are independent of the operator's.
 constexpr std::uint64_t kVerificationSeedSalt = 0x5EED5EEDull;
 
-// The exact solve's results at every patch and, gathered from its radiosity, at the goal points.
-void take_exact_solution(const PreparedJob& prepared, const Scene& scene, const ProgressiveExactSolve& solve,
-                         const ExactSolveOptions& options, const ProgressCallback& progress, Verification& out) {
+// The decisive points' second look (decisive_points, job/verification_margin.h): their
+// own gathers at verification.decisive_rays rays (at least rays_per_patch), and the
+// patches each gathers at least kDominantShare of its reflected light from made precise
+// with rows of a sixteenth as many (at least rays_per_patch).
+// A grid's lowest point is one gather over a few nearby patches (a desk, a chair back)
+// whose rows at the other patches' few rays would otherwise be its error; two points
+// within kDecisiveBand of the lowest may swap places, so both are looked at.
+constexpr double kDecisiveBand = 0.05;
+constexpr double kDecisiveStandardErrors = 3.0;
+constexpr double kDominantShare = 0.002;
+constexpr int kDecisivePasses = 3;
+constexpr std::uint64_t kDecisiveSeedSalt = 0xDEC1DEull;
+
+int decisive_rays(const VerificationSettings& s) { return std::max(s.rays_per_patch, s.decisive_rays); }
+int dominant_rays(const VerificationSettings& s) { return std::max(s.rays_per_patch, s.decisive_rays / 16); }
+
+// The exact solve's results at every patch and, gathered from its radiosity, at the goal
+// points; the `decisive` ones (ascending) gathered again with more rays of their own.
+// Returns those points' gathers (rows in `decisive` order).
+PointIlluminance take_exact_solution(const PreparedJob& prepared, const Scene& scene,
+                                     const ProgressiveExactSolve& solve, const ExactSolveOptions& options,
+                                     const ProgressCallback& progress, const std::vector<int>& decisive,
+                                     Verification& out) {
   out.method = "exact";
   out.patches = scene.all_patches();
   out.lux = solve.solution().radiosity.total_lux;
   out.direct_lux = solve.solution().radiosity.direct_lux;
   out.indirect_rays_per_patch = solve.other_rays();
-  if (prepared.model.goal_points.empty()) return;
+  if (prepared.model.goal_points.empty()) return {};
   const PointIlluminance at = exact_point_illuminance(scene, solve.caster(), solve.solution().radiosity,
                                                       prepared.model.goal_points, options.form_factors,
                                                       options.direct_light, progress);
   out.point_lux = at.total_lux;
   out.point_direct_lux = at.direct_lux;
   out.point_error_lux = at.indirect_standard_error_lux;
+  if (decisive.empty()) return {};
+  std::vector<ReceiverPoint> points;
+  for (int q : decisive) points.push_back(prepared.model.goal_points.at(static_cast<std::size_t>(q)));
+  FormFactorOptions rows = options.form_factors;
+  rows.rays_per_patch = decisive_rays(prepared.job.verification);
+  rows.seed ^= kDecisiveSeedSalt;
+  PointIlluminance again = exact_point_illuminance(scene, solve.caster(), solve.solution().radiosity, points, rows,
+                                                   options.direct_light, progress);
+  for (std::size_t r = 0; r < decisive.size(); ++r) {
+    const auto q = static_cast<Eigen::Index>(decisive[r]), k = static_cast<Eigen::Index>(r);
+    out.point_lux[q] = again.total_lux[k];
+    out.point_direct_lux[q] = again.direct_lux[k];
+    out.point_error_lux[q] = again.indirect_standard_error_lux[k];
+  }
+  return again;
 }
 
 // The other patches' rows from verification.first_indirect_rays, doubled while a goal
@@ -59,19 +95,47 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
   const JobConfig& job = prepared.job;
   const LightingModel& model = prepared.model;
   ProgressiveExactSolve solve(scene, options, job.verification.first_indirect_rays, progress);
-  take_exact_solution(prepared, scene, solve, options, progress, out);
+  std::vector<int> decisive;
+  take_exact_solution(prepared, scene, solve, options, progress, decisive, out);
   out.first_indirect_rays = solve.other_rays();
   Eigen::VectorXd change = Eigen::VectorXd::Zero(model.goal_rows());
   while (solve.can_refine()) {
     const Eigen::VectorXd before = verified_goal_lux(model, out);
     solve.refine();
-    take_exact_solution(prepared, scene, solve, options, progress, out);
+    take_exact_solution(prepared, scene, solve, options, progress, decisive, out);
     const Eigen::VectorXd after = verified_goal_lux(model, out);
     change = after - before;
     out.refinement_change = largest_goal_change(model, prepared.plan.search.goals, before, after);
     if (refinement_settled(model, prepared.plan.search.goals, before, after, out.point_error_lux,
                            job.verification.margin))
       break;
+  }
+  // The points deciding a minimum, uniformity or maximum: their gathers with more rays,
+  // and the patches they gather most from made precise; again while that brings other
+  // points within the band.
+  const auto decisive_start = Clock::now();
+  for (int pass = 0; job.verification.decisive_rays > 0 && pass < kDecisivePasses; ++pass) {
+    const std::vector<int> now = decisive_points(model, prepared.plan.search.goals, verified_goal_lux(model, out),
+                                                 out.point_error_lux, kDecisiveBand, kDecisiveStandardErrors);
+    std::vector<int> fresh;
+    std::set_difference(now.begin(), now.end(), decisive.begin(), decisive.end(), std::back_inserter(fresh));
+    if (fresh.empty()) break;
+    std::vector<int> all;
+    std::set_union(decisive.begin(), decisive.end(), fresh.begin(), fresh.end(), std::back_inserter(all));
+    decisive = std::move(all);
+    const PointIlluminance again = take_exact_solution(prepared, scene, solve, options, progress, decisive, out);
+    std::vector<int> rows;  // the fresh points' rows in the decisive gathers
+    for (int q : fresh)
+      rows.push_back(static_cast<int>(std::lower_bound(decisive.begin(), decisive.end(), q) - decisive.begin()));
+    const std::vector<int> patches = dominant_patches(scene, again.rows, solve.solution().radiosity, rows, kDominantShare);
+    out.precise_patches += solve.make_precise(patches, dominant_rays(job.verification));
+    take_exact_solution(prepared, scene, solve, options, progress, decisive, out);
+  }
+  out.decisive_points = decisive.size();
+  out.decisive_seconds = seconds_since(decisive_start);
+  if (!decisive.empty()) {
+    out.decisive_rays = decisive_rays(job.verification);
+    out.precise_rays = dominant_rays(job.verification);
   }
   const Eigen::Index points = out.point_error_lux.size();
   if (points > 0)

@@ -87,6 +87,13 @@ struct Verification {
   int indirect_rays_per_patch = 0;
   int first_indirect_rays = 0;
   double refinement_change = 0.0;
+  // Exact: the goal points that decide a minimum, uniformity or maximum goal, gathered
+  // again with more rays, and the patches made precise for them (verify_exact_progressively).
+  std::size_t decisive_points = 0;
+  int decisive_rays = 0;            // each decisive point's gather
+  std::size_t precise_patches = 0;
+  int precise_rays = 0;             // those patches' rows
+  double decisive_seconds = 0.0;    // all of it (a share of `seconds`)
 };
 
 // Places `layout` as real luminaires in the job's scene and solves it as

@@ -232,6 +232,10 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.verification_indirect_rays_per_patch = outcome.verification.indirect_rays_per_patch;
   r.verification_first_indirect_rays = outcome.verification.first_indirect_rays;
   r.verification_refinement_change = outcome.verification.refinement_change;
+  r.verification_decisive_points = static_cast<int>(outcome.verification.decisive_points);
+  r.verification_decisive_rays = outcome.verification.decisive_rays;
+  r.verification_dominant_patches = static_cast<int>(outcome.verification.precise_patches);
+  r.verification_dominant_rays = outcome.verification.precise_rays;
   r.sample_size = prepared.model.sample_size;
   r.population = static_cast<int>(prepared.model.stats.population);
   r.patches = static_cast<int>(prepared.loaded.scene.patches.size());

@@ -103,6 +103,34 @@ std::vector<GoalMargin> goal_margins(const LightingModel& model, const std::vect
   return out;
 }
 
+std::vector<int> decisive_points(const LightingModel& model, const std::vector<GoalSpec>& goals,
+                                 const Eigen::VectorXd& lux, const Eigen::VectorXd& point_error_lux, double band,
+                                 double standard_errors) {
+  const auto patches = static_cast<Eigen::Index>(model.goal_patches.size());
+  std::vector<int> out;
+  for (const GoalSpec& g : goals) {
+    const bool lowest = g.metric == GoalMetric::minimum || g.metric == GoalMetric::uniformity;
+    if (!lowest && g.metric != GoalMetric::maximum) continue;
+    const int a = find_goal_area(model, g.name);
+    if (a < 0) continue;
+    const GoalArea& area = model.areas[static_cast<std::size_t>(a)];
+    if (area.grid < 0 || area.rows.empty()) continue;
+    double extreme = lux[area.rows.front()];
+    for (Eigen::Index row : area.rows) extreme = lowest ? std::min(extreme, lux[row]) : std::max(extreme, lux[row]);
+    for (Eigen::Index row : area.rows) {
+      if (row < patches) continue;
+      const Eigen::Index q = row - patches;
+      const double error = q < point_error_lux.size() ? standard_errors * point_error_lux[q] : 0.0;
+      const bool near = lowest ? lux[row] - error <= extreme * (1.0 + band)
+                               : lux[row] + error >= extreme * (1.0 - band);
+      if (near) out.push_back(static_cast<int>(row - patches));
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 double kept_margin(double asked, double verified_value, double target) {
   if (!(asked > 0.0) || !(target > 0.0)) return asked;
   // Kept to round-off (the correction scales the binding goal to exactly target x (1 + asked)).

@@ -51,6 +51,18 @@ bool refinement_settled(const LightingModel& model, const std::vector<GoalSpec>&
 double largest_goal_change(const LightingModel& model, const std::vector<GoalSpec>& goals, const Eigen::VectorXd& before,
                            const Eigen::VectorXd& after);
 
+// The goal points that decide a minimum, uniformity or maximum goal over a grid: for
+// each such goal, the points whose verified value (`lux`, the goal rows) lies within
+// `band` (relative) of the grid's lowest (minimum, uniformity) or highest (maximum)
+// point, or whose value `standard_errors` of its own error (`point_error_lux`, when
+// given) would bring there. Indices into LightingModel::goal_points, ascending, each once. A grid's
+// minimum is one point: its value carries that point's noise whole, where an average
+// shares it with the others, so these points are verified with more rays
+// (job_runner.cpp, verify_exact_progressively).
+std::vector<int> decisive_points(const LightingModel& model, const std::vector<GoalSpec>& goals,
+                                 const Eigen::VectorXd& lux, const Eigen::VectorXd& point_error_lux, double band,
+                                 double standard_errors);
+
 // The margin a lower-bound goal kept after the flux correction: the one it asked for,
 // unless the correction gave less (held back by an upper bound such as UGR, or the flux
 // range), then what its verified value holds above the target (never below 0).

@@ -572,6 +572,13 @@ void verification_page(PdfPages& pdf, const ResultRecord& r) {
   Table t({"How the layout was checked", ""}, {0.34, 0.66}, {false, false});
   t.rows.push_back({"Method", method});
   if (r.verification != "none") t.rows.push_back({"Rays per patch", std::to_string(r.verification_rays_per_patch)});
+  if (r.verification_decisive_points > 0)
+    t.rows.push_back({"Decisive points", std::to_string(r.verification_decisive_points) +
+                                             " grid points deciding a minimum or maximum: gathered with " +
+                                             std::to_string(r.verification_decisive_rays) + " rays; the " +
+                                             std::to_string(r.verification_dominant_patches) +
+                                             " patches they gather most from solved with precise direct light and " +
+                                             std::to_string(r.verification_dominant_rays) + "-ray rows"});
   t.rows.push_back({"Scene", std::to_string(r.patches) + " patches, " + std::to_string(r.population) + " reflecting"});
   t.rows.push_back({"Search operator", "k = " + std::to_string(r.sample_size) + " sampled patches, " +
                                            std::to_string(r.candidates) + " candidate positions, ray seed " + std::to_string(r.seed)});

@@ -137,6 +137,12 @@ json to_json(const ResultRecord& r) {
     j["verification"]["first_indirect_rays"] = r.verification_first_indirect_rays;
     j["verification"]["refinement_change"] = r.verification_refinement_change;
   }
+  if (r.verification_decisive_points > 0) {
+    j["verification"]["decisive_points"] = r.verification_decisive_points;
+    j["verification"]["decisive_rays"] = r.verification_decisive_rays;
+    j["verification"]["dominant_patches"] = r.verification_dominant_patches;
+    j["verification"]["dominant_rays"] = r.verification_dominant_rays;
+  }
   j["sample_size"] = r.sample_size;
   j["population"] = r.population;
   j["patches"] = r.patches;
@@ -318,6 +324,10 @@ ResultRecord from_json(const json& j) {
   r.verification_indirect_rays_per_patch = j.at("verification").value("indirect_rays_per_patch", 0);
   r.verification_first_indirect_rays = j.at("verification").value("first_indirect_rays", 0);
   r.verification_refinement_change = j.at("verification").value("refinement_change", 0.0);
+  r.verification_decisive_points = j.at("verification").value("decisive_points", 0);
+  r.verification_decisive_rays = j.at("verification").value("decisive_rays", 0);
+  r.verification_dominant_patches = j.at("verification").value("dominant_patches", 0);
+  r.verification_dominant_rays = j.at("verification").value("dominant_rays", 0);
   r.sample_size = j.at("sample_size").get<int>();
   r.population = j.at("population").get<int>();
   r.patches = j.at("patches").get<int>();
@@ -645,6 +655,11 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
       os << " (refined from " << r.verification_first_indirect_rays << ": the goals' values moved by at most "
          << fixed(100.0 * r.verification_refinement_change, 3) << " % at the last doubling)";
   }
+  if (r.verification_decisive_points > 0)
+    os << "; the " << r.verification_decisive_points << " grid points deciding a minimum or maximum gathered again with "
+       << r.verification_decisive_rays << " rays, the " << r.verification_dominant_patches
+       << " patches they gather most from solved with precise direct light and " << r.verification_dominant_rays
+       << "-ray rows";
   if (r.flux_correction != 1.0)
     os << "; every flux scaled by " << fixed(r.flux_correction, 4) << " after verification";
   if (r.flux_correction_limited)

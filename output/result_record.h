@@ -179,6 +179,13 @@ struct ResultRecord {
   int verification_indirect_rays_per_patch = 0;
   int verification_first_indirect_rays = 0;
   double verification_refinement_change = 0.0;
+  // exact: the grid points deciding a minimum, uniformity or maximum goal, gathered again
+  // with decisive_rays rays, and the patches they gather most from, solved with precise
+  // direct light and rows of dominant_rays rays (0: none).
+  int verification_decisive_points = 0;
+  int verification_decisive_rays = 0;
+  int verification_dominant_patches = 0;
+  int verification_dominant_rays = 0;
   int sample_size = 0;
   int population = 0;                       // reflecting patches
   int patches = 0;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <algorithm>
 #include <iomanip>
+#include <iterator>
 #include <ostream>
 
 #include "core/rays/ray_caster.h"
@@ -44,6 +45,8 @@ void account_flux(const Scene& scene, const FormFactorRows& rows, const Radiosit
 
 // Each refinement's rays follow their own stream.
 constexpr std::uint64_t kRefinementSeedSalt = 0x9E3779B97F4A7C15ull;
+// The rows made precise after the first solve (make_precise) have theirs.
+constexpr std::uint64_t kPreciseSeedSalt = 0xD1B54A32D192ED03ull;
 
 // The rows of `base` (every patch, in scene order) with the rows of `more` (the patches `others`,
 // ascending) merged in: (n_base x base + n_more x more) / (n_base + n_more).
@@ -97,6 +100,7 @@ ProgressiveExactSolve::ProgressiveExactSolve(const Scene& scene, const ExactSolv
     }
   for (std::size_t i = 0; i < precise.size(); ++i)
     if (!precise[i]) others_.push_back(static_cast<int>(i));
+  precise_ = precise;
   raw_ = compute_form_factor_rows(scene, *caster_, scene.all_patches(), rays, options.form_factors, progress);
   start = std::chrono::steady_clock::now();
   if (progress) progress("direct light", 0, 1);
@@ -131,6 +135,42 @@ void ProgressiveExactSolve::refine() {
   merge_rows(raw_, added, others_, other_rays_, more);
   other_rays_ += more;
   solve();
+}
+
+std::size_t ProgressiveExactSolve::precise_count() const {
+  return static_cast<std::size_t>(std::count(precise_.begin(), precise_.end(), true));
+}
+
+std::size_t ProgressiveExactSolve::make_precise(const std::vector<int>& patches, int rays) {
+  std::vector<int> add;
+  for (int p : patches)
+    if (!precise_.at(static_cast<std::size_t>(p))) {
+      precise_[static_cast<std::size_t>(p)] = true;
+      add.push_back(p);
+    }
+  if (add.empty()) return 0;
+  std::sort(add.begin(), add.end());
+  FormFactorOptions cast = options_.form_factors;
+  cast.rays_per_patch = std::max(1, rays);
+  cast.seed = options_.form_factors.seed ^ kPreciseSeedSalt;
+  const FormFactorRows fresh = compute_form_factor_rows(scene_, *caster_, add, cast, progress_);
+  merge_rows(raw_, fresh, add, 0, 1);  // replaced: the old rows weigh nothing
+  if (!emitter_.surfaces.empty()) {
+    const auto start = std::chrono::steady_clock::now();
+    const LuminaireLight light = compute_luminaire_light(scene_, *caster_, add, emitter_.surfaces, options_.direct_light);
+    for (std::size_t r = 0; r < add.size(); ++r) {  // the emitter's rows are the patches, in scene order
+      emitter_.light.lux_per_lm.row(add[r]) = light.lux_per_lm.row(static_cast<Eigen::Index>(r));
+      emitter_.light.form_factor.row(add[r]) = light.form_factor.row(static_cast<Eigen::Index>(r));
+    }
+    solution_.summary.shadow_rays += light.shadow_rays_cast;
+    solution_.summary.direct_light_seconds += seconds_since(start);
+  }
+  std::vector<int> rest;
+  rest.reserve(others_.size());
+  std::set_difference(others_.begin(), others_.end(), add.begin(), add.end(), std::back_inserter(rest));
+  others_ = std::move(rest);
+  solve();
+  return add.size();
 }
 
 void ProgressiveExactSolve::solve() {

@@ -79,6 +79,14 @@ class ProgressiveExactSolve {
   int other_rays() const { return other_rays_; }  // rays per row outside the precise patches, so far
   bool can_refine() const;
   void refine();  // doubles other_rays() (capped at options.other_rays_per_patch) and solves again
+  // Makes `patches` precise, as options.precise_patches are: their rows are cast again at
+  // `rays` rays (a stream of their own, replacing the rows they had; never refined after)
+  // and they get options.direct_light instead of the cheap estimate; then solves again.
+  // For the patches a decisive goal point gathers most of its light from, whose rows'
+  // noise would otherwise be that point's error. Returns how many became precise
+  // (patches already precise are left as they are).
+  std::size_t make_precise(const std::vector<int>& patches, int rays);
+  std::size_t precise_count() const;
 
  private:
   void solve();
@@ -87,6 +95,7 @@ class ProgressiveExactSolve {
   ProgressCallback progress_;
   std::unique_ptr<RayCaster> caster_;
   std::vector<int> others_;    // patches refined, ascending
+  std::vector<bool> precise_;  // per patch: rows and direct light at the precise settings
   FormFactorRows raw_;         // every row, luminaire columns as cast
   EmitterLight emitter_;
   int other_rays_ = 0;

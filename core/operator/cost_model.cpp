@@ -35,6 +35,20 @@ double d(std::size_t v) { return static_cast<double>(v); }
 // Non-zeros of `rows` rows of `rays` rays in a scene of n patches (at most one per ray).
 double row_nnz(double rows, int rays, std::size_t n) { return rows * std::min<double>(rays, d(n)); }
 
+// One pass of the exact verification's decisive points (job_runner.cpp): a handful of
+// points gathered again, about kDominantPerPoint patches each made precise (rows and
+// direct light), one more solve and one more gather of every point.
+double decisive_pass_seconds(const CostCounts& c, const MachineCosts& m, double n, int row_rays, double Lv) {
+  if (c.verify_decisive_rays <= 0 || c.grid_points == 0) return 0.0;
+  constexpr double kDecisivePoints = 8.0, kDominantPerPoint = 20.0;
+  const double P = static_cast<double>(c.grid_points), points = std::min(P, kDecisivePoints);
+  const double rays = std::max(c.verify_rays, c.verify_decisive_rays);
+  const double dominant = points * kDominantPerPoint;
+  return (points * rays + dominant * std::max<double>(c.verify_rays, rays / 16.0) + P * c.verify_rays) * m.gather_ray_s +
+         dominant * c.direct_rays * m.precise_pair_ray_s * Lv +
+         m.gauss_seidel_sweeps * row_nnz(n, row_rays, c.patches) * m.gauss_seidel_nnz_s;
+}
+
 // The interreflection solve (core/operator/contraction_solve.h): per channel, the first
 // reflection gathered through the sample rows (rays x sources each), then sweeps
 // over k rows of about 2 gathers (one sampled hit, the ambient term) x sources.
@@ -218,7 +232,8 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     const double per = n * m.bvh_patch_s + (n * row_rays + P * c.verify_rays) * m.gather_ray_s +
                        (((G - P) * c.direct_rays + P * c.point_direct_rays) * m.precise_pair_ray_s +
                         n * m.cheap_pair_s * pair_factor) * Lv +
-                       steps * m.gauss_seidel_sweeps * row_nnz(n, row_rays, c.patches) * m.gauss_seidel_nnz_s;
+                       steps * m.gauss_seidel_sweeps * row_nnz(n, row_rays, c.patches) * m.gauss_seidel_nnz_s +
+                       decisive_pass_seconds(c, m, n, row_rays, Lv);
     out.phases.push_back({"verification (exact, " + std::to_string(c.verify_rays) + " rays per goal row, " +
                               std::to_string(static_cast<int>(other_rays)) + " elsewhere (up to " +
                               std::to_string(static_cast<int>(indirect)) + "), " + rounds_text(c.verify_rounds) + ")",

@@ -93,6 +93,9 @@ struct CostCounts {
   int verify_rays = 1024;            // goal patches' rows and grid points' gathers
   int verify_indirect_rays = 1 << 30;  // exact: every other patch's row (capped at verify_rays): the most
   int verify_first_indirect_rays = 1 << 30;  // exact: where the progressive refinement starts (one doubling assumed)
+  // exact: the points deciding a minimum or maximum gathered again with this many rays
+  // and their dominant patches' rows at a sixteenth (0: off; one pass of kCostDecisivePoints assumed)
+  int verify_decisive_rays = 0;
   std::size_t verify_sample_size = 0;  // sample verification: k
   int verify_rounds = 1;
   // outputs

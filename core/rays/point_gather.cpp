@@ -107,7 +107,8 @@ PointIlluminance exact_point_illuminance(const Scene& scene, const RayCaster& ca
     closed += light.form_factor.col(static_cast<Eigen::Index>(c));
   }
   out.total_lux = out.direct_lux;
-  const FormFactorRows rows = compute_point_rows(scene, caster, points, row_options, progress);
+  out.rows = compute_point_rows(scene, caster, points, row_options, progress);
+  const FormFactorRows& rows = out.rows;
   out.rays_cast = rows.rays_cast;
   const int channels = static_cast<int>(solution.radiosity_lm_per_m2.cols());
   out.indirect_standard_error_lux = Eigen::VectorXd::Zero(Q);
@@ -136,6 +137,29 @@ PointIlluminance exact_point_illuminance(const Scene& scene, const RayCaster& ca
     out.indirect_standard_error_lux[q] = scale * std::sqrt(std::max(0.0, square - mean * mean) / rays);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+std::vector<int> dominant_patches(const Scene& scene, const FormFactorRows& point_rows,
+                                  const RadiositySolution& solution, std::span<const int> which, double share) {
+  std::vector<int> out;
+  for (int q : which) {
+    if (q < 0 || q >= point_rows.F.rows()) throw std::invalid_argument("dominant_patches: no such point row");
+    std::vector<std::pair<int, double>> light;
+    double total = 0.0;
+    for (SparseRows::InnerIterator it(point_rows.F, q); it; ++it) {
+      const Patch& p = scene.patches[static_cast<std::size_t>(it.col())];
+      if (scene.surfaces[static_cast<std::size_t>(p.surface)].is_luminaire()) continue;
+      const double value = it.value() * photometric(solution.radiosity_lm_per_m2.row(it.col()));
+      light.emplace_back(static_cast<int>(it.col()), value);
+      total += value;
+    }
+    if (!(total > 0.0)) continue;
+    for (const auto& [patch, value] : light)
+      if (value >= share * total) out.push_back(patch);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 

@@ -30,11 +30,20 @@ struct PointIlluminance {
   // low-discrepancy set, whose error is smaller: an upper estimate). It leaves out the
   // error of the radiosity gathered and of the direct light's shadow rays.
   Eigen::VectorXd indirect_standard_error_lux;
+  FormFactorRows rows;  // each point's gather row (row q: point q), as cast
   std::uint64_t rays_cast = 0;
   double seconds = 0.0;
 };
 PointIlluminance exact_point_illuminance(const Scene& scene, const RayCaster& caster, const RadiositySolution& solution,
                                          std::span<const ReceiverPoint> points, const FormFactorOptions& rows,
                                          const DirectLightOptions& direct, const ProgressCallback& progress = {});
+
+// The patches a point gathers most of its reflected light from: for each point q of
+// `which`, the patches j whose share F(q, j) B_j of its gathered light (photometric,
+// luminaires left out) is at least `share`; ascending, each once. Those patches' rows
+// are where the noise of that point's value comes from (its own gather's is its standard
+// error).
+std::vector<int> dominant_patches(const Scene& scene, const FormFactorRows& point_rows,
+                                  const RadiositySolution& solution, std::span<const int> which, double share);
 
 }  // namespace ilp
