@@ -6,8 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
+#include "core/light/luminaire.h"
 #include "core/scene/reference_scenes.h"
 
 namespace ilp {
@@ -72,6 +75,60 @@ TEST(ProgressiveExactSolve, RefiningConvergesToThePlainSolve) {
   const double last = floor_mean(solve.solution()), reference = floor_mean(plain);
   EXPECT_NEAR(last / reference, 1.0, 0.005);
   EXPECT_NE(first, last) << "the steps must change the answer";
+}
+
+// Patches made precise after a few steps (the verification's decisive points' patches):
+// their rows are replaced, not merged, so every row still sums to 1 (the furnace stays
+// exact), they are cast once at the count asked for, and later doublings leave them.
+TEST(ProgressiveExactSolve, MakePreciseReplacesRowsAndKeepsTheFurnaceExact) {
+  constexpr double kRho = 0.6, kE = 100.0, kB0 = kE / (1.0 - kRho);
+  Scene scene = reference::make_closed_box(V::Zero(), V(3.0, 2.0, 2.5), kRho, 0.5);
+  for (std::size_t s = 0; s < scene.surfaces.size(); ++s) set_surface_exitance(scene, static_cast<int>(s), kE);
+  ExactSolveOptions options;
+  options.form_factors.rays_per_patch = 64;
+  options.radiosity.relative_residual = 1e-12;
+  options.precise_patches = std::vector<int>{0};
+  options.other_rays_per_patch = 32;
+  ProgressiveExactSolve solve(scene, options, 4);
+  const auto n = static_cast<std::uint64_t>(scene.patches.size());
+  EXPECT_EQ(solve.precise_count(), 1u);
+  EXPECT_EQ(solve.make_precise({7, 3, 0, 7}, 256), 2u);  // 0 was precise; 7 named twice
+  EXPECT_EQ(solve.make_precise({3}, 256), 0u);
+  EXPECT_EQ(solve.precise_count(), 3u);
+  const Eigen::MatrixXd& B = solve.solution().radiosity.radiosity_lm_per_m2;
+  for (Eigen::Index i = 0; i < B.rows(); ++i) ASSERT_NEAR(B(i, 0), kB0, 1e-8 * kB0) << "patch " << i;
+  while (solve.can_refine()) solve.refine();
+  for (Eigen::Index i = 0; i < B.rows(); ++i) ASSERT_NEAR(B(i, 0), kB0, 1e-8 * kB0) << "patch " << i;
+  // Patch 0 once at 64; 3 and 7 at 4 first, then 256; the others 4 + 4 + 8 + 16.
+  EXPECT_EQ(solve.solution().summary.rays_cast, 64u + 2u * (4u + 256u) + (n - 3u) * 32u);
+}
+
+// A patch made precise gets the precise direct light, the same bits as a solve that had
+// it precise from the start (a patch's light depends only on it and the options), and
+// the patches left alone keep the cheap estimate (one point of the patch against eight:
+// under a panel the two differ).
+TEST(ProgressiveExactSolve, MakePreciseGivesThePreciseDirectLight) {
+  Scene scene = reference::make_closed_box(V::Zero(), V(4.0, 3.0, 2.5), 0.5, 0.5);
+  add_square_luminaire(scene, "panel", V(2.0, 1.5, 2.45), 0.6, 3000.0);
+  const std::vector<int> floor = reference::patches_of(scene, "floor");
+  ASSERT_GE(floor.size(), 4u);
+  const std::vector<int> chosen = {floor[1], floor[floor.size() / 2]};
+  ExactSolveOptions options;
+  options.form_factors.rays_per_patch = 64;
+  options.precise_patches = std::vector<int>{};
+  options.other_rays_per_patch = 16;
+  ProgressiveExactSolve late(scene, options, 16);
+  const Eigen::VectorXd cheap = late.solution().radiosity.direct_lux;
+  ASSERT_EQ(late.make_precise(chosen, 64), 2u);
+  options.precise_patches = chosen;
+  const ExactSolution early = solve_exact(scene, options);
+  const Eigen::VectorXd& now = late.solution().radiosity.direct_lux;
+  for (int p : chosen) EXPECT_EQ(now[p], early.radiosity.direct_lux[p]) << "patch " << p;
+  for (int p : floor)
+    if (std::find(chosen.begin(), chosen.end(), p) == chosen.end()) EXPECT_EQ(now[p], cheap[p]) << "patch " << p;
+  double moved = 0.0;
+  for (int p : chosen) moved = std::max(moved, std::abs(now[p] - cheap[p]) / early.radiosity.direct_lux[p]);
+  EXPECT_GT(moved, 1e-6) << "the cheap and precise estimates should differ somewhere";
 }
 
 }  // namespace

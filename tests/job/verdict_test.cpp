@@ -190,6 +190,48 @@ TEST(VerificationMargin, WithoutAFloorTheMarginIsTheErrorEstimateAlone) {
   EXPECT_EQ(outcome.goals[2].margin, 0.0);
 }
 
+// The points deciding a grid's minimum (and so its U0) or maximum, for the verification's
+// second look: those within the band of the lowest or highest, or within 3 of their own
+// standard errors of it; none for an average, none over patches (no points).
+TEST(DecisivePoints, ThePointsNearTheLowestOrHighestOfAGridGoal) {
+  LightingModel model;
+  model.goal_patches = {10};
+  model.goal_points.resize(5);
+  GoalArea desk;
+  desk.name = "desk";
+  desk.grid = 0;
+  desk.rows = {1, 2, 3, 4, 5};
+  desk.area_weights = Eigen::VectorXd::Constant(5, 0.2);
+  GoalArea mat;
+  mat.name = "mat";
+  mat.rows = {0};
+  mat.area_weights = Eigen::VectorXd::Ones(1);
+  model.areas = {desk, mat};
+  Eigen::VectorXd lux(6);
+  lux << 50.0, 100.0, 104.0, 106.0, 300.0, 290.0;  // the mat's patch, then the desk's points 0 to 4
+  const Eigen::VectorXd none;
+  auto decisive = [&](GoalMetric metric, const std::string& name, const Eigen::VectorXd& errors) {
+    return decisive_points(model, {GoalSpec{name, metric, 1.0}}, lux, errors, 0.05, 3.0);
+  };
+  EXPECT_EQ(decisive(GoalMetric::uniformity, "desk", none), (std::vector<int>{0, 1})) << "100 and 104 of <= 105";
+  EXPECT_EQ(decisive(GoalMetric::minimum, "desk", none), (std::vector<int>{0, 1}));
+  Eigen::VectorXd errors(5);
+  errors << 1.0, 1.0, 0.4, 1.0, 1.0;
+  EXPECT_EQ(decisive(GoalMetric::minimum, "desk", errors), (std::vector<int>{0, 1, 2}))
+      << "106 - 3 x 0.4 = 104.8: within the band";
+  errors[2] = 0.3;
+  EXPECT_EQ(decisive(GoalMetric::minimum, "desk", errors), (std::vector<int>{0, 1})) << "106 - 0.9 > 105";
+  errors[2] = 0.4;
+  EXPECT_EQ(decisive(GoalMetric::maximum, "desk", none), (std::vector<int>{3, 4})) << "300 and 290 of >= 285";
+  EXPECT_TRUE(decisive(GoalMetric::average, "desk", none).empty());
+  EXPECT_TRUE(decisive(GoalMetric::minimum, "mat", none).empty()) << "patches: no points";
+  EXPECT_TRUE(decisive(GoalMetric::minimum, "stairs", none).empty()) << "no such area";
+  const std::vector<int> both = decisive_points(
+      model, {GoalSpec{"desk", GoalMetric::uniformity, 0.6}, GoalSpec{"desk", GoalMetric::maximum, 500.0}}, lux, none,
+      0.05, 3.0);
+  EXPECT_EQ(both, (std::vector<int>{0, 1, 3, 4})) << "ascending, each once";
+}
+
 // The margin column says what was kept, not what was asked: a flux correction held back
 // by a UGR limit (or the flux range) leaves a lower bound less above its target than it
 // asked, and the line printed what it asked. search_and_verify now reports kept_margin.
