@@ -96,6 +96,12 @@ struct LuminaireLight {
 // Receivers are patches, each averaged over options.receiver_points points on it.
 LuminaireLight compute_luminaire_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
                                        std::span<const int> luminaire_surfaces, const DirectLightOptions& options);
+// The columns of the luminaires `computed` names (indices into luminaire_surfaces, in
+// that order) only, each with the bits it has when every luminaire is computed (a split
+// operator build computes its share of the sources; core/operator/work_share.h).
+LuminaireLight compute_luminaire_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
+                                       std::span<const int> luminaire_surfaces, std::span<const int> computed,
+                                       const DirectLightOptions& options);
 // Receivers are points (a calculation grid): one point each, with the shadow rays of
 // one of a patch's receiver points (receiver_points does not apply).
 LuminaireLight compute_luminaire_light_at_points(const Scene& scene, const RayCaster& caster,

@@ -46,12 +46,13 @@ void sweep(const ContractionSystem& s, const RowMajorMatrix& B, const RowMajorMa
 
 }  // namespace
 
-std::optional<ContractionSolution> solve_contraction(const ContractionSystem& s, const Eigen::MatrixXd& B,
-                                                     double tolerance, int max_sweeps) {
+std::optional<ContractionSolution> solve_contraction(
+    const ContractionSystem& s, const Eigen::MatrixXd& B, double tolerance, int max_sweeps,
+    const std::function<std::array<double, 2>(std::array<double, 2>)>& largest) {
   const double q = contraction_factor(s);
   if (!(q < 1.0)) return std::nullopt;
   ContractionSolution out;
-  if (B.size() == 0) {  // no source (or no sample): nothing to solve, and no max of nothing
+  if (B.size() == 0 && !largest) {  // no source (or no sample): nothing to solve, and no max of nothing
     out.X = B;
     return out;
   }
@@ -60,10 +61,15 @@ std::optional<ContractionSolution> solve_contraction(const ContractionSystem& s,
   const double factor = q / (1.0 - q);
   for (int m = 1; m <= max_sweeps; ++m) {
     sweep(s, b, x, next);
-    const double change = (next - x).cwiseAbs().maxCoeff();
+    double change = x.size() > 0 ? (next - x).cwiseAbs().maxCoeff() : 0.0;
     x.swap(next);
     out.sweeps = m;
-    const double size = x.cwiseAbs().maxCoeff();
+    double size = x.size() > 0 ? x.cwiseAbs().maxCoeff() : 0.0;
+    if (largest) {
+      const std::array<double, 2> most = largest({change, size});
+      change = most[0];
+      size = most[1];
+    }
     out.error_bound = size > 0.0 ? factor * change / size : 0.0;
     if (out.error_bound <= tolerance || change == 0.0) {
       out.X = x;
