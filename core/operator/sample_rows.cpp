@@ -131,11 +131,18 @@ struct DirectRows {
   Eigen::MatrixXd absorbed;
 };
 
+// A split build's exchange of each receiver point's brightest luminaire (none in one process).
+BrightestOverAll brightest_over_shares(const WorkShare& share) {
+  if (share.count == 1) return {};
+  return [&share](std::vector<double> mine) { return max_over_shares(share, std::move(mine)); };
+}
+
 // The columns [first, last) of the sources only (a split build's share of them,
 // WorkShare::column_range), each with the bits it has when every column is computed.
 DirectRows direct_light_columns(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
                                 const SourceTable& sources, const Eigen::MatrixXd& gathered,
-                                const DirectLightOptions& options, std::size_t first, std::size_t last) {
+                                const DirectLightOptions& options, std::size_t first, std::size_t last,
+                                const BrightestOverAll& over_all = {}) {
   const auto R = static_cast<Eigen::Index>(receivers.size()), L = static_cast<Eigen::Index>(last - first);
   const auto mine = [&](int l) { return static_cast<std::size_t>(l) >= first && static_cast<std::size_t>(l) < last; };
   const auto col = [&](int l) { return static_cast<Eigen::Index>(static_cast<std::size_t>(l) - first); };
@@ -143,9 +150,9 @@ DirectRows direct_light_columns(const Scene& scene, const RayCaster& caster, std
   std::vector<int> computed;  // indices into luminaire_surfaces of this share's luminaires
   for (std::size_t e = 0; e < sources.luminaire_surfaces.size(); ++e)
     if (mine(sources.luminaire_source[e])) computed.push_back(static_cast<int>(e));
-  if (!computed.empty() && R > 0) {
+  if ((!computed.empty() || over_all) && R > 0) {
     const LuminaireLight light =
-        compute_luminaire_light(scene, caster, receivers, sources.luminaire_surfaces, computed, options);
+        compute_luminaire_light(scene, caster, receivers, sources.luminaire_surfaces, computed, options, over_all);
     for (std::size_t c = 0; c < computed.size(); ++c) {
       const int l = sources.luminaire_source[static_cast<std::size_t>(computed[c])];
       out.D.col(col(l)) = light.lux_per_lm.col(static_cast<Eigen::Index>(c));
@@ -251,6 +258,92 @@ SampleRows cast_sample_rows(const Scene& scene, const RayCaster& caster, const G
   return {std::move(rows), std::move(sums), std::move(sample_slot), std::move(goal_slot)};
 }
 
+namespace {
+
+// direct_light_at_sample for a split build: this share's columns of D(P,:) only (the
+// k x #sources matrices are what a large room holds most of). A row's closed-form loss
+// needs its form factors to every absorbing luminaire: those outside the share's columns
+// are computed too (form factors only kept), and each row's sum runs over a full-width
+// row in column order, the expression apply_closed_form_loss sums, so the scale has the
+// single process's bits.
+SampleDirect direct_light_at_sample_columns(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                                            const std::vector<int>& P, const std::vector<int>& goal_slot,
+                                            const std::vector<int>& need_direct,
+                                            const std::vector<Eigen::Index>& need_direct_row,
+                                            const Eigen::MatrixXd& gathered_needed, SampleRows& rows,
+                                            const SourceTable& table, const DirectLightOptions& sample_light,
+                                            const WorkShare& share, SampleOperatorStats& st) {
+  const std::span<const LightSource> sources = goals.sources;
+  const Eigen::Index k = static_cast<Eigen::Index>(P.size());
+  const Eigen::Index L = static_cast<Eigen::Index>(sources.size());
+  const auto [c0, c1] = share.column_range(sources.size());
+  const Eigen::Index first = static_cast<Eigen::Index>(c0), Ls = static_cast<Eigen::Index>(c1 - c0);
+  // One call (one exchange of the points' brightest): this share's luminaires, then the
+  // absorbing luminaires outside its columns (their form factors only are read).
+  std::vector<int> computed;                 // indices into luminaire_surfaces
+  std::vector<Eigen::Index> computed_source;  // their source (column of T)
+  for (std::size_t e = 0; e < table.luminaire_surfaces.size(); ++e)
+    if (const auto l = static_cast<std::size_t>(table.luminaire_source[e]); l >= c0 && l < c1) {
+      computed.push_back(static_cast<int>(e));
+      computed_source.push_back(static_cast<Eigen::Index>(l));
+    }
+  const std::size_t own = computed.size();
+  for (std::size_t e = 0; e < table.luminaire_surfaces.size(); ++e)
+    if (const auto l = static_cast<std::size_t>(table.luminaire_source[e]); table.absorbs[l] && (l < c0 || l >= c1)) {
+      computed.push_back(static_cast<int>(e));
+      computed_source.push_back(static_cast<Eigen::Index>(l));
+    }
+  const LuminaireLight light = compute_luminaire_light(scene, caster, need_direct, table.luminaire_surfaces, computed,
+                                                       sample_light, brightest_over_shares(share));
+  DirectRows mine{Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(need_direct.size()), Ls),
+                  Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(need_direct.size()), Ls)};
+  for (std::size_t c = 0; c < own && !need_direct.empty(); ++c) {
+    const Eigen::Index col = computed_source[c] - first;
+    mine.D.col(col) = light.lux_per_lm.col(static_cast<Eigen::Index>(c));
+    if (table.absorbs[static_cast<std::size_t>(computed_source[c])]) mine.absorbed.col(col) = light.form_factor.col(static_cast<Eigen::Index>(c));
+  }
+  for (std::size_t e = 0; e < table.gathered.size(); ++e)
+    if (const auto l = static_cast<std::size_t>(table.gathered[e]); l >= c0 && l < c1 && table.area_m2[l] > 0.0)
+      mine.D.col(static_cast<Eigen::Index>(l - c0)) = gathered_needed.col(static_cast<Eigen::Index>(e)) / table.area_m2[l];
+  std::vector<Eigen::Index> row_of(static_cast<std::size_t>(k), -1);  // a computed row's index in need_direct
+  for (std::size_t m = 0; m < need_direct_row.size(); ++m) row_of[static_cast<std::size_t>(need_direct_row[m])] = static_cast<Eigen::Index>(m);
+  SampleDirect out;
+  Eigen::MatrixXd& D_P = out.D_P;
+  D_P.resize(k, Ls);
+  Eigen::VectorXd closed(k);
+  Eigen::MatrixXd full(1, L);  // one row's form factors to every source (0 but absorbing luminaires)
+  for (Eigen::Index b = 0; b < k; ++b) {
+    if (const int g = goal_slot[static_cast<std::size_t>(P[static_cast<std::size_t>(b)])]; g >= 0) {
+      D_P.row(b) = goals.direct_lux_per_lm.row(g).segment(first, Ls);
+      full.row(0) = goals.luminaire_form_factor.row(g);
+    } else {
+      const Eigen::Index m = row_of[static_cast<std::size_t>(b)];
+      D_P.row(b) = mine.D.row(m);
+      full.setZero();
+      full.row(0).segment(first, Ls) = mine.absorbed.row(m);
+      for (std::size_t j = own; j < computed.size(); ++j) full(0, computed_source[j]) = light.form_factor(m, static_cast<Eigen::Index>(j));
+    }
+    closed[b] = full.row(0).sum();
+  }
+  st.direct_rows += need_direct.size();
+  // apply_closed_form_loss's scale, from the rows' sums; the gathered sources' columns
+  // of the computed rows scaled (rows copied from the goals are scaled already).
+  RowSums& sums = rows.sums;
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(k);
+  for (Eigen::Index r = 0; r < k; ++r)
+    if (sums.kept[r] > 0.0) scale[r] = std::max(0.0, sums.kept[r] + sums.luminaire[r] - closed[r]) / sums.kept[r];
+  sums.reflecting.array() *= scale.array();
+  for (Eigen::Index e = 0; e < sums.gathered.cols(); ++e) sums.gathered.col(e).array() *= scale.array();
+  for (int l : table.gathered)
+    if (static_cast<std::size_t>(l) >= c0 && static_cast<std::size_t>(l) < c1)
+      for (Eigen::Index r : need_direct_row) D_P(r, l - first) *= scale[r];
+  out.kept_scale = std::move(scale);
+  require_finite(D_P, "direct light", scene, P, sources.subspan(c0, c1 - c0));
+  return out;
+}
+
+}  // namespace
+
 // Direct light at the sample patches. A census (every patch its own stratum) takes the
 // goals' precise estimate, copied where a sample patch is a goal; a sample takes
 // options.sample_direct_light at every sample patch, goal or not, so that the sample's
@@ -281,6 +374,9 @@ SampleDirect direct_light_at_sample(const Scene& scene, const RayCaster& caster,
   sample_light.threads = options.direct_light.threads;
   sample_light.progress = progress;
   sample_light.progress_label = "direct light (sample)";
+  if (options.share.count > 1)
+    return direct_light_at_sample_columns(scene, caster, goals, P, goal_slot, need_direct, need_direct_row, gathered_needed,
+                                          rows, table, sample_light, options.share, st);
   const DirectRows D_new = direct_light(scene, caster, need_direct, sources.size(), table, gathered_needed, sample_light);
   SampleDirect out;
   Eigen::MatrixXd& D_P = out.D_P;
@@ -301,11 +397,6 @@ SampleDirect direct_light_at_sample(const Scene& scene, const RayCaster& caster,
   out.kept_scale = apply_closed_form_loss(rows.sums, D_scaled, absorbed_P, table);
   for (std::size_t m = 0; m < need_direct.size(); ++m) D_P.row(need_direct_row[m]) = D_scaled.row(need_direct_row[m]);
   require_finite(D_P, "direct light", scene, P, sources);
-  // A split build keeps its share's columns (the scale above needs every column's).
-  if (options.share.count > 1) {
-    const auto [first, last] = options.share.column_range(sources.size());
-    D_P = Eigen::MatrixXd(D_P.middleCols(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(last - first)));
-  }
   return out;
 }
 
@@ -398,7 +489,7 @@ FirstReflection first_reflection_at_rows(const Scene& scene, const RayCaster& ca
       const Eigen::MatrixXd D_cheap = direct_light_columns(
           scene, caster, cheap, table,
           Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(cheap.size()), static_cast<Eigen::Index>(table.gathered.size())),
-          cheap_options, c0, c1).D;
+          cheap_options, c0, c1, brightest_over_shares(options.share)).D;
       done += cheap.size();
       for (std::size_t m = 0; m < cheap.size(); ++m) D.row(cheap_row[m]) = D_cheap.row(static_cast<Eigen::Index>(m));
     }
