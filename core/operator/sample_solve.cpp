@@ -45,7 +45,9 @@ Eigen::MatrixXd solve_interreflection(const ContractionSystem& system, const Eig
   if (needed <= kMaxSweeps || k > kLargestDenseSolve) {
     const int most = static_cast<int>(std::min(1e6, std::max<double>(kMaxSweeps, needed)));
     std::function<std::array<double, 2>(std::array<double, 2>)> largest;
-    if (split)
+    // One column in all: the shares without it need not iterate, and its share solves it
+    // as one process does.
+    if (split && all_columns > 1)
       largest = [&share](std::array<double, 2> mine) {
         const std::vector<double> most = max_over_shares(share, {mine[0], mine[1]});
         return std::array<double, 2>{most.at(0), most.at(1)};
@@ -144,14 +146,25 @@ void add_channel_response(const Scene& scene, const GoalRows& goals, const First
   const Eigen::Index Q = static_cast<Eigen::Index>(goals.points.size());
   const Eigen::MatrixXd& reflected = solved.reflected;
   const Eigen::VectorXd& ambient = W.sample.ambient;
-  Eigen::MatrixXd channel_indirect = W.goals * reflected + W.goal_fallback_scale * (ambient.transpose() * reflected);
+  // A split build's shares of several columns: each column's ambient product as the whole's.
+  const bool padded = share.count > 1 && goals.sources.size() > 1;
+  Eigen::RowVectorXd ambient_reflected;
+  if (padded && reflected.cols() == 1) {  // a dot product to Eigen: pad with a zero column (same storage order)
+    Eigen::MatrixXd two = Eigen::MatrixXd::Zero(reflected.rows(), 2);
+    two.col(0) = reflected.col(0);
+    const Eigen::RowVectorXd both = ambient.transpose() * two;
+    ambient_reflected = both.leftCols(1);
+  } else {
+    ambient_reflected = ambient.transpose() * reflected;
+  }
+  Eigen::MatrixXd channel_indirect = W.goals * reflected + W.goal_fallback_scale * ambient_reflected;
   if (refine)
     for (Eigen::Index l = 0; l < L; ++l)
       if (table.emitting_index[c0 + static_cast<std::size_t>(l)] < 0) channel_indirect.col(l) += solved.first_at_goals.col(l);
   const double weight = scene.channels == 1 ? 1.0 : kLuminanceWeights[c];
   sum.at_goals += weight * channel_indirect;
   if (Q > 0) {
-    Eigen::MatrixXd at_points = W.points * reflected + W.point_fallback_scale * (ambient.transpose() * reflected);
+    Eigen::MatrixXd at_points = W.points * reflected + W.point_fallback_scale * ambient_reflected;
     if (refine && goals.point_rows) {
       const Eigen::MatrixXd at_first = goals.point_kept_scale.asDiagonal() * first.at_points[static_cast<std::size_t>(c)];
       for (Eigen::Index l = 0; l < L; ++l)

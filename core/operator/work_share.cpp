@@ -85,11 +85,18 @@ std::vector<double> max_over_shares(const WorkShare& share, std::vector<double> 
   if (share.is_root()) {
     most = parts.at(0);
     for (const std::vector<double>& p : parts) {
-      if (p.size() != n) throw std::logic_error("max_over_shares: shares passed different numbers of values");
+      if (p.size() != n) {  // broadcast nothing: every share then stops here alike
+        most.clear();
+        break;
+      }
       for (std::size_t i = 0; i < n; ++i) most[i] = std::max(most[i], p[i]);
     }
   }
-  return share.broadcast(std::move(most));
+  most = share.broadcast(std::move(most));
+  if (most.size() != n)
+    throw std::logic_error("max_over_shares: " + std::to_string(most.size()) + " values gathered, expected " +
+                           std::to_string(n) + " (a share passed another number)");
+  return most;
 }
 
 }  // namespace ilp

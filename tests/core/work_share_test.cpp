@@ -181,6 +181,7 @@ TEST(WorkShare, SharesColumnsInAnotherOrderOrAShareLeftOutAreCaught) {
   split_build(3, false, 1, &errors);
   for (std::size_t r = 0; r < errors.size(); ++r)
     EXPECT_NE(errors[r].find("values gathered"), std::string::npos) << "rank " << r << ": '" << errors[r] << "'";
+  ASSERT_EQ(errors.size(), 3u);
 }
 
 // The order of the hit blocks shows in the bits (so the identity above, which adds them
