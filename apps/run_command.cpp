@@ -496,9 +496,10 @@ void print_peak_memory_per_rank(const dist::Communicator& comm, const std::strin
 }
 
 // Under mpirun, a single-room job without luminaire groups: every rank loads the scene
-// and BVH and computes its blocks of each operator build (the patches the rows hit:
-// their direct light and its first reflection into T; core/operator/work_share.h); rank
-// 0 then searches and verifies alone while the others wait (docs/cluster.md).
+// and BVH and computes its share of each operator build (its columns of T: the direct
+// light at the sample and hit patches, the first reflection, the k x k solve; the goal
+// patches' direct light by blocks; core/operator/work_share.h); rank 0 then searches and
+// verifies alone while the others wait (docs/cluster.md).
 int run_split_room(const RunArgs& args, const JobConfig& job, const dist::Communicator& comm) {
   RunOptions run = run_options(args.threads, args.max_memory);
   run.operator_share = operator_share(comm);
@@ -519,8 +520,9 @@ int run_split_room(const RunArgs& args, const JobConfig& job, const dist::Commun
   const std::string cache = cache_folder(args.cache_dir, args.no_cache);
   if (comm.is_root())
     std::cerr << "operator build split over " << comm.size()
-              << " ranks (scene and BVH on every rank, the patches the rows hit in blocks); the search and "
-                 "verification then run on rank 0\n";
+              << " ranks (scene, BVH and rows on every rank, the sources' columns of the direct light at the "
+                 "sample and hit patches and of the k x k solve split); the search and verification then run on "
+                 "rank 0\n";
   std::vector<PreparedJob> prepared;
   const auto build_start = Clock::now();
   dist::in_agreed_steps(comm, [&] {

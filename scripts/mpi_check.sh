@@ -10,7 +10,8 @@
 #  4. a rank killed mid-run: the job ends (non-zero exit) and writes no output folder;
 #  5. a single-room job (configs/office.yaml, its hit patches in blocks of 400) whose
 #     operator build is split over the ranks: result.json is the same, timings masked,
-#     for 1 process, mpirun -np 2 and -np 3, and each rank's peak memory is printed;
+#     for 1 process, mpirun -np 2, -np 3 and -np 4 (one thread per rank) and -np 2 with
+#     2 threads per rank, and each rank's peak memory is printed;
 #  6. a rank out of memory in the split preparation (rank 1's address space capped: its
 #     BVH cannot be built): exit 1, one "error:" line, nothing written.
 # Needs build/ilp and Open MPI (scripts/setup.sh installs libopenmpi-dev openmpi-bin).
@@ -103,25 +104,27 @@ set -e
 [ ! -e "$tmp/killed" ] || fail "a killed rank left an output folder"
 echo "mpi_check: ok, a killed rank: exit $code, no output folder"
 
-# A single room's operator build split over 2 and 3 ranks: the same result.json.
+# A single room's operator build split over 2, 3 and 4 ranks: the same result.json.
 mkdir -p "$tmp/split/configs"
 ln -s "$repo/data" "$tmp/split/data"
 sed 's/^solver:$/solver:\n  hit_block_patches: 400/' configs/office.yaml > "$tmp/split/configs/office.yaml"
 grep -q "hit_block_patches: 400" "$tmp/split/configs/office.yaml" || fail "could not make the split job"
-split_job=("$tmp/split/configs/office.yaml" --no-cache --threads 1 -q)
+split_job=("$tmp/split/configs/office.yaml" --no-cache -q)
 echo "mpi_check: office (split build), 1 process"
-"$ilp" run "${split_job[@]}" --out "$tmp/split_1" > "$tmp/split_1.log" 2>&1 \
+"$ilp" run "${split_job[@]}" --threads 1 --out "$tmp/split_1" > "$tmp/split_1.log" 2>&1 \
   || [ $? -eq 2 ] || { cat "$tmp/split_1.log"; fail "the single-process office failed"; }
-for n in 2 3; do
-  echo "mpi_check: office (split build), mpirun -np $n"
+# ranks:threads per rank (the sources split over 2, 3 and 4 ranks; 2 threads per rank too).
+for run in 2:1 3:1 4:1 2:2; do
+  n=${run%:*} threads=${run#*:}
+  echo "mpi_check: office (split build), mpirun -np $n, $threads thread(s) per rank"
   code=0
   mpirun --oversubscribe $([ "$(id -u)" -eq 0 ] && echo --allow-run-as-root) -np $n "$ilp" run "${split_job[@]}" \
-    --out "$tmp/split_$n" > "$tmp/split_$n.log" 2>&1 || code=$?
+    --threads "$threads" --out "$tmp/split_$n" > "$tmp/split_$n.log" 2>&1 || code=$?
   [ "$code" -eq 0 ] || [ "$code" -eq 2 ] || { cat "$tmp/split_$n.log"; fail "the $n-rank office failed (exit $code)"; }
   grep -q "operator build split over $n ranks" "$tmp/split_$n.log" || { cat "$tmp/split_$n.log"; fail "the $n-rank build was not split"; }
   grep -q "^peak memory per rank after the operator build: 0: .*, $((n - 1)): " "$tmp/split_$n.log" \
     || { cat "$tmp/split_$n.log"; fail "no peak memory line for $n ranks"; }
-  python3 - "$tmp/split_1/result.json" "$tmp/split_$n/result.json" <<'PY' || fail "result.json differs between 1 and $n ranks"
+  python3 - "$tmp/split_1/result.json" "$tmp/split_$n/result.json" <<'PY' || fail "result.json differs between 1 and $n ranks x $threads threads"
 import json, sys
 def mask(v):
     if isinstance(v, dict):
@@ -132,15 +135,17 @@ def mask(v):
 a, b = (mask(json.load(open(p))) for p in sys.argv[1:3])
 sys.exit(0 if a == b else 1)
 PY
+  if [ "$n" -eq 3 ]; then peak3=$(grep '^peak memory per rank after' "$tmp/split_3.log"); fi
+  rm -rf "$tmp/split_$n"
 done
-echo "mpi_check: ok, a split build gives the same result.json on 1, 2 and 3 ranks; $(grep '^peak memory per rank after' "$tmp/split_3.log")"
+echo "mpi_check: ok, a split build gives the same result.json on 1, 2, 3 and 4 ranks (and 2 ranks x 2 threads); $peak3"
 
 # Rank 1 runs out of memory in the split preparation (its address space capped at 400 MB:
 # Embree cannot create its device) while rank 0 goes on to the build's first exchange:
 # one message, exit 1, no output folder.
 set +e
 mpirun --oversubscribe $([ "$(id -u)" -eq 0 ] && echo --allow-run-as-root) -np 2 bash -c \
-  '[ "$OMPI_COMM_WORLD_RANK" = 1 ] && ulimit -v 400000; exec "$@"' rank "$ilp" run "${split_job[@]}" \
+  '[ "$OMPI_COMM_WORLD_RANK" = 1 ] && ulimit -v 400000; exec "$@"' rank "$ilp" run "${split_job[@]}" --threads 1 \
   --out "$tmp/split_oom" > "$tmp/split_oom.log" 2> "$tmp/split_oom.err"
 code=$?
 set -e

@@ -363,11 +363,22 @@ int grid_cells(int shadow_rays) {
 template <class PointOf, class StreamOf>
 LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std::size_t receivers,
                                int points_per_receiver, std::span<const int> luminaire_surfaces,
-                               const DirectLightOptions& options, const StreamOf& stream_of, const PointOf& point_of) {
+                               const DirectLightOptions& options, const StreamOf& stream_of, const PointOf& point_of,
+                               std::span<const int> computed = {}, const BrightestOverAll* over_all = nullptr) {
+  // Columns: the luminaires `computed` names (indices into luminaire_surfaces), or every
+  // one. The others are still seen (brightest, which decides what is negligible, is over
+  // every luminaire), so a luminaire's column has the same bits whichever are computed.
+  std::vector<int> columns(computed.begin(), computed.end());
+  if (computed.empty() && !over_all)
+    for (std::size_t l = 0; l < luminaire_surfaces.size(); ++l) columns.push_back(static_cast<int>(l));
+  for (int l : columns)
+    if (l < 0 || l >= static_cast<int>(luminaire_surfaces.size()))
+      throw std::invalid_argument("compute_luminaire_light: luminaire " + std::to_string(l) + " is not in the list");
   const auto R = static_cast<Eigen::Index>(receivers);
-  const auto L = static_cast<Eigen::Index>(luminaire_surfaces.size());
+  const auto L = static_cast<Eigen::Index>(columns.size());
   LuminaireLight out{Eigen::MatrixXd::Zero(R, L), Eigen::MatrixXd::Zero(R, L), 0};
-  if (R == 0 || L == 0) return out;
+  // Split over processes (over_all): every one takes part in the exchange, columns or none.
+  if (R == 0 || (L == 0 && !over_all)) return out;
   const std::vector<LuminaireGeometry> geometry = luminaire_geometry(scene, luminaire_surfaces);
   const int rays = std::max(1, options.shadow_rays);
   const bool grid = rays >= kMinGridRays;
@@ -376,6 +387,38 @@ LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std:
   std::atomic<std::uint64_t> rays_cast{0};
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   std::atomic<std::size_t> done{0};
+  // Split (over_all): the unoccluded light of this process's columns only, kept, and
+  // each point's brightest over every process's columns (the largest of the largest:
+  // the very value one process finds over every luminaire) before any shadow ray.
+  const std::size_t points = receivers * static_cast<std::size_t>(points_per_receiver);
+  std::vector<Unoccluded> kept;
+  std::vector<double> brightest_of;
+  if (over_all) {
+    kept.resize(points * columns.size());
+    brightest_of.assign(points, 0.0);
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, receivers, 16), [&](const auto& range) {
+        for (std::size_t r = range.begin(); r != range.end(); ++r)
+          for (int s = 0; s < points_per_receiver; ++s) {
+            const ReceiverPoint point = point_of(r, s);
+            const std::size_t at = r * static_cast<std::size_t>(points_per_receiver) + static_cast<std::size_t>(s);
+            double brightest = 0.0;
+            for (std::size_t c = 0; c < columns.size(); ++c) {
+              const Unoccluded u = unoccluded_light(scene, geometry[static_cast<std::size_t>(columns[c])], point.position_m,
+                                                    point.normal, options.form_factors);
+              kept[at * columns.size() + c] = u;
+              brightest = std::max(brightest, u.lux_per_lm);
+            }
+            brightest_of[at] = brightest;
+          }
+      });
+    });
+    brightest_of = (*over_all)(std::move(brightest_of));
+    if (brightest_of.size() != points)
+      throw std::logic_error("compute_luminaire_light: " + std::to_string(brightest_of.size()) + " brightest values for " +
+                             std::to_string(points) + " points");
+    if (L == 0) return out;
+  }
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, receivers, 16), [&](const auto& range) {
       const auto ray_modes = RayCaster::prepare_thread();
@@ -386,11 +429,19 @@ LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std:
         for (int s = 0; s < points_per_receiver; ++s) {
           const ReceiverPoint point = point_of(r, s);
           double brightest = 0.0;
-          for (std::size_t l = 0; l < geometry.size(); ++l) {
-            unoccluded[l] = unoccluded_light(scene, geometry[l], point.position_m, point.normal, options.form_factors);
-            brightest = std::max(brightest, unoccluded[l].lux_per_lm);
+          if (over_all) {
+            const std::size_t at = r * static_cast<std::size_t>(points_per_receiver) + static_cast<std::size_t>(s);
+            for (std::size_t c = 0; c < columns.size(); ++c)
+              unoccluded[static_cast<std::size_t>(columns[c])] = kept[at * columns.size() + c];
+            brightest = brightest_of[at];
+          } else {
+            for (std::size_t l = 0; l < geometry.size(); ++l) {
+              unoccluded[l] = unoccluded_light(scene, geometry[l], point.position_m, point.normal, options.form_factors);
+              brightest = std::max(brightest, unoccluded[l].lux_per_lm);
+            }
           }
-          for (std::size_t l = 0; l < geometry.size(); ++l) {
+          for (std::size_t c = 0; c < columns.size(); ++c) {
+            const auto l = static_cast<std::size_t>(columns[c]);
             if (unoccluded[l].lux_per_lm <= 0.0 && unoccluded[l].form_factor <= 0.0) continue;
             const RotatedHalton4 targets(options.seed ^ 0xD1B54A32D192ED03ull,
                                          stream_of(r) * 0x9E3779B1u +
@@ -407,7 +458,7 @@ LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std:
               share = sampled_share(caster, geometry[l], point.position_m, point.normal, targets, slice,
                                     negligible ? 1 : rays, cast);
             }
-            const auto col = static_cast<Eigen::Index>(l);
+            const auto col = static_cast<Eigen::Index>(c);
             out.lux_per_lm(row, col) += unoccluded[l].lux_per_lm * share / points_per_receiver;
             out.form_factor(row, col) += unoccluded[l].form_factor * share / points_per_receiver;
           }
@@ -426,6 +477,12 @@ LuminaireLight luminaire_light(const Scene& scene, const RayCaster& caster, std:
 
 LuminaireLight compute_luminaire_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
                                        std::span<const int> luminaire_surfaces, const DirectLightOptions& options) {
+  return compute_luminaire_light(scene, caster, receivers, luminaire_surfaces, {}, options);
+}
+
+LuminaireLight compute_luminaire_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
+                                       std::span<const int> luminaire_surfaces, std::span<const int> computed,
+                                       const DirectLightOptions& options, const BrightestOverAll& over_all) {
   const auto receiver_points = halton4_points(static_cast<std::uint32_t>(options.receiver_points));
   return luminaire_light(scene, caster, receivers.size(), options.receiver_points, luminaire_surfaces, options,
                          [&](std::size_t r) { return static_cast<std::uint64_t>(receivers[r]); },
@@ -435,7 +492,8 @@ LuminaireLight compute_luminaire_light(const Scene& scene, const RayCaster& cast
                            const auto u = points.rotate(receiver_points[static_cast<std::size_t>(s)]);
                            return ReceiverPoint{sample_triangle(p.vertices_m[0], p.vertices_m[1], p.vertices_m[2], u[0], u[1]),
                                                 p.normal};
-                         });
+                         },
+                         computed, over_all ? &over_all : nullptr);
 }
 
 LuminaireLight compute_luminaire_light_at_points(const Scene& scene, const RayCaster& caster,

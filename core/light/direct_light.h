@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -96,6 +97,20 @@ struct LuminaireLight {
 // Receivers are patches, each averaged over options.receiver_points points on it.
 LuminaireLight compute_luminaire_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
                                        std::span<const int> luminaire_surfaces, const DirectLightOptions& options);
+// Each receiver point's brightest unoccluded light over this process's luminaires in,
+// the largest over every process's out (a split operator build: core/operator/work_share.h).
+using BrightestOverAll = std::function<std::vector<double>(std::vector<double>)>;
+
+// The columns of the luminaires `computed` names (indices into luminaire_surfaces, in
+// that order) only, each with the bits it has when every luminaire is computed (a split
+// operator build computes its share of the sources). What is negligible at a point is
+// judged against its brightest luminaire: without `over_all`, every luminaire's
+// unoccluded light is computed to find it; with it, only the computed ones', and
+// over_all gives the largest over every process, which must all call it alike (one
+// exchange per call, even a process with no column; `computed` empty then means none).
+LuminaireLight compute_luminaire_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
+                                       std::span<const int> luminaire_surfaces, std::span<const int> computed,
+                                       const DirectLightOptions& options, const BrightestOverAll& over_all = {});
 // Receivers are points (a calculation grid): one point each, with the shadow rays of
 // one of a patch's receiver points (receiver_points does not apply).
 LuminaireLight compute_luminaire_light_at_points(const Scene& scene, const RayCaster& caster,

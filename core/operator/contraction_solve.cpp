@@ -9,6 +9,16 @@
 
 namespace ilp {
 
+Eigen::RowVectorXd ambient_product(const Eigen::VectorXd& ambient, const Eigen::Ref<const RowMajorMatrixXd>& X) {
+  if (X.cols() != 1) return ambient.transpose() * X;
+  // One column is a dot product to Eigen, summed in another order than a product over
+  // several columns: pad it with a column of zeros.
+  RowMajorMatrixXd padded = RowMajorMatrixXd::Zero(X.rows(), 2);
+  padded.col(0) = X.col(0);
+  const Eigen::RowVectorXd both = ambient.transpose() * padded;
+  return both.leftCols(1);
+}
+
 double contraction_factor(const ContractionSystem& s) {
   const double ambient_sum = s.ambient.sum();
   double q = 0.0;
@@ -30,8 +40,9 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 // next = B + diag(rho) (W X + f (ambient^T X)), row by row (rows in parallel: each
 // row's sum is its own, so the result does not depend on the split). Row-major, as
 // each gather adds a whole row.
-void sweep(const ContractionSystem& s, const RowMajorMatrix& B, const RowMajorMatrix& X, RowMajorMatrix& next) {
-  const Eigen::RowVectorXd ambient_x = s.ambient.transpose() * X;
+void sweep(const ContractionSystem& s, const RowMajorMatrix& B, const RowMajorMatrix& X, RowMajorMatrix& next,
+           bool as_many_columns) {
+  const Eigen::RowVectorXd ambient_x = as_many_columns ? ambient_product(s.ambient, X) : Eigen::RowVectorXd(s.ambient.transpose() * X);
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, X.rows(), 256), [&](const tbb::blocked_range<Eigen::Index>& r) {
     Eigen::RowVectorXd row(X.cols());
     for (Eigen::Index a = r.begin(); a < r.end(); ++a) {
@@ -46,12 +57,13 @@ void sweep(const ContractionSystem& s, const RowMajorMatrix& B, const RowMajorMa
 
 }  // namespace
 
-std::optional<ContractionSolution> solve_contraction(const ContractionSystem& s, const Eigen::MatrixXd& B,
-                                                     double tolerance, int max_sweeps) {
+std::optional<ContractionSolution> solve_contraction(
+    const ContractionSystem& s, const Eigen::MatrixXd& B, double tolerance, int max_sweeps,
+    const std::function<std::array<double, 2>(std::array<double, 2>)>& largest) {
   const double q = contraction_factor(s);
   if (!(q < 1.0)) return std::nullopt;
   ContractionSolution out;
-  if (B.size() == 0) {  // no source (or no sample): nothing to solve, and no max of nothing
+  if (B.size() == 0 && !largest) {  // no source (or no sample): nothing to solve, and no max of nothing
     out.X = B;
     return out;
   }
@@ -59,11 +71,16 @@ std::optional<ContractionSolution> solve_contraction(const ContractionSystem& s,
   RowMajorMatrix x = b, next(B.rows(), B.cols());
   const double factor = q / (1.0 - q);
   for (int m = 1; m <= max_sweeps; ++m) {
-    sweep(s, b, x, next);
-    const double change = (next - x).cwiseAbs().maxCoeff();
+    sweep(s, b, x, next, static_cast<bool>(largest));
+    double change = x.size() > 0 ? (next - x).cwiseAbs().maxCoeff() : 0.0;
     x.swap(next);
     out.sweeps = m;
-    const double size = x.cwiseAbs().maxCoeff();
+    double size = x.size() > 0 ? x.cwiseAbs().maxCoeff() : 0.0;
+    if (largest) {
+      const std::array<double, 2> most = largest({change, size});
+      change = most[0];
+      size = most[1];
+    }
     out.error_bound = size > 0.0 ? factor * change / size : 0.0;
     if (out.error_bound <= tolerance || change == 0.0) {
       out.X = x;

@@ -10,6 +10,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
+#include <functional>
 #include <optional>
 
 namespace ilp {
@@ -39,7 +41,20 @@ struct ContractionSolution {
 // q / (1 - q) max|X_m+1 - X_m| (q = contraction_factor) is at most tolerance x max|X|.
 // std::nullopt when q >= 1 or max_sweeps pass first. Deterministic: the same sums in
 // the same order whatever the thread count.
-std::optional<ContractionSolution> solve_contraction(const ContractionSystem& system, const Eigen::MatrixXd& B,
-                                                     double tolerance, int max_sweeps);
+//
+// `largest`, when set (then ambient_product is used), maps this caller's {max|X_m+1 - X_m|, max|X_m+1|} (0 for no
+// columns) to the largest over every caller solving some of the columns of one B (a
+// split operator build: core/operator/work_share.h); then every caller stops after the
+// same sweep and each column has the bits the whole B gives it. A caller with no column
+// still takes part in every sweep.
+using RowMajorMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+// ambient^T X with each column's value what a product over several columns gives it
+// (Eigen sums one column as a dot product, in another order): a split build's share of
+// one column gets the bits of the whole.
+Eigen::RowVectorXd ambient_product(const Eigen::VectorXd& ambient, const Eigen::Ref<const RowMajorMatrixXd>& X);
+
+std::optional<ContractionSolution> solve_contraction(
+    const ContractionSystem& system, const Eigen::MatrixXd& B, double tolerance, int max_sweeps,
+    const std::function<std::array<double, 2>(std::array<double, 2>)>& largest = {});
 
 }  // namespace ilp

@@ -171,25 +171,29 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                       kk * c.rays_per_patch * m.gather_ray_s, held + sample_nnz * kRowNnzPeakBytes, setting});
     // The sample's direct light is the cheap estimate too, but a census's is precise.
     const double sample_pair_s = kk >= pop ? c.direct_rays * m.precise_pair_ray_s : m.cheap_pair_s * pair_factor;
-    // The hits in blocks: one block's direct light held at a time; this rank computes
-    // every shares-th block; a block's partial sums of F(rows,:) B1 (k + G rows per
-    // channel), rank 0 holding one from each rank in a round, and their total.
+    // The hits in blocks: one block's direct light held at a time. A split build gives
+    // each rank its share of the sources (T's columns, about Lr / shares): its columns of
+    // every block's direct light, of the partial sums of F(rows,:) B1 (k + G rows per
+    // channel) and their total, and of the sample's direct light (computed whole, then
+    // cut to the rank's columns).
     const double shares = std::max(1, c.shares);
+    const double Ls = std::ceil(Lr / shares);
     const double block = std::min(hits, d(std::max<std::size_t>(1, c.hit_block_patches)));
-    const double blocks = block > 0.0 ? std::ceil(hits / block) : 0.0;
-    const double my_hits = std::min(hits, std::ceil(blocks / shares) * block);
-    const double first_bytes = c.exact_second_bounce ? 8.0 * c.channels * (kk + G) * Lr : 0.0;
+    const double first_bytes = c.exact_second_bounce ? 8.0 * c.channels * (kk + G) * Ls : 0.0;
     phases.push_back({label + "direct light at sample and hit patches (" + std::to_string(static_cast<long long>(hits)) +
                           " cheap" +
-                          (shares > 1 ? ", " + std::to_string(static_cast<long long>(my_hits)) + " on this rank" : "") +
+                          (shares > 1 ? ", " + std::to_string(static_cast<long long>(Ls)) + " of " +
+                                            std::to_string(static_cast<long long>(Lr)) + " sources on this rank"
+                                      : "") +
                           ")",
-                      (kk * sample_pair_s + my_hits * m.cheap_pair_s * pair_factor) * Lr,
-                      held + 2.0 * sample_nnz * kRowNnzBytes + 3.0 * 8.0 * kk * Lr + 2.0 * 8.0 * block * Lr +
-                          (2.0 + (shares > 1 ? shares : 0.0)) * first_bytes,
+                      kk * sample_pair_s * Lr + hits * m.cheap_pair_s * pair_factor * Ls,
+                      held + 2.0 * sample_nnz * kRowNnzBytes +
+                          (shares > 1 ? std::max(3.0 * 8.0 * kk * Lr, 8.0 * kk * Ls + 2.0 * 8.0 * block * Ls + 2.0 * first_bytes)
+                                      : 3.0 * 8.0 * kk * Lr + 2.0 * 8.0 * block * Lr + 2.0 * first_bytes),
                       "luminaires.candidate_spacing_m (fewer candidates) or " + setting});
     phases.push_back({label + "k x k solve (" + std::to_string(c.channels) + (c.channels == 1 ? " channel)" : " channels)"),
-                      interreflection_flops(kk, Lr, c.channels, c.rays_per_patch, m) * m.sparse_flop_s,
-                      held + 2.0 * sample_nnz * kRowNnzBytes + 6.0 * 8.0 * kk * Lr + first_bytes + 4.0 * D_goal,
+                      interreflection_flops(kk, Ls, c.channels, c.rays_per_patch, m) * m.sparse_flop_s,
+                      held + 2.0 * sample_nnz * kRowNnzBytes + 6.0 * 8.0 * kk * Ls + first_bytes + 4.0 * D_goal,
                       // The first reflection's total has a row per goal row: grid points count.
                       P > 0 && first_bytes > 0.0 ? setting + ", or " + grid_setting : setting});
     return phases;

@@ -76,10 +76,10 @@ struct CostCounts {
   int direct_rays = 64;              // receiver points x shadow rays of precise direct light
   int point_direct_rays = 8;         // a grid point's: one receiver point, its shadow rays
   bool photometric = false;          // the candidates' product has a photometric file (not a Lambertian panel)
-  // A split build (core/operator/work_share.h): the patches the rows hit in blocks of
-  // hit_block_patches, block b on rank b mod shares. The estimate is one rank's: the
-  // scene and BVH and every other phase replicated, its share of the hits' direct light,
-  // and rank 0's round of partial sums (one block's from each rank).
+  // A split build (core/operator/work_share.h): the sources (T's columns) split over
+  // the ranks. The estimate is one rank's: the scene and BVH, the rows and the sample's
+  // direct light replicated; its columns of the hits' direct light, of the first
+  // reflection and of the k x k solve.
   int shares = 1;
   std::size_t hit_block_patches = std::size_t{1} << 14;
   int pilot_builds = 0;              // target_error: pilot operators built before the real one

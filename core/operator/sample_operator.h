@@ -85,11 +85,16 @@ struct SampleOperatorOptions {
   DirectLightOptions sample_direct_light = cheap_direct_light_options();
   // exact_second_bounce: the patches the rows hit are taken in fixed blocks of this many
   // (the first reflection's partial sums are added in block order): a block's direct
-  // light is held at a time, and the blocks are what a split build spreads. Changes the
-  // last bits of T (the order of the sums), never with share or threads.
+  // light is held at a time. Also the blocks of goal patches whose precise direct light
+  // a split build spreads. Changes the last bits of T (the order of the sums), never
+  // with share or threads.
   int hit_block_patches = 1 << 14;
-  // Which blocks this process computes and how the partial sums meet (one process by
-  // default; docs/cluster.md). Not in the cache key: the bits do not depend on it.
+  // How a split build shares the work (one process by default; docs/cluster.md): the
+  // goal patches' direct light by blocks; the sources (T's columns) by contiguous ranges
+  // (WorkShare::column_range), each process holding only its columns of the direct
+  // light at the sample and hit patches, the first reflection and the k x k solve, the
+  // goals' and points' light gathered at the end. Not in the cache key: the bits do not
+  // depend on it.
   WorkShare share;
 };
 

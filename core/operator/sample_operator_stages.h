@@ -87,7 +87,7 @@ SampleRows cast_sample_rows(const Scene& scene, const RayCaster& caster, const G
 // Direct light at the sample patches, D(P,:), with the closed-form luminaire loss
 // applied to the rows (rows.sums is scaled in place).
 struct SampleDirect {
-  Eigen::MatrixXd D_P;             // k by #sources
+  Eigen::MatrixXd D_P;             // k by #sources (a split build: its share's columns, options.share)
   Eigen::VectorXd kept_scale;      // k: the rows' factor on their non-luminaire entries
 };
 
@@ -100,7 +100,8 @@ SampleDirect direct_light_at_sample(const Scene& scene, const RayCaster& caster,
 // IndirectMethod::exact_second_bounce: the first reflection B1 = R D gathered through
 // the full rows, F(rows,:) B1, for the sample, goal and point rows, B1 known at every
 // reflecting patch those rows hit. Per colour channel, #rows by #sources (gathered
-// sources' columns 0), before the rows' kept_scale.
+// sources' columns 0), before the rows' kept_scale. A split build (options.share) holds
+// its share's columns only (WorkShare::column_range).
 struct FirstReflection {
   std::vector<Eigen::MatrixXd> at_sample;  // per channel: k by #sources
   std::vector<Eigen::MatrixXd> at_goals;   // per channel: #goal patches by #sources
@@ -110,9 +111,10 @@ struct FirstReflection {
 // The hit patches, in the order the rows first hit them, are cut into blocks of
 // options.hit_block_patches; each block's direct light (goal and sample patches reuse
 // theirs, the others get options.hit_direct_light) is gathered into the rows' partial
-// sums and dropped, and the partial sums are added in block order (reduce_blocks), so
-// no process holds the hits' direct light whole and the bits do not depend on
-// options.share. Fills stats.cheap_direct_rows (every block's, whatever the share).
+// sums and dropped, and the partial sums are added in block order, so no process holds
+// the hits' direct light whole. A split build computes every block for its share's
+// columns (sources) only: each column's sums are the single process's, no exchange.
+// Fills stats.cheap_direct_rows (every block's).
 FirstReflection first_reflection_at_rows(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
                                          const SampleRows& rows, const SampleDirect& direct, const SourceTable& table,
                                          const SampleOperatorOptions& options, const ProgressCallback& progress,
@@ -148,6 +150,9 @@ struct IndirectLight {
 };
 
 // Per colour channel: (I - K) Bʳ_P = right-hand side, then the goal rows gather Bʳ_P.
+// A split build solves its share's columns (the iteration stops when the largest change
+// over every share is small enough) and gathers every share's light at the goals and
+// points, so the result is whole and has the same bits on every share.
 // Sets weights.sample.rho per channel. Fills stats.max_row_sum, condition_estimate,
 // condition_bound_inf, solve_seconds and response_seconds. Throws NumericalError where
 // energy would be created or a value becomes non-finite.

@@ -131,24 +131,45 @@ struct DirectRows {
   Eigen::MatrixXd absorbed;
 };
 
-DirectRows direct_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
-                        std::size_t source_count, const SourceTable& sources, const Eigen::MatrixXd& gathered,
-                        const DirectLightOptions& options) {
-  const auto R = static_cast<Eigen::Index>(receivers.size()), L = static_cast<Eigen::Index>(source_count);
+// A split build's exchange of each receiver point's brightest luminaire (none in one process).
+BrightestOverAll brightest_over_shares(const WorkShare& share) {
+  if (share.count == 1) return {};
+  return [&share](std::vector<double> mine) { return max_over_shares(share, std::move(mine)); };
+}
+
+// The columns [first, last) of the sources only (a split build's share of them,
+// WorkShare::column_range), each with the bits it has when every column is computed.
+DirectRows direct_light_columns(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
+                                const SourceTable& sources, const Eigen::MatrixXd& gathered,
+                                const DirectLightOptions& options, std::size_t first, std::size_t last,
+                                const BrightestOverAll& over_all = {}) {
+  const auto R = static_cast<Eigen::Index>(receivers.size()), L = static_cast<Eigen::Index>(last - first);
+  const auto mine = [&](int l) { return static_cast<std::size_t>(l) >= first && static_cast<std::size_t>(l) < last; };
+  const auto col = [&](int l) { return static_cast<Eigen::Index>(static_cast<std::size_t>(l) - first); };
   DirectRows out{Eigen::MatrixXd::Zero(R, L), Eigen::MatrixXd::Zero(R, L)};
-  if (!sources.luminaire_surfaces.empty() && R > 0) {
-    const LuminaireLight light = compute_luminaire_light(scene, caster, receivers, sources.luminaire_surfaces, options);
-    for (std::size_t e = 0; e < sources.luminaire_surfaces.size(); ++e) {
-      const int l = sources.luminaire_source[e];
-      out.D.col(l) = light.lux_per_lm.col(static_cast<Eigen::Index>(e));
-      if (sources.absorbs[static_cast<std::size_t>(l)]) out.absorbed.col(l) = light.form_factor.col(static_cast<Eigen::Index>(e));
+  std::vector<int> computed;  // indices into luminaire_surfaces of this share's luminaires
+  for (std::size_t e = 0; e < sources.luminaire_surfaces.size(); ++e)
+    if (mine(sources.luminaire_source[e])) computed.push_back(static_cast<int>(e));
+  if ((!computed.empty() || over_all) && R > 0) {
+    const LuminaireLight light =
+        compute_luminaire_light(scene, caster, receivers, sources.luminaire_surfaces, computed, options, over_all);
+    for (std::size_t c = 0; c < computed.size(); ++c) {
+      const int l = sources.luminaire_source[static_cast<std::size_t>(computed[c])];
+      out.D.col(col(l)) = light.lux_per_lm.col(static_cast<Eigen::Index>(c));
+      if (sources.absorbs[static_cast<std::size_t>(l)]) out.absorbed.col(col(l)) = light.form_factor.col(static_cast<Eigen::Index>(c));
     }
   }
   for (std::size_t e = 0; e < sources.gathered.size(); ++e) {
     const int l = sources.gathered[e];
-    if (sources.area_m2[l] > 0.0) out.D.col(l) = gathered.col(static_cast<Eigen::Index>(e)) / sources.area_m2[l];
+    if (mine(l) && sources.area_m2[l] > 0.0) out.D.col(col(l)) = gathered.col(static_cast<Eigen::Index>(e)) / sources.area_m2[l];
   }
   return out;
+}
+
+DirectRows direct_light(const Scene& scene, const RayCaster& caster, std::span<const int> receivers,
+                        std::size_t source_count, const SourceTable& sources, const Eigen::MatrixXd& gathered,
+                        const DirectLightOptions& options) {
+  return direct_light_columns(scene, caster, receivers, sources, gathered, options, 0, source_count);
 }
 
 // D(Q,:) at goal points and their form factors to the absorbing luminaires, as
@@ -237,6 +258,92 @@ SampleRows cast_sample_rows(const Scene& scene, const RayCaster& caster, const G
   return {std::move(rows), std::move(sums), std::move(sample_slot), std::move(goal_slot)};
 }
 
+namespace {
+
+// direct_light_at_sample for a split build: this share's columns of D(P,:) only (the
+// k x #sources matrices are what a large room holds most of). A row's closed-form loss
+// needs its form factors to every absorbing luminaire: those outside the share's columns
+// are computed too (form factors only kept), and each row's sum runs over a full-width
+// row in column order, the expression apply_closed_form_loss sums, so the scale has the
+// single process's bits.
+SampleDirect direct_light_at_sample_columns(const Scene& scene, const RayCaster& caster, const GoalRows& goals,
+                                            const std::vector<int>& P, const std::vector<int>& goal_slot,
+                                            const std::vector<int>& need_direct,
+                                            const std::vector<Eigen::Index>& need_direct_row,
+                                            const Eigen::MatrixXd& gathered_needed, SampleRows& rows,
+                                            const SourceTable& table, const DirectLightOptions& sample_light,
+                                            const WorkShare& share, SampleOperatorStats& st) {
+  const std::span<const LightSource> sources = goals.sources;
+  const Eigen::Index k = static_cast<Eigen::Index>(P.size());
+  const Eigen::Index L = static_cast<Eigen::Index>(sources.size());
+  const auto [c0, c1] = share.column_range(sources.size());
+  const Eigen::Index first = static_cast<Eigen::Index>(c0), Ls = static_cast<Eigen::Index>(c1 - c0);
+  // One call (one exchange of the points' brightest): this share's luminaires, then the
+  // absorbing luminaires outside its columns (their form factors only are read).
+  std::vector<int> computed;                 // indices into luminaire_surfaces
+  std::vector<Eigen::Index> computed_source;  // their source (column of T)
+  for (std::size_t e = 0; e < table.luminaire_surfaces.size(); ++e)
+    if (const auto l = static_cast<std::size_t>(table.luminaire_source[e]); l >= c0 && l < c1) {
+      computed.push_back(static_cast<int>(e));
+      computed_source.push_back(static_cast<Eigen::Index>(l));
+    }
+  const std::size_t own = computed.size();
+  for (std::size_t e = 0; e < table.luminaire_surfaces.size(); ++e)
+    if (const auto l = static_cast<std::size_t>(table.luminaire_source[e]); table.absorbs[l] && (l < c0 || l >= c1)) {
+      computed.push_back(static_cast<int>(e));
+      computed_source.push_back(static_cast<Eigen::Index>(l));
+    }
+  const LuminaireLight light = compute_luminaire_light(scene, caster, need_direct, table.luminaire_surfaces, computed,
+                                                       sample_light, brightest_over_shares(share));
+  DirectRows mine{Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(need_direct.size()), Ls),
+                  Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(need_direct.size()), Ls)};
+  for (std::size_t c = 0; c < own && !need_direct.empty(); ++c) {
+    const Eigen::Index col = computed_source[c] - first;
+    mine.D.col(col) = light.lux_per_lm.col(static_cast<Eigen::Index>(c));
+    if (table.absorbs[static_cast<std::size_t>(computed_source[c])]) mine.absorbed.col(col) = light.form_factor.col(static_cast<Eigen::Index>(c));
+  }
+  for (std::size_t e = 0; e < table.gathered.size(); ++e)
+    if (const auto l = static_cast<std::size_t>(table.gathered[e]); l >= c0 && l < c1 && table.area_m2[l] > 0.0)
+      mine.D.col(static_cast<Eigen::Index>(l - c0)) = gathered_needed.col(static_cast<Eigen::Index>(e)) / table.area_m2[l];
+  std::vector<Eigen::Index> row_of(static_cast<std::size_t>(k), -1);  // a computed row's index in need_direct
+  for (std::size_t m = 0; m < need_direct_row.size(); ++m) row_of[static_cast<std::size_t>(need_direct_row[m])] = static_cast<Eigen::Index>(m);
+  SampleDirect out;
+  Eigen::MatrixXd& D_P = out.D_P;
+  D_P.resize(k, Ls);
+  Eigen::VectorXd closed(k);
+  Eigen::MatrixXd full(1, L);  // one row's form factors to every source (0 but absorbing luminaires)
+  for (Eigen::Index b = 0; b < k; ++b) {
+    if (const int g = goal_slot[static_cast<std::size_t>(P[static_cast<std::size_t>(b)])]; g >= 0) {
+      D_P.row(b) = goals.direct_lux_per_lm.row(g).segment(first, Ls);
+      full.row(0) = goals.luminaire_form_factor.row(g);
+    } else {
+      const Eigen::Index m = row_of[static_cast<std::size_t>(b)];
+      D_P.row(b) = mine.D.row(m);
+      full.setZero();
+      full.row(0).segment(first, Ls) = mine.absorbed.row(m);
+      for (std::size_t j = own; j < computed.size(); ++j) full(0, computed_source[j]) = light.form_factor(m, static_cast<Eigen::Index>(j));
+    }
+    closed[b] = full.row(0).sum();
+  }
+  st.direct_rows += need_direct.size();
+  // apply_closed_form_loss's scale, from the rows' sums; the gathered sources' columns
+  // of the computed rows scaled (rows copied from the goals are scaled already).
+  RowSums& sums = rows.sums;
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(k);
+  for (Eigen::Index r = 0; r < k; ++r)
+    if (sums.kept[r] > 0.0) scale[r] = std::max(0.0, sums.kept[r] + sums.luminaire[r] - closed[r]) / sums.kept[r];
+  sums.reflecting.array() *= scale.array();
+  for (Eigen::Index e = 0; e < sums.gathered.cols(); ++e) sums.gathered.col(e).array() *= scale.array();
+  for (int l : table.gathered)
+    if (static_cast<std::size_t>(l) >= c0 && static_cast<std::size_t>(l) < c1)
+      for (Eigen::Index r : need_direct_row) D_P(r, l - first) *= scale[r];
+  out.kept_scale = std::move(scale);
+  require_finite(D_P, "direct light", scene, P, sources.subspan(c0, c1 - c0));
+  return out;
+}
+
+}  // namespace
+
 // Direct light at the sample patches. A census (every patch its own stratum) takes the
 // goals' precise estimate, copied where a sample patch is a goal; a sample takes
 // options.sample_direct_light at every sample patch, goal or not, so that the sample's
@@ -267,6 +374,9 @@ SampleDirect direct_light_at_sample(const Scene& scene, const RayCaster& caster,
   sample_light.threads = options.direct_light.threads;
   sample_light.progress = progress;
   sample_light.progress_label = "direct light (sample)";
+  if (options.share.count > 1)
+    return direct_light_at_sample_columns(scene, caster, goals, P, goal_slot, need_direct, need_direct_row, gathered_needed,
+                                          rows, table, sample_light, options.share, st);
   const DirectRows D_new = direct_light(scene, caster, need_direct, sources.size(), table, gathered_needed, sample_light);
   SampleDirect out;
   Eigen::MatrixXd& D_P = out.D_P;
@@ -296,7 +406,7 @@ namespace {
 // #sources), B1_j = rho_j(channel) D(slot j - first,:). Rows are split among threads;
 // each row's sum is its own, in the row's column order, so the split changes nothing.
 void gather_block(const Scene& scene, const SparseRows& F, const std::vector<int>& slot, int first,
-                  const RowMajorMatrix& D, int channel, RowMajorMatrix& out) {
+                  const RowMajorMatrix& D, int channel, Eigen::Map<RowMajorMatrix> out) {
   const int last = first + static_cast<int>(D.rows());
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, F.rows(), 64), [&](const tbb::blocked_range<Eigen::Index>& r) {
     for (Eigen::Index row = r.begin(); row < r.end(); ++row)
@@ -318,7 +428,6 @@ FirstReflection first_reflection_at_rows(const Scene& scene, const RayCaster& ca
   if (options.hit_block_patches < 1)
     throw std::invalid_argument("hit_block_patches = " + std::to_string(options.hit_block_patches) + ": must be >= 1");
   const std::span<const LightSource> sources = goals.sources;
-  const Eigen::Index L = static_cast<Eigen::Index>(sources.size());
   std::vector<int> hit_slot(scene.patches.size(), -1);
   std::vector<int> hit;
   auto collect = [&](const SparseRows& F) {
@@ -343,63 +452,64 @@ FirstReflection first_reflection_at_rows(const Scene& scene, const RayCaster& ca
   cheap_options.progress_label = "direct light (patches the rows hit)";
   const std::size_t block_size = static_cast<std::size_t>(options.hit_block_patches);
   const std::size_t blocks = (hit.size() + block_size - 1) / block_size;
-  // This share's cheap patches, for the progress line.
-  std::size_t mine = 0, done = 0;
-  for (std::size_t b = 0; b < blocks; ++b)
-    if (b % static_cast<std::size_t>(options.share.count) == static_cast<std::size_t>(options.share.index))
-      mine += static_cast<std::size_t>(std::count_if(hit.begin() + static_cast<std::ptrdiff_t>(b * block_size),
-                                                     hit.begin() + static_cast<std::ptrdiff_t>(std::min(hit.size(), (b + 1) * block_size)),
-                                                     is_cheap));
+  // A split build computes its share's columns (sources) of every block: no exchange here.
+  if (std::string error; !options.share.is_valid(&error)) throw std::invalid_argument(error);
+  const auto [c0, c1] = options.share.column_range(sources.size());
+  const auto first_col = static_cast<Eigen::Index>(c0), Ls = static_cast<Eigen::Index>(c1 - c0);
+  const std::span<const LightSource> my_sources = sources.subspan(c0, c1 - c0);
+  const std::size_t cheap_total = st.cheap_direct_rows;
+  std::size_t done = 0;
   if (progress)
-    cheap_options.progress = [&](std::string_view label, std::size_t now, std::size_t) { progress(label, done + now, mine); };
+    cheap_options.progress = [&](std::string_view label, std::size_t now, std::size_t) { progress(label, done + now, cheap_total); };
 
   const Eigen::Index k = rows.rows.F.rows(), G = goals.rows->F.rows();
   const Eigen::Index Q = goals.point_rows ? goals.point_rows->F.rows() : 0;
   const int channels = scene.channels;
-  const std::size_t per_channel = static_cast<std::size_t>((k + G + Q) * L);
-  // Block b's partial sums: per channel, the sample's, goals' and points' rows (row-major).
+  const std::size_t per_channel = static_cast<std::size_t>((k + G + Q) * Ls);
+  if (direct.D_P.cols() != Ls)
+    throw std::logic_error("first_reflection_at_rows: the sample's direct light has " + std::to_string(direct.D_P.cols()) +
+                           " columns, this share computes " + std::to_string(Ls));
+  // Block b's partial sums: per channel, the sample's, goals' and points' rows (row-major),
+  // this share's columns; added in block order, as every path adds them.
   auto partial = [&](std::size_t b) {
     const std::size_t first = b * block_size, last = std::min(hit.size(), first + block_size);
-    RowMajorMatrix D(static_cast<Eigen::Index>(last - first), L);
+    RowMajorMatrix D(static_cast<Eigen::Index>(last - first), Ls);
     std::vector<int> cheap;
     std::vector<Eigen::Index> cheap_row;
     for (std::size_t h = first; h < last; ++h) {
       const auto row = static_cast<Eigen::Index>(h - first);
       if (rows.sample_slot[hit[h]] >= 0) D.row(row) = direct.D_P.row(rows.sample_slot[hit[h]]);
-      else if (rows.goal_slot[hit[h]] >= 0) D.row(row) = goals.direct_lux_per_lm.row(rows.goal_slot[hit[h]]);
+      else if (rows.goal_slot[hit[h]] >= 0) D.row(row) = goals.direct_lux_per_lm.row(rows.goal_slot[hit[h]]).segment(first_col, Ls);
       else {
         cheap.push_back(hit[h]);
         cheap_row.push_back(row);
       }
     }
-    const Eigen::MatrixXd D_cheap = direct_light(
-        scene, caster, cheap, sources.size(), table,
-        Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(cheap.size()), static_cast<Eigen::Index>(table.gathered.size())),
-        cheap_options).D;
-    done += cheap.size();
-    for (std::size_t m = 0; m < cheap.size(); ++m) D.row(cheap_row[m]) = D_cheap.row(static_cast<Eigen::Index>(m));
-    for (std::size_t e = 0; e < table.gathered.size(); ++e) D.col(table.gathered[e]).setZero();
+    {
+      const Eigen::MatrixXd D_cheap = direct_light_columns(
+          scene, caster, cheap, table,
+          Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(cheap.size()), static_cast<Eigen::Index>(table.gathered.size())),
+          cheap_options, c0, c1, brightest_over_shares(options.share)).D;
+      done += cheap.size();
+      for (std::size_t m = 0; m < cheap.size(); ++m) D.row(cheap_row[m]) = D_cheap.row(static_cast<Eigen::Index>(m));
+    }
+    for (std::size_t e = 0; e < table.gathered.size(); ++e)
+      if (const auto l = static_cast<std::size_t>(table.gathered[e]); l >= c0 && l < c1) D.col(static_cast<Eigen::Index>(l - c0)).setZero();
     const std::vector<int> labels(hit.begin() + static_cast<std::ptrdiff_t>(first), hit.begin() + static_cast<std::ptrdiff_t>(last));
-    require_finite(Eigen::MatrixXd(D), "direct light", scene, labels, sources);
+    require_finite(Eigen::MatrixXd(D), "direct light", scene, labels, my_sources);
     std::vector<double> out(per_channel * static_cast<std::size_t>(channels), 0.0);
     for (int c = 0; c < channels; ++c) {
       double* at = out.data() + per_channel * static_cast<std::size_t>(c);
-      Eigen::Map<RowMajorMatrix> S(at, k, L), Fg(at + k * L, G, L), Fq(at + (k + G) * L, Q, L);
-      RowMajorMatrix sum = RowMajorMatrix::Zero(k, L);
-      gather_block(scene, rows.rows.F, hit_slot, static_cast<int>(first), D, c, sum);
-      S = sum;
-      sum = RowMajorMatrix::Zero(G, L);
-      gather_block(scene, goals.rows->F, hit_slot, static_cast<int>(first), D, c, sum);
-      Fg = sum;
-      if (Q > 0) {
-        sum = RowMajorMatrix::Zero(Q, L);
-        gather_block(scene, goals.point_rows->F, hit_slot, static_cast<int>(first), D, c, sum);
-        Fq = sum;
-      }
+      gather_block(scene, rows.rows.F, hit_slot, static_cast<int>(first), D, c, Eigen::Map<RowMajorMatrix>(at, k, Ls));
+      gather_block(scene, goals.rows->F, hit_slot, static_cast<int>(first), D, c, Eigen::Map<RowMajorMatrix>(at + k * Ls, G, Ls));
+      if (Q > 0)
+        gather_block(scene, goals.point_rows->F, hit_slot, static_cast<int>(first), D, c,
+                     Eigen::Map<RowMajorMatrix>(at + (k + G) * Ls, Q, Ls));
     }
     return out;
   };
-  std::vector<double> total = reduce_blocks(blocks, options.share, partial);
+  std::vector<double> total;
+  for (std::size_t b = 0; b < blocks; ++b) add_blocks_in_order(total, {partial(b)});
   if (total.empty()) total.assign(per_channel * static_cast<std::size_t>(channels), 0.0);  // no hit at all
   if (total.size() != per_channel * static_cast<std::size_t>(channels))
     throw std::logic_error("first_reflection_at_rows: " + std::to_string(total.size()) + " values reduced, expected " +
@@ -407,9 +517,9 @@ FirstReflection first_reflection_at_rows(const Scene& scene, const RayCaster& ca
   FirstReflection out;
   for (int c = 0; c < channels; ++c) {
     const double* at = total.data() + per_channel * static_cast<std::size_t>(c);
-    out.at_sample.push_back(Eigen::Map<const RowMajorMatrix>(at, k, L));
-    out.at_goals.push_back(Eigen::Map<const RowMajorMatrix>(at + k * L, G, L));
-    if (goals.point_rows) out.at_points.push_back(Eigen::Map<const RowMajorMatrix>(at + (k + G) * L, Q, L));
+    out.at_sample.push_back(Eigen::Map<const RowMajorMatrix>(at, k, Ls));
+    out.at_goals.push_back(Eigen::Map<const RowMajorMatrix>(at + k * Ls, G, Ls));
+    if (goals.point_rows) out.at_points.push_back(Eigen::Map<const RowMajorMatrix>(at + (k + G) * Ls, Q, Ls));
   }
   return out;
 }

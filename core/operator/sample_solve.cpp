@@ -8,11 +8,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <stdexcept>
 #include <optional>
 #include <string>
 
 #include "core/base/error.h"
 #include "core/operator/sample_operator_stages.h"
+#include "core/operator/work_share.h"
 
 namespace ilp::detail {
 namespace {
@@ -25,17 +28,31 @@ namespace {
 constexpr int kMaxSweeps = 3000;
 constexpr Eigen::Index kLargestDenseSolve = 4000;  // 128 MB a copy
 
+// A split build (share.count > 1) passes its share's columns of the right-hand side and
+// gets its columns of X, with the bits the whole right-hand side gives them: the
+// iteration's stopping test takes the largest change over every share; the dense LU
+// (small k only) solves every column on every share and keeps its own.
 Eigen::MatrixXd solve_interreflection(const ContractionSystem& system, const Eigen::MatrixXd& rhs,
-                                      SampleOperatorStats& st, int& sweeps) {
+                                      std::size_t all_columns, const WorkShare& share, SampleOperatorStats& st,
+                                      int& sweeps) {
   // No source (a scene without light) gives no column: nothing to solve, and Eigen's
   // triangular solve of an empty right-hand side binds a reference to null (UBSan).
-  if (rhs.cols() == 0) return rhs;
+  if (all_columns == 0) return rhs;
+  const bool split = share.count > 1;
   const double q = contraction_factor(system);
   const Eigen::Index k = system.W.rows();
   const double needed = sweeps_needed(q, kSolveTolerance);
   if (needed <= kMaxSweeps || k > kLargestDenseSolve) {
     const int most = static_cast<int>(std::min(1e6, std::max<double>(kMaxSweeps, needed)));
-    if (std::optional<ContractionSolution> x = solve_contraction(system, rhs, kSolveTolerance, most)) {
+    std::function<std::array<double, 2>(std::array<double, 2>)> largest;
+    // One column in all: the shares without it need not iterate, and its share solves it
+    // as one process does.
+    if (split && all_columns > 1)
+      largest = [&share](std::array<double, 2> mine) {
+        const std::vector<double> most = max_over_shares(share, {mine[0], mine[1]});
+        return std::array<double, 2>{most.at(0), most.at(1)};
+      };
+    if (std::optional<ContractionSolution> x = solve_contraction(system, rhs, kSolveTolerance, most, largest)) {
       st.condition_estimate = std::max(st.condition_estimate, (1.0 + q) / (1.0 - q));
       sweeps = std::max(sweeps, x->sweeps);
       return std::move(x->X);
@@ -53,7 +70,14 @@ Eigen::MatrixXd solve_interreflection(const ContractionSystem& system, const Eig
   const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(dense);
   const double rcond = lu.rcond();
   st.condition_estimate = std::max(st.condition_estimate, rcond > 0.0 ? 1.0 / rcond : INFINITY);
-  return lu.solve(rhs);
+  if (!split) return lu.solve(rhs);
+  // Every share's columns (column-major, in share order: the whole right-hand side).
+  const std::vector<double> all =
+      gather_shares(share, std::vector<double>(rhs.data(), rhs.data() + rhs.size()));
+  const auto cols = static_cast<Eigen::Index>(all_columns);
+  const Eigen::MatrixXd X = lu.solve(Eigen::Map<const Eigen::MatrixXd>(all.data(), k, cols));
+  const auto [first, last] = share.column_range(all_columns);
+  return X.middleCols(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(last - first));
 }
 
 // Energy: a sample patch reflects rho_a s_a < 1 of what reaches it (row sums of
@@ -82,10 +106,12 @@ struct ChannelSolution {
 ChannelSolution solve_channel(const Scene& scene, const GoalRows& goals, const PatchSample& sample,
                               const SampleDirect& direct, const FirstReflection& first,
                               const SourceTable& table, bool refine, int c, ContractionSystem& W_PP,
-                              SampleOperatorStats& st, int& solve_sweeps) {
+                              const SampleOperatorOptions& options, SampleOperatorStats& st, int& solve_sweeps) {
   const std::vector<int>& P = sample.patches;
   const Eigen::Index k = static_cast<Eigen::Index>(P.size());
-  const Eigen::Index L = static_cast<Eigen::Index>(goals.sources.size());
+  // This share's columns (every column in one process).
+  const auto [c0, c1] = options.share.column_range(goals.sources.size());
+  const Eigen::Index L = static_cast<Eigen::Index>(c1 - c0);
   Eigen::VectorXd rho(k);
   for (Eigen::Index b = 0; b < k; ++b) rho[b] = scene.reflectance(P[b], c);
   W_PP.rho = rho;
@@ -100,10 +126,11 @@ ChannelSolution solve_channel(const Scene& scene, const GoalRows& goals, const P
     const Eigen::MatrixXd S = direct.kept_scale.asDiagonal() * first.at_sample[static_cast<std::size_t>(c)];
     out.first_at_goals = goals.kept_scale.asDiagonal() * first.at_goals[static_cast<std::size_t>(c)];
     for (Eigen::Index l = 0; l < L; ++l)
-      if (table.emitting_index[l] < 0) rhs.col(l) = rho.asDiagonal() * S.col(l);
+      if (table.emitting_index[c0 + static_cast<std::size_t>(l)] < 0) rhs.col(l) = rho.asDiagonal() * S.col(l);
   }
-  out.reflected = solve_interreflection(W_PP, rhs, st, solve_sweeps);
-  require_finite(out.reflected, "interreflection solve (I - K)", scene, P, goals.sources);
+  out.reflected = solve_interreflection(W_PP, rhs, goals.sources.size(), options.share, st, solve_sweeps);
+  require_finite(out.reflected, "interreflection solve (I - K)", scene, P,
+                 std::span<const LightSource>(goals.sources).subspan(c0, c1 - c0));
   return out;
 }
 
@@ -111,30 +138,44 @@ ChannelSolution solve_channel(const Scene& scene, const GoalRows& goals, const P
 // first reflection), added to `sum` with the channel's luminance weight.
 void add_channel_response(const Scene& scene, const GoalRows& goals, const FirstReflection& first, const SourceTable& table,
                           const GatherWeights& W, bool refine, int c, const ChannelSolution& solved,
-                          IndirectLight& sum) {
-  const Eigen::Index L = static_cast<Eigen::Index>(goals.sources.size());
+                          const WorkShare& share, IndirectLight& sum) {
+  // This share's columns (every column in one process).
+  const auto [c0, c1] = share.column_range(goals.sources.size());
+  const Eigen::Index L = static_cast<Eigen::Index>(c1 - c0);
   const Eigen::Index G = static_cast<Eigen::Index>(goals.patches.size());
   const Eigen::Index Q = static_cast<Eigen::Index>(goals.points.size());
   const Eigen::MatrixXd& reflected = solved.reflected;
   const Eigen::VectorXd& ambient = W.sample.ambient;
-  Eigen::MatrixXd channel_indirect = W.goals * reflected + W.goal_fallback_scale * (ambient.transpose() * reflected);
+  // A split build's shares of several columns: each column's ambient product as the whole's.
+  const bool padded = share.count > 1 && goals.sources.size() > 1;
+  Eigen::RowVectorXd ambient_reflected;
+  if (padded && reflected.cols() == 1) {  // a dot product to Eigen: pad with a zero column (same storage order)
+    Eigen::MatrixXd two = Eigen::MatrixXd::Zero(reflected.rows(), 2);
+    two.col(0) = reflected.col(0);
+    const Eigen::RowVectorXd both = ambient.transpose() * two;
+    ambient_reflected = both.leftCols(1);
+  } else {
+    ambient_reflected = ambient.transpose() * reflected;
+  }
+  Eigen::MatrixXd channel_indirect = W.goals * reflected + W.goal_fallback_scale * ambient_reflected;
   if (refine)
     for (Eigen::Index l = 0; l < L; ++l)
-      if (table.emitting_index[l] < 0) channel_indirect.col(l) += solved.first_at_goals.col(l);
+      if (table.emitting_index[c0 + static_cast<std::size_t>(l)] < 0) channel_indirect.col(l) += solved.first_at_goals.col(l);
   const double weight = scene.channels == 1 ? 1.0 : kLuminanceWeights[c];
   sum.at_goals += weight * channel_indirect;
   if (Q > 0) {
-    Eigen::MatrixXd at_points = W.points * reflected + W.point_fallback_scale * (ambient.transpose() * reflected);
+    Eigen::MatrixXd at_points = W.points * reflected + W.point_fallback_scale * ambient_reflected;
     if (refine && goals.point_rows) {
       const Eigen::MatrixXd at_first = goals.point_kept_scale.asDiagonal() * first.at_points[static_cast<std::size_t>(c)];
       for (Eigen::Index l = 0; l < L; ++l)
-        if (table.emitting_index[l] < 0) at_points.col(l) += at_first.col(l);
+        if (table.emitting_index[c0 + static_cast<std::size_t>(l)] < 0) at_points.col(l) += at_first.col(l);
     }
     sum.at_points += weight * at_points;
   }
   Eigen::VectorXd rho_goal(G);
   for (Eigen::Index g = 0; g < G; ++g) rho_goal[g] = scene.reflectance(goals.patches[g], c);
-  sum.reflected += weight * (rho_goal.asDiagonal() * (goals.direct_lux_per_lm + channel_indirect));
+  sum.reflected += weight * (rho_goal.asDiagonal() *
+                             (goals.direct_lux_per_lm.middleCols(static_cast<Eigen::Index>(c0), L) + channel_indirect));
 }
 
 // I - K is an M-matrix, so exact arithmetic gives T >= 0; LU round-off may leave
@@ -177,7 +218,8 @@ IndirectLight solve_indirect_light(const Scene& scene, const GoalRows& goals, co
                                    const SourceTable& table, GatherWeights& weights,
                                    const SampleOperatorOptions& options, const ProgressCallback& progress,
                                    SampleOperatorStats& st) {
-  const Eigen::Index L = static_cast<Eigen::Index>(goals.sources.size());
+  const auto [c0, c1] = options.share.column_range(goals.sources.size());
+  const Eigen::Index L = static_cast<Eigen::Index>(c1 - c0);  // this share's columns
   const Eigen::Index G = static_cast<Eigen::Index>(goals.patches.size());
   const Eigen::Index Q = static_cast<Eigen::Index>(goals.points.size());
   const bool refine = options.indirect == IndirectMethod::exact_second_bounce;
@@ -187,13 +229,30 @@ IndirectLight solve_indirect_light(const Scene& scene, const GoalRows& goals, co
     if (progress) progress("k x k solve", static_cast<std::size_t>(c), channels);
     const auto solve_start = std::chrono::steady_clock::now();
     const ChannelSolution solved =
-        solve_channel(scene, goals, sample, direct, first, table, refine, c, weights.sample, st, sum.solve_sweeps);
+        solve_channel(scene, goals, sample, direct, first, table, refine, c, weights.sample, options, st, sum.solve_sweeps);
     st.solve_seconds += seconds_since(solve_start);
     const auto response_start = std::chrono::steady_clock::now();
-    add_channel_response(scene, goals, first, table, weights, refine, c, solved, sum);
+    add_channel_response(scene, goals, first, table, weights, refine, c, solved, options.share, sum);
     st.response_seconds += seconds_since(response_start);
   }
   if (progress) progress("k x k solve", channels, channels);
+  if (options.share.count > 1) {
+    // Every share's columns of the goals' and points' light (small: rows x sources),
+    // concatenated in share order (= column order) on every share.
+    const auto whole = [&](const Eigen::MatrixXd& mine) {
+      const std::vector<double> all =
+          gather_shares(options.share, std::vector<double>(mine.data(), mine.data() + mine.size()));
+      const Eigen::Index cols = mine.rows() > 0 ? static_cast<Eigen::Index>(all.size()) / mine.rows()
+                                                : static_cast<Eigen::Index>(goals.sources.size());
+      if (cols != static_cast<Eigen::Index>(goals.sources.size()))
+        throw std::logic_error("solve_indirect_light: " + std::to_string(all.size()) + " values gathered for " +
+                               std::to_string(mine.rows()) + " rows of " + std::to_string(goals.sources.size()) + " sources");
+      return Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(all.data(), mine.rows(), cols));
+    };
+    sum.at_goals = whole(sum.at_goals);
+    sum.at_points = whole(sum.at_points);
+    sum.reflected = whole(sum.reflected);
+  }
   st.condition_bound_inf = (1.0 + st.max_row_sum) / (1.0 - st.max_row_sum);
   return sum;
 }

@@ -1,6 +1,7 @@
 // The ordered reduction behind a split operator build (core/operator/work_share.h).
 #include "core/operator/work_share.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace ilp {
@@ -63,6 +64,39 @@ std::vector<double> gather_blocks(std::size_t blocks, const WorkShare& share,
   }
   if (share.count > 1) all = share.broadcast(std::move(all));
   return all;
+}
+
+std::vector<double> gather_shares(const WorkShare& share, std::vector<double> mine) {
+  if (std::string error; !share.is_valid(&error)) throw std::invalid_argument(error);
+  if (share.count == 1) return mine;
+  std::vector<double> all;
+  const std::vector<std::vector<double>> parts = share.gather(std::move(mine));
+  if (share.is_root())
+    for (const std::vector<double>& p : parts) all.insert(all.end(), p.begin(), p.end());
+  return share.broadcast(std::move(all));
+}
+
+std::vector<double> max_over_shares(const WorkShare& share, std::vector<double> mine) {
+  if (std::string error; !share.is_valid(&error)) throw std::invalid_argument(error);
+  if (share.count == 1) return mine;
+  const std::size_t n = mine.size();
+  std::vector<double> most;
+  const std::vector<std::vector<double>> parts = share.gather(std::move(mine));
+  if (share.is_root()) {
+    most = parts.at(0);
+    for (const std::vector<double>& p : parts) {
+      if (p.size() != n) {  // broadcast nothing: every share then stops here alike
+        most.clear();
+        break;
+      }
+      for (std::size_t i = 0; i < n; ++i) most[i] = std::max(most[i], p[i]);
+    }
+  }
+  most = share.broadcast(std::move(most));
+  if (most.size() != n)
+    throw std::logic_error("max_over_shares: " + std::to_string(most.size()) + " values gathered, expected " +
+                           std::to_string(n) + " (a share passed another number)");
+  return most;
 }
 
 }  // namespace ilp

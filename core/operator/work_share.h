@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ilp {
@@ -32,6 +33,12 @@ struct WorkShare {
   std::size_t rounds(std::size_t blocks) const {
     return (blocks + static_cast<std::size_t>(count) - 1) / static_cast<std::size_t>(count);
   }
+  // This share's columns of `columns` (the sources of T): [first, second), contiguous,
+  // in share order, as even as can be (a share may have none when columns < count).
+  std::pair<std::size_t, std::size_t> column_range(std::size_t columns) const {
+    const auto n = static_cast<std::size_t>(count), i = static_cast<std::size_t>(index);
+    return {columns * i / n, columns * (i + 1) / n};
+  }
   bool is_valid(std::string* error) const;
 };
 
@@ -51,5 +58,14 @@ std::vector<double> reduce_blocks(std::size_t blocks, const WorkShare& share,
 // a block of receivers' direct light: no sum, so any split gives the same bits).
 std::vector<double> gather_blocks(std::size_t blocks, const WorkShare& share,
                                   const std::function<std::vector<double>(std::size_t block)>& values);
+
+// Every share's `mine` concatenated in share order, on every share (one gather and one
+// broadcast; one share: mine as it is). With each share's columns of a column-major
+// matrix (column_range), the whole matrix.
+std::vector<double> gather_shares(const WorkShare& share, std::vector<double> mine);
+
+// The element-wise maximum over the shares of `mine` (every share passes as many values),
+// on every share: a split iteration's stopping test sees every share's columns.
+std::vector<double> max_over_shares(const WorkShare& share, std::vector<double> mine);
 
 }  // namespace ilp

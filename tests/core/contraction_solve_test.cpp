@@ -6,7 +6,12 @@
 #include <tbb/global_control.h>
 
 #include <Eigen/LU>
+#include <array>
+#include <barrier>
+#include <optional>
 #include <random>
+#include <thread>
+#include <vector>
 
 namespace ilp {
 namespace {
@@ -91,6 +96,53 @@ TEST(ContractionSolve, RefusesWhatWouldNotConverge) {
   EXPECT_FALSE(solve_contraction(s, B, 1e-10, 10000));
   EXPECT_TRUE(std::isinf(sweeps_needed(1.0, 1e-10)));
   EXPECT_EQ(sweeps_needed(0.5, 0.25), 3.0);  // 0.5^2 / 0.5 = 0.5 > 0.25, 0.5^3 / 0.5 = 0.25
+}
+
+}  // namespace
+}  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// A split build solves its ranks' columns apart, each sweep's stopping test taking the
+// largest change and value over every rank (`largest`): each column then has the bits the
+// whole right-hand side gives it, and every part stops after the same sweep, a part with
+// no column too.
+TEST(ContractionSolve, ColumnsSolvedApartWithTheLargestOverAllHaveTheWholeBits) {
+  const ContractionSystem s = random_system(300, 0.9, 11);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Eigen::MatrixXd B = Eigen::MatrixXd::NullaryExpr(300, 7, [&] { return u(rng); });
+  B.leftCols(3) *= 1e-3;  // the first part's values are small: alone it would judge its own change
+  const auto whole = solve_contraction(s, B, 1e-10, 10000);
+  ASSERT_TRUE(whole);
+  const std::array<std::pair<int, int>, 3> parts{{{0, 3}, {3, 7}, {7, 7}}};
+  std::array<std::array<double, 2>, 3> seen{};
+  std::barrier sync(3);
+  std::array<std::optional<ContractionSolution>, 3> solved;
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    threads.emplace_back([&, i] {
+      auto largest = [&, i](std::array<double, 2> mine) {
+        seen[i] = mine;
+        sync.arrive_and_wait();
+        std::array<double, 2> most{0.0, 0.0};
+        for (const auto& v : seen) most = {std::max(most[0], v[0]), std::max(most[1], v[1])};
+        sync.arrive_and_wait();  // every part has read before the next sweep writes
+        return most;
+      };
+      const auto [first, last] = parts[i];
+      solved[i] = solve_contraction(s, B.middleCols(first, last - first), 1e-10, 10000, largest);
+    });
+  for (std::thread& t : threads) t.join();
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    ASSERT_TRUE(solved[i]) << "part " << i;
+    EXPECT_EQ(solved[i]->sweeps, whole->sweeps) << "part " << i;
+    const auto [first, last] = parts[i];
+    const Eigen::MatrixXd expected = whole->X.middleCols(first, last - first);
+    ASSERT_EQ(solved[i]->X.cols(), expected.cols());
+    EXPECT_TRUE(solved[i]->X == expected) << "part " << i << ": not the whole solve's bits";
+  }
 }
 
 }  // namespace
