@@ -45,7 +45,7 @@ constexpr std::uint64_t kVerificationSeedSalt = 0x5EED5EEDull;
 constexpr double kDecisiveBand = 0.05;
 constexpr double kDecisiveStandardErrors = 3.0;
 constexpr double kDominantShare = 0.002;
-constexpr int kDecisivePasses = 3;
+constexpr int kDecisivePasses = 1;
 constexpr std::uint64_t kDecisiveSeedSalt = 0xDEC1DEull;
 
 int decisive_rays(const VerificationSettings& s) { return std::max(s.rays_per_patch, s.decisive_rays); }

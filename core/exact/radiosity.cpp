@@ -50,7 +50,8 @@ double photometric(const Eigen::Ref<const Eigen::RowVectorXd>& channels) {
   return channels.dot(kLuminanceWeights.transpose());
 }
 
-RadiositySolution solve_radiosity(const Scene& scene, const SparseRows& F, const RadiosityOptions& options) {
+RadiositySolution solve_radiosity(const Scene& scene, const SparseRows& F, const RadiosityOptions& options,
+                                  const Eigen::MatrixXd* initial) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument("RadiosityOptions::" + error);
   const Eigen::Index n = static_cast<Eigen::Index>(scene.patches.size());
@@ -69,7 +70,8 @@ RadiositySolution solve_radiosity(const Scene& scene, const SparseRows& F, const
   const double e_norm = E.norm();
 
   for (int c = 0; c < scene.channels; ++c) {
-    Eigen::VectorXd B = E;
+    const bool warm = initial && initial->rows() == n && initial->cols() == scene.channels && initial->allFinite();
+    Eigen::VectorXd B = warm ? Eigen::VectorXd(initial->col(c)) : E;
     double relative = 0.0;
     int sweeps = 0;
     if (e_norm > 0.0) {

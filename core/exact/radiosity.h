@@ -36,6 +36,9 @@ double photometric(const Eigen::Ref<const Eigen::RowVectorXd>& channels);
 // F: #patches by #patches (all rows, row i = patch i). Throws NumericalError when
 // the iteration does not reach the tolerance or anything becomes non-finite, and
 // std::invalid_argument on shape mismatch or bad options.
-RadiositySolution solve_radiosity(const Scene& scene, const SparseRows& F, const RadiosityOptions& options);
+// `initial`, when given (#patches by #channels): the sweeps start from it instead of E (a
+// solve of nearly the same rows: fewer sweeps to the same residual).
+RadiositySolution solve_radiosity(const Scene& scene, const SparseRows& F, const RadiosityOptions& options,
+                                  const Eigen::MatrixXd* initial = nullptr);
 
 }  // namespace ilp
