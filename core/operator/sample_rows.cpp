@@ -454,7 +454,9 @@ FirstReflection first_reflection_at_rows(const Scene& scene, const RayCaster& ca
   const std::size_t blocks = (hit.size() + block_size - 1) / block_size;
   // A split build computes its share's columns (sources) of every block: no exchange here.
   if (std::string error; !options.share.is_valid(&error)) throw std::invalid_argument(error);
-  const auto [c0, c1] = options.share.column_range(sources.size());
+  // Plain names, not a structured binding: the lambda below captures them (clang 14 refuses a binding).
+  const auto range = options.share.column_range(sources.size());
+  const std::size_t c0 = range.first, c1 = range.second;
   const auto first_col = static_cast<Eigen::Index>(c0), Ls = static_cast<Eigen::Index>(c1 - c0);
   const std::span<const LightSource> my_sources = sources.subspan(c0, c1 - c0);
   const std::size_t cheap_total = st.cheap_direct_rows;
