@@ -5,7 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
-#include <iterator>
+#include <numeric>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -40,37 +40,23 @@ constexpr std::uint64_t kVerificationSeedSalt = 0x5EED5EEDull;
 // patches each gathers at least kDominantShare of its reflected light from made precise
 // with rows of a sixteenth as many (at least rays_per_patch).
 // A grid's lowest point is one gather over a few nearby patches (a desk, a chair back)
-// whose rows at the other patches' few rays would otherwise be its error; two points
-// within kDecisiveBand of the lowest may swap places, so both are looked at.
+// whose rows at the other patches' few rays would otherwise be its error; points within
+// kDecisiveBand of the lowest may swap places, so all are looked at (one pass: a second
+// changed nothing on the classroom).
 constexpr double kDecisiveBand = 0.05;
 constexpr double kDecisiveStandardErrors = 3.0;
 constexpr double kDominantShare = 0.002;
-constexpr int kDecisivePasses = 1;
 constexpr std::uint64_t kDecisiveSeedSalt = 0xDEC1DEull;
 
 int decisive_rays(const VerificationSettings& s) { return std::max(s.rays_per_patch, s.decisive_rays); }
 int dominant_rays(const VerificationSettings& s) { return std::max(s.rays_per_patch, s.decisive_rays / 16); }
 
-// The exact solve's results at every patch and, gathered from its radiosity, at the goal
-// points; the `decisive` ones (ascending) gathered again with more rays of their own.
-// Returns those points' gathers (rows in `decisive` order).
-PointIlluminance take_exact_solution(const PreparedJob& prepared, const Scene& scene,
-                                     const ProgressiveExactSolve& solve, const ExactSolveOptions& options,
-                                     const ProgressCallback& progress, const std::vector<int>& decisive,
-                                     Verification& out) {
-  out.method = "exact";
-  out.patches = scene.all_patches();
-  out.lux = solve.solution().radiosity.total_lux;
-  out.direct_lux = solve.solution().radiosity.direct_lux;
-  out.indirect_rays_per_patch = solve.other_rays();
-  if (prepared.model.goal_points.empty()) return {};
-  const PointIlluminance at = exact_point_illuminance(scene, solve.caster(), solve.solution().radiosity,
-                                                      prepared.model.goal_points, options.form_factors,
-                                                      options.direct_light, progress);
-  out.point_lux = at.total_lux;
-  out.point_direct_lux = at.direct_lux;
-  out.point_error_lux = at.indirect_standard_error_lux;
-  if (decisive.empty()) return {};
+// The `decisive` goal points (ascending) gathered again from the solve's radiosity with
+// more rays of their own, their values in `out` replaced; returns their gathers (rows in
+// `decisive` order).
+PointIlluminance gather_decisive(const PreparedJob& prepared, const Scene& scene, const ProgressiveExactSolve& solve,
+                                 const ExactSolveOptions& options, const ProgressCallback& progress,
+                                 const std::vector<int>& decisive, Verification& out) {
   std::vector<ReceiverPoint> points;
   for (int q : decisive) points.push_back(prepared.model.goal_points.at(static_cast<std::size_t>(q)));
   FormFactorOptions rows = options.form_factors;
@@ -87,6 +73,26 @@ PointIlluminance take_exact_solution(const PreparedJob& prepared, const Scene& s
   return again;
 }
 
+// The exact solve's results at every patch and, gathered from its radiosity, at the goal
+// points; the `decisive` ones (ascending, maybe none) gathered again (gather_decisive).
+void take_exact_solution(const PreparedJob& prepared, const Scene& scene, const ProgressiveExactSolve& solve,
+                         const ExactSolveOptions& options, const ProgressCallback& progress,
+                         const std::vector<int>& decisive, Verification& out) {
+  out.method = "exact";
+  out.patches = scene.all_patches();
+  out.lux = solve.solution().radiosity.total_lux;
+  out.direct_lux = solve.solution().radiosity.direct_lux;
+  out.indirect_rays_per_patch = solve.other_rays();
+  if (prepared.model.goal_points.empty()) return;
+  const PointIlluminance at = exact_point_illuminance(scene, solve.caster(), solve.solution().radiosity,
+                                                      prepared.model.goal_points, options.form_factors,
+                                                      options.direct_light, progress);
+  out.point_lux = at.total_lux;
+  out.point_direct_lux = at.direct_lux;
+  out.point_error_lux = at.indirect_standard_error_lux;
+  if (!decisive.empty()) gather_decisive(prepared, scene, solve, options, progress, decisive, out);
+}
+
 // The other patches' rows from verification.first_indirect_rays, doubled while a goal
 // still moves by more than its margin allows (refinement_settled); the last step's
 // change at each goal point joins its gather's own error (the same gather rays each
@@ -96,14 +102,13 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
   const JobConfig& job = prepared.job;
   const LightingModel& model = prepared.model;
   ProgressiveExactSolve solve(scene, options, job.verification.first_indirect_rays, progress);
-  std::vector<int> decisive;
-  take_exact_solution(prepared, scene, solve, options, progress, decisive, out);
+  take_exact_solution(prepared, scene, solve, options, progress, {}, out);
   out.first_indirect_rays = solve.other_rays();
   Eigen::VectorXd change = Eigen::VectorXd::Zero(model.goal_rows());
   while (solve.can_refine()) {
     const Eigen::VectorXd before = verified_goal_lux(model, out);
     solve.refine();
-    take_exact_solution(prepared, scene, solve, options, progress, decisive, out);
+    take_exact_solution(prepared, scene, solve, options, progress, {}, out);
     const Eigen::VectorXd after = verified_goal_lux(model, out);
     change = after - before;
     out.refinement_change = largest_goal_change(model, prepared.plan.search.goals, before, after);
@@ -112,24 +117,18 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
       break;
   }
   // The points deciding a minimum, uniformity or maximum: their gathers with more rays,
-  // and the patches they gather most from made precise; again while that brings other
-  // points within the band.
+  // and the patches they gather most from made precise, then every point again.
   const auto decisive_start = Clock::now();
-  for (int pass = 0; job.verification.decisive_rays > 0 && pass < kDecisivePasses; ++pass) {
-    const std::vector<int> now = decisive_points(model, prepared.plan.search.goals, verified_goal_lux(model, out),
-                                                 out.point_error_lux, kDecisiveBand, kDecisiveStandardErrors);
-    std::vector<int> fresh;
-    std::set_difference(now.begin(), now.end(), decisive.begin(), decisive.end(), std::back_inserter(fresh));
-    if (fresh.empty()) break;
-    std::vector<int> all;
-    std::set_union(decisive.begin(), decisive.end(), fresh.begin(), fresh.end(), std::back_inserter(all));
-    decisive = std::move(all);
-    const PointIlluminance again = take_exact_solution(prepared, scene, solve, options, progress, decisive, out);
-    std::vector<int> rows;  // the fresh points' rows in the decisive gathers
-    for (int q : fresh)
-      rows.push_back(static_cast<int>(std::lower_bound(decisive.begin(), decisive.end(), q) - decisive.begin()));
+  std::vector<int> decisive;
+  if (job.verification.decisive_rays > 0)
+    decisive = decisive_points(model, prepared.plan.search.goals, verified_goal_lux(model, out), out.point_error_lux,
+                               kDecisiveBand, kDecisiveStandardErrors);
+  if (!decisive.empty()) {
+    std::vector<int> rows(decisive.size());  // every decisive point's row in its gathers
+    std::iota(rows.begin(), rows.end(), 0);
+    const PointIlluminance again = gather_decisive(prepared, scene, solve, options, progress, decisive, out);
     const std::vector<int> patches = dominant_patches(scene, again.rows, solve.solution().radiosity, rows, kDominantShare);
-    out.precise_patches += solve.make_precise(patches, dominant_rays(job.verification));
+    out.precise_patches = solve.make_precise(patches, dominant_rays(job.verification));
     take_exact_solution(prepared, scene, solve, options, progress, decisive, out);
   }
   out.decisive_points = decisive.size();
