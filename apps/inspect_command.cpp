@@ -115,10 +115,10 @@ double print_cost_estimates(const JobConfig& job, const RunOptions& run, const S
   const std::optional<MemoryBudget> budget = memory_budget(run.max_memory_bytes);
   const std::optional<double> bytes = budget ? std::optional<double>(budget->bytes) : std::nullopt;
   const std::vector<VariantPlan> plans = plan_job(job, run);
-  double whole_run_s = 0.0;
+  std::vector<CostEstimate> estimates;
   for (const VariantPlan& plan : plans) {
     const CostedGeometry costed = costed_geometry(job, scene, plan.model, budget);
-    whole_run_s += costed.estimate.total_seconds();
+    estimates.push_back(costed.estimate);
     const CostCounts& counts = costed.counts;
     std::cout << "cost estimate of `ilp run`";
     if (plans.size() > 1) std::cout << " for " << printable(plan.product.product) << " at " << plan.product.rotation_deg << " deg";
@@ -134,7 +134,7 @@ double print_cost_estimates(const JobConfig& job, const RunOptions& run, const S
     if (!costed.refusal.empty()) std::cout << "  would be refused: " << costed.refusal << "\n";
   }
   // Each variant (product x rotation) builds its own operator and runs its own verification.
-  whole_run_s = whole_run_seconds(job, scene, plans, budget);  // the figure `ilp run` prints, from the same function
+  const double whole_run_s = whole_run_seconds(job, estimates);  // the figure `ilp run` prints, from the same function
   if (plans.size() > 1)
     std::cout << "cost estimate of the whole run: about " << fixed(whole_run_s, 1) << " s for its " << plans.size()
               << " variants, one after another\n";

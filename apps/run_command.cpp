@@ -1,7 +1,11 @@
 // ilp run, ilp sweep, ilp print: the inverse-lighting job from a YAML file to the
 // layout table and the files of the output folder.
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cstring>
+#include <exception>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -342,17 +346,34 @@ namespace {
 // The formats output.formats selects, staged in the set (OutputSet): once committed, the
 // folder holds the previous run's files or these, never a mix.
 void stage_outputs(OutputSet& set, const RunProducts& products) {
+  std::vector<const RunOutput*> chosen;
   for (const RunOutput& o : run_outputs()) {
     if (!(products.job.output.*o.flag)) continue;
     // Without a layout there is no light: result.json and the plan say why.
     const bool light_needed = o.write != stage_result_json && o.write != stage_plan_svg && o.write != stage_plan_png;
     if (!products.record.no_layout.empty() && light_needed) continue;
-    try {
-      o.write(set, products);
-    } catch (const IlpError& e) {  // named by the output folder, not the staging folder
-      throw IlpError(set.explained(e.what()));
-    }
+    chosen.push_back(&o);
   }
+  // The files are independent (the pictures take most of the time): written at once on
+  // the job's threads; the first failure in the list's order is the one reported.
+  std::vector<std::exception_ptr> failed(chosen.size());
+  const int threads = worker_threads(products.prepared.job, products.prepared.run);
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  set.begin_batch();
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, chosen.size(), [&](std::size_t k) {
+      try {
+        chosen[k]->write(set, products);
+      } catch (const IlpError& e) {  // named by the output folder, not the staging folder
+        failed[k] = std::make_exception_ptr(IlpError(set.explained(e.what())));
+      } catch (...) {
+        failed[k] = std::current_exception();
+      }
+    });
+  });
+  set.end_batch();
+  for (const std::exception_ptr& f : failed)
+    if (f) std::rethrow_exception(f);
 }
 
 // An outcome without a layout (every count screened out): the record says why, and only

@@ -153,7 +153,7 @@ struct RefusedBeforeGrids {
 }  // namespace
 
 CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, const ModelSpec& spec,
-                               const std::optional<MemoryBudget>& budget) {
+                               const std::optional<MemoryBudget>& budget, const RayCaster* caster) {
   const std::optional<double> bytes = budget ? std::optional<double>(budget->bytes) : std::nullopt;
   auto before_grids = [&](const LightingModel& partial, const std::vector<CalcGridSize>& grids) {
     if (grids.empty()) return;
@@ -171,7 +171,7 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
   };
   CostedGeometry out;
   try {
-    out.model = lighting_model_geometry(job_scene, spec, nullptr, before_grids);
+    out.model = lighting_model_geometry(job_scene, spec, caster, before_grids);
   } catch (RefusedBeforeGrids& refused) {
     return std::move(refused.costed);
   }
@@ -184,16 +184,11 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
   return out;
 }
 
-double whole_run_seconds(const JobConfig& job, const Scene& job_scene, const std::vector<VariantPlan>& plans,
-                         const std::optional<MemoryBudget>& budget) {
-  // Every variant's operator; the first variant's verification rounds in full and half of
-  // each later one's (min_power verifies a later variant only when it is predicted to
-  // draw less than one already met: about every other one on the shipped jobs); the
-  // outputs once.
+double whole_run_seconds(const JobConfig& job, const std::vector<CostEstimate>& variants) {
   double seconds = 0.0;
-  for (std::size_t v = 0; v < plans.size(); ++v)
-    for (const PhaseEstimate& p : costed_geometry(job, job_scene, plans[v].model, budget).estimate.phases) {
-      if (p.name == kOutputPhase && v > 0) continue;
+  for (std::size_t v = 0; v < variants.size(); ++v)
+    for (const PhaseEstimate& p : variants[v].phases) {
+      if (v > 0 && (p.name == kOutputPhase || p.name == kScenePhase)) continue;
       const bool later_verification = v > 0 && p.name.starts_with("verification");
       seconds += later_verification && objective_rule(job.objective).minimises_power ? 0.5 * p.seconds : p.seconds;
     }

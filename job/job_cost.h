@@ -39,7 +39,8 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
 // One variant's model geometry with what `ilp run` costs: the estimate is made before
 // the grids are laid, from their cells, and a job that cannot fit is refused then (no
 // grid point is laid); else the grids are laid and the estimate made again from their
-// points. What prepare_job logs and refuses, and what `ilp inspect` prints.
+// points. What prepare_job logs and refuses, and what `ilp inspect` prints. `caster`:
+// the scene's BVH, to lay the grids with (none: one is built for them).
 struct CostedGeometry {
   LightingModel model;   // without grids and areas when refused
   CostEstimate estimate;
@@ -47,14 +48,13 @@ struct CostedGeometry {
   std::string refusal;   // require_fits's message; empty when the job fits
 };
 CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, const ModelSpec& spec,
-                               const std::optional<MemoryBudget>& budget);
+                               const std::optional<MemoryBudget>& budget, const RayCaster* caster = nullptr);
 
 // The whole run's time before any work: the sum of its variants' estimates (each
 // variant builds its own operator; the first verifies its layout in full, each later one
-// half of it on average, as min_power skips a variant predicted to lose; the outputs are
-// written once), on `job_scene`. What
-// `ilp inspect` and `ilp run` print for a job of several variants.
-double whole_run_seconds(const JobConfig& job, const Scene& job_scene, const std::vector<VariantPlan>& plans,
-                         const std::optional<MemoryBudget>& budget);
+// half of it on average, as min_power skips a variant predicted to lose; the scene and
+// its BVH are read, and the outputs written, once), from each variant's estimate in
+// plan order. What `ilp inspect` and `ilp run` print for a job of several variants.
+double whole_run_seconds(const JobConfig& job, const std::vector<CostEstimate>& variants);
 
 }  // namespace ilp

@@ -303,16 +303,8 @@ std::string luminaire_name(std::size_t j) {
   return name.append(std::to_string(j + 1));
 }
 
-PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const RunOptions& run,
-                        const ProgressCallback& progress, const std::string& cache_dir, const LogSink& log) {
-  auto emit = [&](const std::vector<std::string>& lines, std::size_t from) {
-    if (log)
-      for (std::size_t k = from; k < lines.size(); ++k) log(lines[k]);
-  };
-  PreparedJob out;
-  out.job = job;
-  out.plan = plan;
-  out.run = run;
+SharedScene load_shared_scene(const JobConfig& job, const RunOptions& run) {
+  SharedScene out;
   auto start = Clock::now();
   // Meshing stops before it makes more patches than the memory could ever hold
   // (a scene, its BVH and the least build take about 1 kB a patch).
@@ -322,22 +314,50 @@ PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const Run
   // A model read through assimp: its reading process may use no more than the job may.
   if (memory) scene_job.mesh_read.import_limits.max_memory_bytes = memory->bytes;
   try {
-    out.loaded = load_job_scene(scene_job);
+    out.loaded = std::make_shared<JobScene>(load_job_scene(scene_job));
   } catch (const ConfigError& e) {
     if (!memory || scene_job.scene.max_patches == job.scene.max_patches) throw;
     throw ConfigError(std::string(e.what()) + " (about 1 kB a patch within the " + format_bytes(memory->bytes) +
                       " of memory the job may use: " + memory->source + ")");
   }
   out.scene_seconds = seconds_since(start);
-  emit(out.loaded.log, 0);
   start = Clock::now();
-  out.caster = std::make_unique<RayCaster>(out.loaded.scene, worker_threads(job, run));
+  out.caster = std::make_shared<const RayCaster>(out.loaded->scene, worker_threads(job, run));
   out.bvh_seconds = seconds_since(start);
+  return out;
+}
+
+PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const RunOptions& run,
+                        const ProgressCallback& progress, const std::string& cache_dir, const LogSink& log) {
+  SharedScene shared = load_shared_scene(job, run);
+  if (log)
+    for (const std::string& line : shared.loaded->log) log(line);
+  CostedGeometry costed =
+      costed_geometry(job, shared.loaded->scene, plan.model, memory_budget(run.max_memory_bytes), shared.caster.get());
+  return prepare_variant(shared, true, std::move(costed), job, plan, run, progress, cache_dir, log);
+}
+
+PreparedJob prepare_variant(SharedScene& shared, bool last, CostedGeometry costed, const JobConfig& job,
+                            const VariantPlan& plan, const RunOptions& run, const ProgressCallback& progress,
+                            const std::string& cache_dir, const LogSink& log) {
+  auto emit = [&](const std::vector<std::string>& lines, std::size_t from) {
+    if (log)
+      for (std::size_t k = from; k < lines.size(); ++k) log(lines[k]);
+  };
+  PreparedJob out;
+  out.job = job;
+  out.plan = plan;
+  out.run = run;
+  // The first variant carries the scene's and the BVH's time (timings.json sums them).
+  out.scene_seconds = std::exchange(shared.scene_seconds, 0.0);
+  out.bvh_seconds = std::exchange(shared.bvh_seconds, 0.0);
+  out.loaded = last ? std::move(*shared.loaded) : *shared.loaded;
+  out.caster = shared.caster;
+  const std::optional<MemoryBudget> memory = memory_budget(run.max_memory_bytes);
   {
     // The cost model: printed, and a job that cannot fit is refused now, not minutes
     // later (before its grids are laid). (Kept apart from the model's log, which the
     // cache compares with the file's.)
-    CostedGeometry costed = costed_geometry(job, out.loaded.scene, plan.model, memory);
     out.model = std::move(costed.model);
     out.estimate_log = format_estimate(costed.estimate);
     if (memory) out.estimate_log.push_back("memory available to the job: " + format_bytes(memory->bytes) + ", " + memory->source);
@@ -352,7 +372,7 @@ PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const Run
     return out;
   }
 
-  start = Clock::now();
+  auto start = Clock::now();
   const std::string key = lighting_model_key(job, plan.model);
   const std::string file = (std::filesystem::path(cache_dir) / (key + ".ilpmodel")).string();
   const std::optional<std::string> not_used = load_lighting_model(file, key, out.model);

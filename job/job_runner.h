@@ -13,6 +13,7 @@
 
 #include "job/config.h"
 #include "job/constraint_check.h"
+#include "job/job_cost.h"
 #include "job/job_scene.h"
 #include "job/plan.h"
 #include "job/verification_margin.h"
@@ -29,7 +30,7 @@ struct PreparedJob {
   VariantPlan plan;            // the product searched and the stages' specs
   RunOptions run;
   JobScene loaded;
-  std::unique_ptr<RayCaster> caster;
+  std::shared_ptr<const RayCaster> caster;  // the scene's BVH, shared by a job's variants
   LightingModel model;         // loaded from the cache: build_seconds is the original build's
   double scene_seconds = 0.0;  // mesh loading and meshing
   double bvh_seconds = 0.0;
@@ -53,6 +54,23 @@ struct PreparedJob {
 using LogSink = std::function<void(const std::string& line)>;
 PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const RunOptions& run = {},
                         const ProgressCallback& progress = {}, const std::string& cache_dir = "", const LogSink& log = {});
+
+// The scene and its BVH, read once for every variant of a job (neither depends on the
+// product). load_shared_scene limits the meshing to the memory the run may use (about 1
+// kB a patch), as prepare_job does; its log lines are in loaded->log.
+struct SharedScene {
+  std::shared_ptr<JobScene> loaded;
+  std::shared_ptr<const RayCaster> caster;
+  double scene_seconds = 0.0, bvh_seconds = 0.0;
+};
+SharedScene load_shared_scene(const JobConfig& job, const RunOptions& run);
+// prepare_job on a scene already read, with the variant's costed geometry
+// (costed_geometry on shared.loaded->scene with shared.caster), which it logs and refuses
+// as prepare_job does; it does not log the scene's lines. `last`: no later variant uses
+// `shared`, whose scene is then moved into the PreparedJob rather than copied.
+PreparedJob prepare_variant(SharedScene& shared, bool last, CostedGeometry costed, const JobConfig& job,
+                            const VariantPlan& plan, const RunOptions& run, const ProgressCallback& progress,
+                            const std::string& cache_dir, const LogSink& log);
 
 struct GoalOutcome {
   GoalJudgement predicted;                 // through the operator

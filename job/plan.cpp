@@ -137,7 +137,7 @@ ExactSolveOptions exact_options(const JobConfig& job, const RunOptions& run) {
   options.form_factors = job.form_factors;
   options.direct_light = job.direct_light;
   options.radiosity = job.radiosity;
-  options.form_factors.threads = options.direct_light.threads = worker_threads(job, run);
+  options.form_factors.threads = options.direct_light.threads = options.radiosity.threads = worker_threads(job, run);
   return options;
 }
 

@@ -66,25 +66,37 @@ std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vecto
                                           const std::string& cache_dir, const LogSink& log,
                                           const std::function<void(const PreparedJob&)>& prepared_log) {
   std::vector<PreparedJob> out;
+  if (plans.empty()) return out;
+  // The scene, its BVH and every variant's geometry once (none depends on another variant).
+  SharedScene shared = load_shared_scene(job, run);
+  if (log)
+    for (const std::string& line : shared.loaded->log) log(line);
+  const std::optional<MemoryBudget> memory = memory_budget(run.max_memory_bytes);
+  std::vector<CostedGeometry> costed;
+  std::vector<CostEstimate> estimates;
+  for (const VariantPlan& plan : plans) {
+    costed.push_back(costed_geometry(job, shared.loaded->scene, plan.model, memory, shared.caster.get()));
+    estimates.push_back(costed.back().estimate);
+  }
   if (plans.size() > 1 && log) {
     // The whole run's estimate before the first variant: what a user plans with.
-    const JobScene loaded = load_job_scene(job);
     std::ostringstream line;
     line << "estimate: the whole run, building every variant's operator and verifying its layout: about "
-         << std::fixed << std::setprecision(1)
-         << whole_run_seconds(job, loaded.scene, plans, memory_budget(run.max_memory_bytes)) << " s for its "
-         << plans.size() << " variants, one after another";
+         << std::fixed << std::setprecision(1) << whole_run_seconds(job, estimates) << " s for its " << plans.size()
+         << " variants, one after another";
     log(line.str());
   }
-  for (const VariantPlan& plan : plans) {
+  for (std::size_t v = 0; v < plans.size(); ++v) {
+    const VariantPlan& plan = plans[v];
     if (plan.listed && log) {
       std::ostringstream line;
-      line << "variant " << out.size() + 1 << " of " << plans.size() << ": " << plan.product.product << " at "
+      line << "variant " << v + 1 << " of " << plans.size() << ": " << plan.product.product << " at "
            << plan.product.rotation_deg << " degrees";
       log(line.str());
       for (const std::string& note : plan.product.notes) log(note);
     }
-    out.push_back(prepare_job(job, plan, run, progress, cache_dir, log));
+    out.push_back(prepare_variant(shared, v + 1 == plans.size(), std::move(costed[v]), job, plan, run, progress,
+                                  cache_dir, log));
     if (prepared_log) prepared_log(out.back());
   }
   return out;

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <mutex>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -205,8 +206,27 @@ std::string OutputSet::staging_path(const std::string& name) const {
 }
 
 void OutputSet::staged(const std::string& name) {
-  written_.push_back(full_name(name));
-  test_hook(std::to_string(written_.size()));
+  // In a batch, in the owned order whatever order its writers finish in.
+  const std::string full = full_name(name);
+  const auto rank = [this](const std::string& n) { return std::find(owned_.begin(), owned_.end(), n) - owned_.begin(); };
+  std::size_t count = 0;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto from = written_.begin() + static_cast<std::ptrdiff_t>(std::min(batch_from_, written_.size()));
+    written_.insert(std::find_if(from, written_.end(), [&](const std::string& n) { return rank(n) > rank(full); }), full);
+    count = written_.size();
+  }
+  test_hook(std::to_string(count));
+}
+
+void OutputSet::begin_batch() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  batch_from_ = written_.size();
+}
+
+void OutputSet::end_batch() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  batch_from_ = kNoBatch;
 }
 
 void OutputSet::write(const std::string& name, const std::function<void(std::ostream&)>& writer) {

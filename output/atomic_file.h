@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <mutex>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -51,11 +52,16 @@ class OutputSet {
   OutputSet& operator=(const OutputSet&) = delete;
 
   // Where file `name` (one of `owned`) is staged; write it there (any writer), then
-  // call staged(name).
+  // call staged(name). Files may be written and staged from several threads at once
+  // (not while set_subfolder changes the sub-folder).
   std::string staging_path(const std::string& name) const;
   void staged(const std::string& name);
   // write_file_atomically into the staging folder, then staged(name).
   void write(const std::string& name, const std::function<void(std::ostream&)>& write);
+  // Files staged between begin_batch() and end_batch() (writers running at once) are
+  // listed in the order of `owned`, after those staged before; others in the order staged.
+  void begin_batch();
+  void end_batch();
 
   // Moves the set into place. Returns the paths of the files written (the folder as
   // given to the constructor / name), in the order staged.
@@ -85,6 +91,9 @@ class OutputSet {
   std::vector<std::string> written_;
   std::string subfolder_;
   bool committed_ = false;
+  static constexpr std::size_t kNoBatch = static_cast<std::size_t>(-1);
+  std::size_t batch_from_ = kNoBatch;  // where the current batch starts in written_
+  std::mutex mutex_;                   // guards written_ and batch_from_
 
   std::string full_name(const std::string& name) const { return subfolder_.empty() ? name : subfolder_ + "/" + name; }
 };

@@ -15,6 +15,7 @@ namespace ilp {
 struct RadiosityOptions {
   double relative_residual = 1e-8;  // stop when ||E - (I - R F) B|| / ||E|| is below this
   int max_iterations = 100'000;     // Gauss-Seidel sweeps; more is a NumericalError
+  int threads = 0;                  // the colour channels solved at once (0: all cores); never changes B
 
   bool is_valid(std::string* error) const;
 };

@@ -145,7 +145,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
   const double D_goal = 8.0 * G * L;
   const double pair_factor = c.photometric ? m.photometric_pair_factor : 1.0;
   const std::string grid_setting = "grids[].spacing_m (fewer points) or grids[].max_points";
-  out.phases.push_back({"reading the model, meshing and the BVH", n * m.scene_patch_s, 0.0,
+  out.phases.push_back({kScenePhase, n * m.scene_patch_s, 0.0,
                         "scene.max_patch_edge_m (fewer patches)"});
   if (c.grid_points > 0)
     out.phases.push_back({"laying grids (" + std::to_string(c.grid_points) + " points at most)",

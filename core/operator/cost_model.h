@@ -120,8 +120,10 @@ struct CostEstimate {
 };
 
 CostEstimate estimate_job_cost(const CostCounts& counts, const MachineCosts& costs = {});
-// The name of the last phase, writing the output set (once a run, whatever its variants).
+// The name of the last phase, writing the output set, and of the first, the scene and its
+// BVH (each once a run, whatever its variants).
 inline constexpr const char* kOutputPhase = "writing the outputs";
+inline constexpr const char* kScenePhase = "reading the model, meshing and the BVH";
 
 // Memory of the verification alone (peak), for choosing its method.
 double exact_verification_bytes(std::size_t patches, int rays_per_patch);

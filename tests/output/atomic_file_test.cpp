@@ -6,8 +6,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <vector>
 #include <stdexcept>
+#include <thread>
+#include <vector>
 
 #include "core/base/error.h"
 #include "tests/test_support.h"
@@ -128,6 +129,28 @@ TEST(OutputSet, FreshFolderGetsTheSet) {
   EXPECT_EQ(read_file(folder + "/a.txt"), "A\n");
   EXPECT_EQ(read_file(folder + "/b.txt"), "B\n");
   EXPECT_EQ(names_in(dir.file("results")), (std::vector<std::string>{"job"}));
+}
+
+// Writers running at once (ilp run writes its pictures in parallel): each file listed
+// once, a batch's files in the owned order whatever order they finish in, after the
+// files staged before it.
+TEST(OutputSet, ABatchOfWritersAtOnceListsItsFilesInTheOwnedOrder) {
+  TempDir dir;
+  const std::string folder = dir.file("out");
+  std::vector<std::string> owned;
+  for (int k = 0; k < 24; ++k) owned.push_back("f" + std::to_string(k) + ".txt");
+  OutputSet set(folder, owned);
+  set.write("f23.txt", [](std::ostream& out) { out << "first\n"; });
+  set.begin_batch();
+  std::vector<std::thread> writers;
+  for (int k = 22; k >= 0; --k)
+    writers.emplace_back([&set, k] { set.write("f" + std::to_string(k) + ".txt", [k](std::ostream& out) { out << k << "\n"; }); });
+  for (std::thread& t : writers) t.join();
+  set.end_batch();
+  std::vector<std::string> expected{folder + "/f23.txt"};
+  for (int k = 0; k < 23; ++k) expected.push_back(folder + "/f" + std::to_string(k) + ".txt");
+  EXPECT_EQ(set.commit(), expected);
+  EXPECT_EQ(read_file(folder + "/f7.txt"), "7\n");
 }
 
 // A building's set: its own files and a sub-folder per room. The rooms folder is owned
