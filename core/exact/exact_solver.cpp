@@ -175,8 +175,9 @@ std::size_t ProgressiveExactSolve::make_precise(const std::vector<int>& patches,
 
 void ProgressiveExactSolve::solve() {
   ExactSolveSummary& s = solution_.summary;
-  FormFactorRows rows = raw_;
-  apply_emitter_columns(scene_, emitter_, rows);
+  // The luminaires' columns from raw_ as it is (no copy of its F first).
+  const FormFactorRows rows{raw_.row_patches, with_emitter_columns(scene_, emitter_, raw_), raw_.escaped_fraction,
+                            raw_.back_hit_fraction, raw_.rays_cast, raw_.seconds};
   s.form_factor_seconds = raw_.seconds;
   s.rays_cast = raw_.rays_cast;
   s.rays_per_second = raw_.seconds > 0.0 ? static_cast<double>(raw_.rays_cast) / raw_.seconds : 0.0;

@@ -5,6 +5,10 @@
 
 #include <algorithm>
 #include <array>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -39,6 +43,21 @@ void gauss_seidel_sweep(const SparseRows& F, const Eigen::VectorXd& E, const Cha
     for (int c = 0; c < kChannels && c < C; ++c)
       if (active[static_cast<std::size_t>(c)]) B(i, c) = E[i] + rho(i, c) * gathered[static_cast<std::size_t>(c)];
   }
+}
+
+// F X, rows in blocks over the arena's threads (each row summed in its own order, as
+// one thread sums it: the same bits for any thread count).
+template <class Matrix>
+Matrix gather_rows(const SparseRows& F, const Matrix& X, tbb::task_arena& arena) {
+  Matrix out = Matrix::Zero(F.rows(), X.cols());
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, F.rows(), 4096), [&](const auto& range) {
+      for (Eigen::Index i = range.begin(); i != range.end(); ++i)
+        for (SparseRows::InnerIterator it(F, i); it; ++it)
+          for (Eigen::Index c = 0; c < X.cols(); ++c) out(i, c) += it.value() * X(it.col(), c);
+    });
+  });
+  return out;
 }
 
 void check_finite(const Eigen::VectorXd& v, const char* what, int channel) {
@@ -97,8 +116,9 @@ RadiositySolution solve_radiosity(const Scene& scene, const SparseRows& F, const
   std::array<bool, kMaxChannels> active{};
   std::array<double, kMaxChannels> relative{};
   std::array<int, kMaxChannels> sweeps{};
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   auto measure = [&] {
-    const ChannelMatrix gathered = F * B;
+    const ChannelMatrix gathered = gather_rows(F, B, arena);
     for (int c = 0; c < C; ++c) {
       if (!active[static_cast<std::size_t>(c)]) continue;
       const double r = (E - (B.col(c) - rho.col(c).cwiseProduct(gathered.col(c)))).norm() / e_norm;
@@ -130,12 +150,12 @@ RadiositySolution solve_radiosity(const Scene& scene, const SparseRows& F, const
   }
   for (int c = 0; c < C; ++c) check_finite(B.col(c), "radiosity", c);
   out.radiosity_lm_per_m2 = B;
-  out.illuminance_lux = F * B;
+  out.illuminance_lux = gather_rows(F, B, arena);
   for (int c = 0; c < C; ++c) {
     out.iterations = std::max(out.iterations, sweeps[static_cast<std::size_t>(c)]);
     out.relative_residual = std::max(out.relative_residual, relative[static_cast<std::size_t>(c)]);
   }
-  out.direct_lux = F * E;
+  out.direct_lux = gather_rows(F, Eigen::MatrixXd(E), arena).col(0);
   out.total_lux.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) out.total_lux[i] = photometric(out.illuminance_lux.row(i));
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -563,8 +563,16 @@ std::uint64_t replace_emitter_columns(const Scene& scene, const RayCaster& caste
 std::uint64_t apply_emitter_columns(const Scene& scene, const EmitterLight& emitter, FormFactorRows& rows) {
   if (emitter.row_patches != rows.row_patches)
     throw std::invalid_argument("apply_emitter_columns: the light was computed for other rows");
+  if (emitter.surfaces.empty()) return 0;
+  rows.F = with_emitter_columns(scene, emitter, rows);
+  return emitter.light.shadow_rays_cast;
+}
+
+SparseRows with_emitter_columns(const Scene& scene, const EmitterLight& emitter, const FormFactorRows& rows) {
+  if (emitter.row_patches != rows.row_patches)
+    throw std::invalid_argument("with_emitter_columns: the light was computed for other rows");
   const std::vector<int>& surfaces = emitter.surfaces;
-  if (surfaces.empty()) return 0;
+  if (surfaces.empty()) return rows.F;
   const LuminaireLight& light = emitter.light;
   // One column per opening patch: lux per lm x the patch's area, so F B = illuminance.
   std::vector<int> emitters, emitter_luminaire;
@@ -622,8 +630,7 @@ std::uint64_t apply_emitter_columns(const Scene& scene, const EmitterLight& emit
     for (SparseRows::InnerIterator it(F, r); it; ++it)
       if (emitter_slot[it.col()] < 0) it.valueRef() *= scale;
   }
-  rows.F = std::move(F);
-  return light.shadow_rays_cast;
+  return F;
 }
 
 static_assert(field_count<DirectLightOptions>() == 7, "DirectLightOptions changed: hash the new field here (or say why not)");

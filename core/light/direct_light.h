@@ -149,6 +149,9 @@ struct EmitterLight {
 EmitterLight emitter_light(const Scene& scene, const RayCaster& caster, const DirectLightOptions& options,
                            const FormFactorRows& rows, const CheapDirectLight* cheap_rows = nullptr);
 std::uint64_t apply_emitter_columns(const Scene& scene, const EmitterLight& emitter, FormFactorRows& rows);
+// The F apply_emitter_columns gives `rows`, built from them left as they are (no copy of
+// their F first: a solve that keeps its raw rows).
+SparseRows with_emitter_columns(const Scene& scene, const EmitterLight& emitter, const FormFactorRows& rows);
 std::uint64_t replace_emitter_columns(const Scene& scene, const RayCaster& caster, const DirectLightOptions& options,
                                       FormFactorRows& rows, const CheapDirectLight* cheap_rows = nullptr);
 
