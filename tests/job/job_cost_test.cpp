@@ -42,5 +42,23 @@ TEST(JobCost, ExplicitMethodsAreKept) {
   EXPECT_EQ(plan_verification(job, 398000, 398000, 100, 8, 1e9).method, VerificationMethod::exact);
 }
 
+// The whole run's estimate from its variants' own: the model is read and its BVH built
+// once (the variants share them), the outputs written once, and a later variant's
+// verification counted at half under min_power (it is verified only when predicted to
+// beat the one found).
+TEST(JobCost, TheWholeRunCountsTheSceneAndTheOutputsOnceAndLaterVerificationsAtHalf) {
+  CostEstimate variant;
+  variant.phases = {{kScenePhase, 1.0}, {"sample rows (k = 100)", 2.0}, {"verification (exact, ...)", 4.0},
+                    {kOutputPhase, 0.5}};
+  JobConfig job;
+  job.objective = Objective::min_power;
+  EXPECT_DOUBLE_EQ(whole_run_seconds(job, {variant}), 7.5);
+  EXPECT_DOUBLE_EQ(whole_run_seconds(job, {variant, variant}), 7.5 + 2.0 + 2.0);
+  EXPECT_DOUBLE_EQ(whole_run_seconds(job, {variant, variant, variant}), 7.5 + 2 * (2.0 + 2.0));
+  job.objective = Objective::closest_to_target;  // every variant verified
+  EXPECT_DOUBLE_EQ(whole_run_seconds(job, {variant, variant}), 7.5 + 2.0 + 4.0);
+  EXPECT_DOUBLE_EQ(whole_run_seconds(job, {}), 0.0);
+}
+
 }  // namespace
 }  // namespace ilp

@@ -1,0 +1,50 @@
+// A job's product variants share the scene and its BVH (job/variant_search.h,
+// load_shared_scene): read once, the same for every variant, and each variant's
+// operator exactly the one it gets when prepared alone.
+#include "job/variant_search.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "job/config.h"
+#include "job/plan.h"
+
+namespace ilp {
+namespace {
+
+TEST(PrepareVariants, TheVariantsShareOneSceneAndBvhAndEachOperatorIsItsOwnAlone) {
+  JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_products.yaml");
+  // Small operators: what is compared is that they are the same.
+  job.sample.fraction = 0.02;
+  job.form_factors.rays_per_patch = 16;
+  job.direct_light.receiver_points = 1;
+  job.direct_light.shadow_rays = 4;
+  std::vector<VariantPlan> plans = plan_job(job);
+  ASSERT_GE(plans.size(), 2u);
+  plans.resize(2);
+  std::vector<std::string> log;
+  const std::vector<PreparedJob> prepared =
+      prepare_variants(job, plans, {}, {}, "", [&](const std::string& line) { log.push_back(line); });
+  ASSERT_EQ(prepared.size(), 2u);
+  // One BVH, one reading of the model (its lines logged once, its time on the first variant).
+  EXPECT_EQ(prepared[0].caster.get(), prepared[1].caster.get());
+  EXPECT_GT(prepared[0].scene_seconds, 0.0);
+  EXPECT_EQ(prepared[1].scene_seconds, 0.0);
+  EXPECT_EQ(prepared[1].bvh_seconds, 0.0);
+  std::size_t mesh_lines = 0;
+  for (const std::string& line : log) mesh_lines += line.starts_with("mesh ");
+  EXPECT_EQ(mesh_lines, 1u);
+  for (std::size_t v = 0; v < 2; ++v) {
+    const PreparedJob alone = prepare_job(job, plans[v]);
+    EXPECT_EQ(prepared[v].loaded.scene.patches.size(), alone.loaded.scene.patches.size());
+    EXPECT_EQ(prepared[v].model.grid.size(), alone.model.grid.size());
+    EXPECT_EQ(prepared[v].model.goal_points.size(), alone.model.goal_points.size());
+    ASSERT_EQ(prepared[v].model.candidate_lux_per_lm.rows(), alone.model.candidate_lux_per_lm.rows());
+    ASSERT_EQ(prepared[v].model.candidate_lux_per_lm.cols(), alone.model.candidate_lux_per_lm.cols());
+    EXPECT_TRUE(prepared[v].model.candidate_lux_per_lm == alone.model.candidate_lux_per_lm) << "variant " << v;
+  }
+}
+
+}  // namespace
+}  // namespace ilp
