@@ -42,7 +42,8 @@ PhotometricDistribution::PhotometricDistribution(std::shared_ptr<const Photometr
   const double per_lm = 1.0 / photometry_->luminaire_flux_lm;
   const Photometry& p = *photometry_;
   gamma_steps_ = table_steps(180.0, finest_step_deg(p.gamma_angles_deg, 180.0), kFinestGammaStepDeg, kCoarsestGammaStepDeg);
-  c_steps_ = p.symmetry == PhotometricSymmetry::rotational
+  // One C plane (a rotational web): the intensity does not depend on C.
+  c_steps_ = p.c_angles_deg.size() < 2
                  ? 1
                  : table_steps(360.0, finest_step_deg(p.c_angles_deg, 360.0), kFinestCStepDeg, kCoarsestCStepDeg);
   table_.resize(static_cast<std::size_t>((c_steps_ + 1) * (gamma_steps_ + 1)));
