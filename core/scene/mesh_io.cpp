@@ -335,6 +335,15 @@ PlyHeader read_ply_header(std::ifstream& in, const fs::path& path, std::uintmax_
       }
       if (list && !ply_integer_type(tokens[2]))
         throw SceneError(located(loc, "a list's count type must be an integer type, not '" + std::string(tokens[2]) + "'"));
+      // A binary body's coordinates and normals are read as 4-byte floats whatever their
+      // type says, so another type shifts every later value: a face's vertex count became
+      // 2^31 - 1 and filled memory (found by ply_off_fuzz).
+      const std::string_view name = tokens[list ? 4 : 2], type = tokens[1];
+      const bool read_as_float = name == "x" || name == "y" || name == "z" || name == "nx" || name == "ny" || name == "nz";
+      if (!list && e.name == "vertex" && read_as_float && h.format != "ascii" && type != "float" && type != "float32")
+        throw SceneError(located(loc, "vertex property '" + std::string(name) + "' is '" + std::string(type) +
+                                          "': a binary PLY's coordinates and normals are read as float (float32) only "
+                                          "(convert the file, or write it as ASCII PLY)"));
       e.properties.push_back({list, std::string(tokens[list ? 3 : 1]), list ? std::string(tokens[2]) : std::string()});
     } else if (key == "obj_info") {
       // OpenMesh reads each word after obj_info as a header keyword.

@@ -242,6 +242,13 @@ INSTANTIATE_TEST_SUITE_P(
                   "property float z\nelement face 1\nproperty list int int vertex_indices\nend_header\n" +
                       std::string(36, '\0') + std::string("\xff\xff\xff\x7f\0\0\0\0\x01\0\0\0\x02\0\0\0", 16),
                   {"face 0 has a list of 2147483647 values", "bytes left"}},
+        // OpenMesh reads binary coordinates as 4-byte floats: a uint8 x shifted the faces,
+        // whose vertex count then read 2^31 - 1 and filled memory (found by ply_off_fuzz).
+        BadHeader{"BinaryPlyCoordinateNotAFloat", "uint8_x.ply",
+                  "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty uint8 x\nproperty float y\n"
+                  "property float z\nelement face 2\nproperty list int int vertex_indices\nend_header\n" +
+                      std::string(24, '\0') + std::string("\x02\0\0\0\0\0\0\0\0\0\0\0\xff\xff\xff\x7f\0\0\0\0\x01\0\0\0\x02\0\0;\0", 29),
+                  {":4:", "vertex property 'x' is 'uint8'", "float"}},
         BadHeader{"BinaryPlyNegativeListCount", "neg_count.ply",
                   "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                   "property float z\nelement face 1\nproperty list int int vertex_indices\nend_header\n" +
