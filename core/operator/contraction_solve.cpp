@@ -9,16 +9,6 @@
 
 namespace ilp {
 
-Eigen::RowVectorXd ambient_product(const Eigen::VectorXd& ambient, const Eigen::Ref<const RowMajorMatrixXd>& X) {
-  if (X.cols() != 1) return ambient.transpose() * X;
-  // One column is a dot product to Eigen, summed in another order than a product over
-  // several columns: pad it with a column of zeros.
-  RowMajorMatrixXd padded = RowMajorMatrixXd::Zero(X.rows(), 2);
-  padded.col(0) = X.col(0);
-  const Eigen::RowVectorXd both = ambient.transpose() * padded;
-  return both.leftCols(1);
-}
-
 double contraction_factor(const ContractionSystem& s) {
   const double ambient_sum = s.ambient.sum();
   double q = 0.0;

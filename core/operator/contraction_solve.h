@@ -47,11 +47,18 @@ struct ContractionSolution {
 // split operator build: core/operator/work_share.h); then every caller stops after the
 // same sweep and each column has the bits the whole B gives it. A caller with no column
 // still takes part in every sweep.
-using RowMajorMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 // ambient^T X with each column's value what a product over several columns gives it
-// (Eigen sums one column as a dot product, in another order): a split build's share of
-// one column gets the bits of the whole.
-Eigen::RowVectorXd ambient_product(const Eigen::VectorXd& ambient, const Eigen::Ref<const RowMajorMatrixXd>& X);
+// (Eigen sums one column as a dot product, in another order: a lone column is padded
+// with a zero column of the same storage order), so that a split build's share of one
+// column gets the bits of the whole.
+template <class Matrix>
+Eigen::RowVectorXd ambient_product(const Eigen::VectorXd& ambient, const Matrix& X) {
+  if (X.cols() != 1) return ambient.transpose() * X;
+  Matrix padded = Matrix::Zero(X.rows(), 2);
+  padded.col(0) = X.col(0);
+  const Eigen::RowVectorXd both = ambient.transpose() * padded;
+  return both.leftCols(1);
+}
 
 std::optional<ContractionSolution> solve_contraction(
     const ContractionSystem& system, const Eigen::MatrixXd& B, double tolerance, int max_sweeps,

@@ -510,8 +510,8 @@ FirstReflection first_reflection_at_rows(const Scene& scene, const RayCaster& ca
     }
     return out;
   };
-  std::vector<double> total;
-  for (std::size_t b = 0; b < blocks; ++b) add_blocks_in_order(total, {partial(b)});
+  // Every block on this process (its columns), in block order.
+  std::vector<double> total = reduce_blocks(blocks, WorkShare{}, partial);
   if (total.empty()) total.assign(per_channel * static_cast<std::size_t>(channels), 0.0);  // no hit at all
   if (total.size() != per_channel * static_cast<std::size_t>(channels))
     throw std::logic_error("first_reflection_at_rows: " + std::to_string(total.size()) + " values reduced, expected " +

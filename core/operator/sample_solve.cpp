@@ -148,15 +148,8 @@ void add_channel_response(const Scene& scene, const GoalRows& goals, const First
   const Eigen::VectorXd& ambient = W.sample.ambient;
   // A split build's shares of several columns: each column's ambient product as the whole's.
   const bool padded = share.count > 1 && goals.sources.size() > 1;
-  Eigen::RowVectorXd ambient_reflected;
-  if (padded && reflected.cols() == 1) {  // a dot product to Eigen: pad with a zero column (same storage order)
-    Eigen::MatrixXd two = Eigen::MatrixXd::Zero(reflected.rows(), 2);
-    two.col(0) = reflected.col(0);
-    const Eigen::RowVectorXd both = ambient.transpose() * two;
-    ambient_reflected = both.leftCols(1);
-  } else {
-    ambient_reflected = ambient.transpose() * reflected;
-  }
+  const Eigen::RowVectorXd ambient_reflected =
+      padded ? ambient_product(ambient, reflected) : Eigen::RowVectorXd(ambient.transpose() * reflected);
   Eigen::MatrixXd channel_indirect = W.goals * reflected + W.goal_fallback_scale * ambient_reflected;
   if (refine)
     for (Eigen::Index l = 0; l < L; ++l)

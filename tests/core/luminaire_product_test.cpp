@@ -63,7 +63,7 @@ TEST(PhotometricDistribution, EmitsOneLumenPerLumenAndFollowsTheFilesInterpolant
 // Every photometric file of the repository and of ../shared: the table read anywhere
 // (off its nodes and the file's) is within 0.2 % of the file's peak of its own
 // interpolant (the worst, 0.14 %, is an IES web of irregular C planes whose cubic bends
-// between them; the former 0.5 x 0.125 degree table of doubles read it at 0.12 %), and
+// between them, as bilinear reading of any table of this kind does there), and
 // it is small enough for a core's cache (4.2 MB at most; the EULUMDAT web of 18 x 5
 // degrees the classroom uses, under 1 MB: the former 8 MB table's lookups missed the
 // cache, 17 % of the classroom's run, 10 % now).
