@@ -15,7 +15,6 @@
 #include "core/base/error.h"
 #include "core/exact/exact_solver.h"
 #include "core/glare/ugr.h"
-#include "core/light/luminaire.h"
 #include "job/plan.h"
 #include "core/rays/point_gather.h"
 #include "optimizer/goal_metrics.h"
@@ -280,12 +279,6 @@ const VariantPlan& outcome_plan(const PreparedJob& prepared, const JobOutcome& o
 }
 
 void add_layout(Scene& scene, const SearchLuminaire& search, const std::vector<PlacedLuminaire>& layout) {
-  // One allocation for the layout's patches (a copied scene has no spare capacity; growing
-  // it would hold the old and the new patches at once).
-  std::size_t patches = 0;
-  for (const PlacedLuminaire& l : layout)
-    patches += std::max<std::size_t>(2, luminaire_outline_m(search.type, {l.position_m, search.rotation_deg, search.tilt_deg}).size()) - 2;
-  scene.patches.reserve(scene.patches.size() + patches);
   for (std::size_t j = 0; j < layout.size(); ++j)
     add_luminaire(scene, luminaire_name(j), search.type, {layout[j].position_m, search.rotation_deg, search.tilt_deg},
                   layout[j].flux_lm);

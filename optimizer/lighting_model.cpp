@@ -10,7 +10,6 @@
 #include <stdexcept>
 
 #include "core/base/error.h"
-#include "core/light/luminaire.h"
 #include "optimizer/area_points.h"
 
 namespace ilp {
@@ -168,13 +167,6 @@ void add_candidates(LightingModel& model, const Scene& job_scene, const Candidat
   for (std::size_t l = 0; l < fixed.size(); ++l)
     if (job_scene.surfaces[static_cast<std::size_t>(fixed[l].surface)].is_luminaire())
       model.fixed_flux_lm += fixed_flux[static_cast<Eigen::Index>(l)];
-  if (model.grid.size() > 0) {
-    // One allocation for every candidate's patches: the copy of the job scene has no spare
-    // capacity, and growing it would hold the old and the new patches at once (twice a
-    // large scene's patches for a moment: 0.17 GB more at the peak for 1M patches).
-    const std::size_t per = luminaire_outline_m(spec.type, {model.grid.positions_m()[0], spec.rotation_deg, spec.tilt_deg}).size();
-    model.scene.patches.reserve(model.scene.patches.size() + (per > 2 ? per - 2 : 0) * model.grid.size());
-  }
   for (std::size_t c = 0; c < model.grid.size(); ++c) {
     const int surface = add_luminaire(model.scene, std::string("candidate ").append(std::to_string(c + 1)), spec.type,
                                       {model.grid.positions_m()[c], spec.rotation_deg, spec.tilt_deg}, 0.0);
