@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/base/error.h"
+#include "core/light/direct_light.h"
 #include "core/operator/sample_operator.h"
 
 namespace ilp {
@@ -82,6 +83,8 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
   c.rays_per_patch = job.form_factors.rays_per_patch;
   c.exact_second_bounce = job.sample.indirect == IndirectMethod::exact_second_bounce;
   c.direct_rays = job.direct_light.receiver_points * job.direct_light.shadow_rays;
+  c.direct_points = job.direct_light.receiver_points;
+  c.point_sources = mean_point_sources(geometry.scene, population, luminaire_surfaces(geometry.scene));
   c.point_direct_rays = job.direct_light.shadow_rays;
   if (c.population > 0) {
     if (job.sample.target_error) {

@@ -46,6 +46,9 @@ constexpr double kDecisiveBand = 0.05;
 constexpr double kDecisiveStandardErrors = 3.0;
 constexpr double kDominantShare = 0.002;
 constexpr std::uint64_t kDecisiveSeedSalt = 0xDEC1DEull;
+// The Gauss-Seidel residual of the verification's steps before its last (relative to the
+// exitance's norm): far below the percent the refinement's doubling moves a goal.
+constexpr double kStepResidual = 1e-5;
 
 int decisive_rays(const VerificationSettings& s) { return std::max(s.rays_per_patch, s.decisive_rays); }
 int dominant_rays(const VerificationSettings& s) { return std::max(s.rays_per_patch, s.decisive_rays / 16); }
@@ -61,8 +64,10 @@ PointIlluminance gather_decisive(const PreparedJob& prepared, const Scene& scene
   FormFactorOptions rows = options.form_factors;
   rows.rays_per_patch = decisive_rays(prepared.job.verification);
   rows.seed ^= kDecisiveSeedSalt;
+  const auto start = Clock::now();
   PointIlluminance again = exact_point_illuminance(scene, solve.caster(), solve.solution().radiosity, points, rows,
                                                    options.direct_light, progress);
+  out.point_gather_seconds += seconds_since(start);
   for (std::size_t r = 0; r < decisive.size(); ++r) {
     const auto q = static_cast<Eigen::Index>(decisive[r]), k = static_cast<Eigen::Index>(r);
     out.point_lux[q] = again.total_lux[k];
@@ -83,9 +88,11 @@ void take_exact_solution(const PreparedJob& prepared, const Scene& scene, const 
   out.direct_lux = solve.solution().radiosity.direct_lux;
   out.indirect_rays_per_patch = solve.other_rays();
   if (prepared.model.goal_points.empty()) return;
+  const auto start = Clock::now();
   const PointIlluminance at = exact_point_illuminance(scene, solve.caster(), solve.solution().radiosity,
                                                       prepared.model.goal_points, options.form_factors,
                                                       options.direct_light, progress);
+  out.point_gather_seconds += seconds_since(start);
   out.point_lux = at.total_lux;
   out.point_direct_lux = at.direct_lux;
   out.point_error_lux = at.indirect_standard_error_lux;
@@ -100,7 +107,13 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
                                 const ProgressCallback& progress, Verification& out) {
   const JobConfig& job = prepared.job;
   const LightingModel& model = prepared.model;
-  ProgressiveExactSolve solve(scene, options, job.verification.first_indirect_rays, progress);
+  // The steps before the last solve only to kStepResidual: their values decide whether to
+  // refine and which points are decisive, against changes of a percent; the last solve
+  // goes on from there to solver.relative_residual.
+  const double tight = options.radiosity.relative_residual;
+  ExactSolveOptions steps = options;
+  steps.radiosity.relative_residual = std::max(tight, kStepResidual);
+  ProgressiveExactSolve solve(scene, steps, job.verification.first_indirect_rays, progress);
   take_exact_solution(prepared, scene, solve, options, progress, {}, out);
   out.first_indirect_rays = solve.other_rays();
   Eigen::VectorXd change = Eigen::VectorXd::Zero(model.goal_rows());
@@ -127,8 +140,13 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
     std::iota(rows.begin(), rows.end(), 0);
     const PointIlluminance again = gather_decisive(prepared, scene, solve, options, progress, decisive, out);
     const std::vector<int> patches = dominant_patches(scene, again.rows, solve.solution().radiosity, rows, kDominantShare);
+    solve.set_relative_residual(tight);
     out.precise_patches = solve.make_precise(patches, dominant_rays(job.verification));
+    if (out.precise_patches == 0) solve.tighten();
     take_exact_solution(prepared, scene, solve, options, progress, decisive, out);
+  } else {
+    solve.set_relative_residual(tight);
+    if (solve.tighten()) take_exact_solution(prepared, scene, solve, options, progress, {}, out);
   }
   out.decisive_points = decisive.size();
   out.decisive_seconds = seconds_since(decisive_start);
@@ -136,6 +154,12 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
     out.decisive_rays = decisive_rays(job.verification);
     out.precise_rays = dominant_rays(job.verification);
   }
+  const ExactSolveSummary& summary = solve.solution().summary;
+  out.parts_s = {{"BVH", summary.bvh_seconds},
+                 {"rows", summary.form_factor_seconds},
+                 {"direct light", summary.direct_light_seconds},
+                 {"solves", summary.solve_seconds},
+                 {"goal points' gathers", out.point_gather_seconds}};
   const Eigen::Index points = out.point_error_lux.size();
   if (points > 0)
     out.point_error_lux = (out.point_error_lux.array().square() + change.tail(points).array().square()).sqrt().matrix();
@@ -177,9 +201,10 @@ Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int l
     // their own rays); with no goal patches, no patch is precise.
     options.precise_patches = prepared.model.goal_patches;
     options.other_rays_per_patch = settings.indirect_rays_per_patch;
+    options.base_caster = prepared.caster;
     verify_exact_progressively(prepared, scene, options, progress, out);
   } else {
-    const RayCaster caster(scene, worker_threads(job, run));
+    const RayCaster caster(prepared.caster, scene, worker_threads(job, run));
     const std::vector<LightSource> sources = scene_light_sources(scene);
     SampleOperatorOptions options = operator_options(job, run);
     options.form_factors.rays_per_patch = settings.rays_per_patch;
@@ -202,6 +227,11 @@ Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int l
     out.point_direct_lux = direct.tail(Q);
   }
   out.seconds = seconds_since(start);
+  if (!out.parts_s.empty()) {
+    double listed = 0.0;
+    for (const auto& part : out.parts_s) listed += part.second;
+    out.parts_s.emplace_back("the rest", std::max(0.0, out.seconds - listed));
+  }
   return out;
 }
 

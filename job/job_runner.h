@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "job/config.h"
@@ -112,6 +113,11 @@ struct Verification {
   std::size_t precise_patches = 0;
   int precise_rays = 0;             // those patches' rows
   double decisive_seconds = 0.0;    // all of it (a share of `seconds`)
+  double point_gather_seconds = 0.0;  // the goal points' gathers, every step's
+  // Exact: where `seconds` went (timings.json's verification_parts_s): the BVH, the rows,
+  // the direct light, the Gauss-Seidel solves, the goal points' gathers (the decisive
+  // ones' included) and the rest; each summed over the refinement's steps.
+  std::vector<std::pair<std::string, double>> parts_s;
 };
 
 // Places `layout` as real luminaires in the job's scene and solves it as

@@ -250,6 +250,7 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.time_limited = outcome.search.time_limited;
   r.search_max_seconds = job.optimizer.max_seconds;
   r.timings_s = timings;
+  r.verification_parts_s = outcome.verification.parts_s;
   for (const CountAttempt& a : outcome.search.attempts)
     r.attempts.push_back(
         {a.luminaires, a.evaluations, a.seconds, a.feasible, a.power_w, a.global_stop, a.local_stop, a.arrangement});

@@ -169,6 +169,10 @@ json timings_to_json(const ResultRecord& r) {
   json j;
   j["timings_s"] = json::object();
   for (const auto& [phase, seconds] : r.timings_s) j["timings_s"][phase] = seconds;
+  if (!r.verification_parts_s.empty()) {
+    j["verification_parts_s"] = json::object();
+    for (const auto& [part, seconds] : r.verification_parts_s) j["verification_parts_s"][part] = seconds;
+  }
   j["attempts_s"] = json::array();
   for (const AttemptRecord& a : r.attempts) j["attempts_s"].push_back(a.seconds);
   return j;
@@ -179,6 +183,11 @@ void read_timings(const json& j, ResultRecord& r) {
   if (j.contains("timings_s")) {
     r.timings_s.clear();
     for (const auto& [phase, seconds] : j.at("timings_s").items()) r.timings_s.emplace_back(phase, seconds.get<double>());
+  }
+  if (j.contains("verification_parts_s")) {
+    r.verification_parts_s.clear();
+    for (const auto& [part, seconds] : j.at("verification_parts_s").items())
+      r.verification_parts_s.emplace_back(part, seconds.get<double>());
   }
   if (j.contains("attempts_s")) {
     const json& seconds = j.at("attempts_s");

@@ -204,6 +204,7 @@ struct ResultRecord {
   // Wall-clock times: in timings.json, not result.json, which is the same for a job and
   // seed on any machine under any load (the attempts' seconds go there too).
   std::vector<std::pair<std::string, double>> timings_s;  // phase, seconds, in order
+  std::vector<std::pair<std::string, double>> verification_parts_s;  // exact: where its seconds went, in order
   std::vector<AttemptRecord> attempts;
   std::vector<BillLine> bill_of_materials;
   std::vector<VerdictLine> constraints;     // every constraint the job states, judged on the layout

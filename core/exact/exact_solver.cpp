@@ -7,6 +7,7 @@
 #include <ostream>
 
 #include "core/rays/ray_caster.h"
+#include "core/rays/row_builder.h"
 
 namespace ilp {
 namespace {
@@ -51,22 +52,36 @@ constexpr std::uint64_t kPreciseSeedSalt = 0xD1B54A32D192ED03ull;
 // The rows of `base` (every patch, in scene order) with the rows of `more` (the patches `others`,
 // ascending) merged in: (n_base x base + n_more x more) / (n_base + n_more).
 void merge_rows(FormFactorRows& base, const FormFactorRows& more, const std::vector<int>& others, int n_base,
-                int n_more) {
+                int n_more, int threads) {
   const Eigen::Index n = base.F.rows();
   const double w_old = static_cast<double>(n_base) / (n_base + n_more), w_new = 1.0 - w_old;
-  Eigen::VectorXd keep = Eigen::VectorXd::Ones(n), add = Eigen::VectorXd::Zero(n);
-  SparseRows place(n, static_cast<Eigen::Index>(others.size()));
-  std::vector<Eigen::Triplet<double>> at;
-  at.reserve(others.size());
-  for (std::size_t r = 0; r < others.size(); ++r) {
-    keep[others[r]] = w_old;
-    add[others[r]] = w_new;
-    at.emplace_back(others[r], static_cast<Eigen::Index>(r), 1.0);
-  }
-  place.setFromTriplets(at.begin(), at.end());
-  const SparseRows spread = place * more.F;
-  base.F = SparseRows(keep.asDiagonal() * base.F + add.asDiagonal() * spread);
-  base.F.makeCompressed();
+  std::vector<Eigen::Index> row_in_more(static_cast<std::size_t>(n), -1);
+  for (std::size_t r = 0; r < others.size(); ++r) row_in_more[static_cast<std::size_t>(others[r])] = static_cast<Eigen::Index>(r);
+  // Row i: as it was, or (i = others[r]) w_old x its entries + w_new x more's row r, the
+  // union of both rows' columns.
+  const SparseRows& old = base.F;
+  base.F = build_rows(n, old.cols(), threads, [&](Eigen::Index i, const auto& emit) {
+    const Eigen::Index m = row_in_more[static_cast<std::size_t>(i)];
+    SparseRows::InnerIterator a(old, i);
+    if (m < 0) {
+      for (; a; ++a) emit(a.index(), a.value());
+      return;
+    }
+    SparseRows::InnerIterator b(more.F, m);
+    while (a || b) {
+      if (a && (!b || a.index() < b.index())) {
+        emit(a.index(), w_old * a.value());
+        ++a;
+      } else if (b && (!a || b.index() < a.index())) {
+        emit(b.index(), w_new * b.value());
+        ++b;
+      } else {
+        emit(a.index(), w_old * a.value() + w_new * b.value());
+        ++a;
+        ++b;
+      }
+    }
+  });
   for (std::size_t r = 0; r < others.size(); ++r) {
     const auto i = static_cast<Eigen::Index>(others[r]), k = static_cast<Eigen::Index>(r);
     base.escaped_fraction[i] = w_old * base.escaped_fraction[i] + w_new * more.escaped_fraction[k];
@@ -84,7 +99,7 @@ ProgressiveExactSolve::ProgressiveExactSolve(const Scene& scene, const ExactSolv
   ExactSolveSummary& s = solution_.summary;
   s.patches = scene.patches.size();
   auto start = std::chrono::steady_clock::now();
-  caster_ = std::make_unique<RayCaster>(scene, options.form_factors.threads);
+  caster_ = std::make_unique<RayCaster>(options.base_caster, scene, options.form_factors.threads);
   s.bvh_seconds = seconds_since(start);
   s.ray_offset_m = caster_->ray_offset_m();
   const int full = options.form_factors.rays_per_patch;
@@ -132,7 +147,7 @@ void ProgressiveExactSolve::refine() {
   step.rays_per_patch = more;
   step.seed = options_.form_factors.seed ^ (kRefinementSeedSalt * static_cast<std::uint64_t>(++level_));
   const FormFactorRows added = compute_form_factor_rows(scene_, *caster_, others_, step, progress_);
-  merge_rows(raw_, added, others_, other_rays_, more);
+  merge_rows(raw_, added, others_, other_rays_, more, options_.form_factors.threads);
   other_rays_ += more;
   solve();
 }
@@ -154,7 +169,7 @@ std::size_t ProgressiveExactSolve::make_precise(const std::vector<int>& patches,
   cast.rays_per_patch = std::max(1, rays);
   cast.seed = options_.form_factors.seed ^ kPreciseSeedSalt;
   const FormFactorRows fresh = compute_form_factor_rows(scene_, *caster_, add, cast, progress_);
-  merge_rows(raw_, fresh, add, 0, 1);  // replaced: the old rows weigh nothing
+  merge_rows(raw_, fresh, add, 0, 1, options_.form_factors.threads);  // replaced: the old rows weigh nothing
   if (!emitter_.surfaces.empty()) {
     const auto start = std::chrono::steady_clock::now();
     const LuminaireLight light = compute_luminaire_light(scene_, *caster_, add, emitter_.surfaces, options_.direct_light);
@@ -173,10 +188,20 @@ std::size_t ProgressiveExactSolve::make_precise(const std::vector<int>& patches,
   return add.size();
 }
 
+void ProgressiveExactSolve::set_relative_residual(double relative_residual) {
+  options_.radiosity.relative_residual = relative_residual;
+}
+
+bool ProgressiveExactSolve::tighten() {
+  if (!(solution_.summary.relative_residual > options_.radiosity.relative_residual)) return false;
+  solve();
+  return true;
+}
+
 void ProgressiveExactSolve::solve() {
   ExactSolveSummary& s = solution_.summary;
   // The luminaires' columns from raw_ as it is (no copy of its F first).
-  const FormFactorRows rows{raw_.row_patches, with_emitter_columns(scene_, emitter_, raw_), raw_.escaped_fraction,
+  const FormFactorRows rows{raw_.row_patches, with_emitter_columns(scene_, emitter_, raw_, options_.form_factors.threads), raw_.escaped_fraction,
                             raw_.back_hit_fraction, raw_.rays_cast, raw_.seconds};
   s.form_factor_seconds = raw_.seconds;
   s.rays_cast = raw_.rays_cast;

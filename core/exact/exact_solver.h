@@ -11,6 +11,7 @@
 
 #include "core/light/direct_light.h"
 #include "core/rays/form_factors.h"
+#include "core/rays/ray_caster.h"
 #include "core/base/progress.h"
 #include "core/exact/radiosity.h"
 #include "core/scene/scene.h"
@@ -29,6 +30,9 @@ struct ExactSolveOptions {
   std::optional<std::vector<int>> precise_patches;
   DirectLightOptions other_direct_light = cheap_direct_light_options();
   int other_rays_per_patch = 0;
+  // A BVH built on the scene's first patches (the job scene, a layout's luminaires
+  // appended after them): reused, only the rest get a BVH (RayCaster's second constructor).
+  std::shared_ptr<const RayCaster> base_caster;
 };
 
 struct ExactSolveSummary {
@@ -87,6 +91,12 @@ class ProgressiveExactSolve {
   // (patches already precise are left as they are).
   std::size_t make_precise(const std::vector<int>& patches, int rays);
   std::size_t precise_count() const;
+  // The Gauss-Seidel tolerance of the solves from now on (options.radiosity's at first):
+  // steps whose solution only decides the next step can stop sooner, the last one not.
+  void set_relative_residual(double relative_residual);
+  // Solves again from the last solution when its residual is above the tolerance now
+  // set (a step solved loosely turned out to be the last); returns whether it did.
+  bool tighten();
 
  private:
   void solve();

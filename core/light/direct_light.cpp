@@ -10,8 +10,10 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
+#include "core/rays/row_builder.h"
 #include "core/rays/sampling.h"
 #include "core/base/key_hash.h"
 
@@ -160,6 +162,20 @@ struct Unoccluded {
   double form_factor = 0.0;
 };
 
+// The point sources a non-Lambertian opening is cut into for a receiver at x, along its
+// length and across: each side cut by its own length (a linear luminaire 1.2 m x 4 cm
+// needs several along and one across), at most kSourceSpacingPerDistance of the distance apart.
+std::pair<int, int> point_sources(const LuminaireGeometry& g, const Eigen::Vector3d& x) {
+  const double spacing = kSourceSpacingPerDistance * std::max((x - g.centre_m).norm(), 1e-9);
+  auto sources_along = [&](double side_m) {
+    // Clamped in double: a receiver on the opening would make the count overflow an int.
+    return static_cast<int>(std::clamp(std::ceil(side_m / spacing), 1.0, static_cast<double>(kMaxSourcesPerSide)));
+  };
+  int mx = sources_along(g.type->length_m), my = sources_along(g.type->width_m);
+  if (g.type->shape == OutlineShape::disc) mx = my = std::max(mx, my);  // the concentric map's cells
+  return {mx, my};
+}
+
 Unoccluded unoccluded_light(const Scene& scene, const LuminaireGeometry& g, const Eigen::Vector3d& x,
                             const Eigen::Vector3d& n, bool form_factors) {
   Unoccluded out;
@@ -169,15 +185,7 @@ Unoccluded unoccluded_light(const Scene& scene, const LuminaireGeometry& g, cons
     out.lux_per_lm = out.form_factor / g.area_m2;  // reciprocity: E = M F(x -> opening), M = 1 lm / A
     return out;
   }
-  // Point sources per side of the opening, each side cut by its own length (a linear
-  // luminaire 1.2 m x 4 cm needs several along and one across).
-  const double spacing = kSourceSpacingPerDistance * std::max((x - g.centre_m).norm(), 1e-9);
-  auto sources_along = [&](double side_m) {
-    // Clamped in double: a receiver on the opening would make the count overflow an int.
-    return static_cast<int>(std::clamp(std::ceil(side_m / spacing), 1.0, static_cast<double>(kMaxSourcesPerSide)));
-  };
-  int mx = sources_along(g.type->length_m), my = sources_along(g.type->width_m);
-  if (g.type->shape == OutlineShape::disc) mx = my = std::max(mx, my);  // the concentric map's cells
+  const auto [mx, my] = point_sources(g, x);
   for (int i = 0; i < mx; ++i)
     for (int j = 0; j < my; ++j)
       out.lux_per_lm += point_source_lux_per_lm(g, opening_point(g, (i + 0.5) / mx, (j + 0.5) / my), x, n);
@@ -507,6 +515,30 @@ LuminaireLight compute_luminaire_light_at_points(const Scene& scene, const RayCa
                          [&](std::size_t r, int) { return points[r]; });
 }
 
+double mean_point_sources(const Scene& scene, std::span<const int> receivers, std::span<const int> luminaire_surfaces,
+                          std::size_t samples) {
+  if (receivers.empty() || luminaire_surfaces.empty() || samples == 0) return 0.0;
+  const std::vector<LuminaireGeometry> geometry = luminaire_geometry(scene, luminaire_surfaces);
+  const std::size_t n = std::min(samples, receivers.size() * geometry.size());
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;  // a fixed stream: the same count every run
+  auto next = [&state] {                        // splitmix64
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  };
+  double sum = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t r = next() % receivers.size(), l = next() % geometry.size();
+    const LuminaireGeometry& g = geometry[l];
+    if (g.lambertian) continue;
+    const Patch& p = scene.patches[static_cast<std::size_t>(receivers[r])];
+    const auto [mx, my] = point_sources(g, (p.vertices_m[0] + p.vertices_m[1] + p.vertices_m[2]) / 3.0);
+    sum += static_cast<double>(mx) * my;
+  }
+  return sum / static_cast<double>(n);
+}
+
 std::vector<int> luminaire_surfaces(const Scene& scene) {
   std::vector<int> out;
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s)
@@ -568,7 +600,8 @@ std::uint64_t apply_emitter_columns(const Scene& scene, const EmitterLight& emit
   return emitter.light.shadow_rays_cast;
 }
 
-SparseRows with_emitter_columns(const Scene& scene, const EmitterLight& emitter, const FormFactorRows& rows) {
+SparseRows with_emitter_columns(const Scene& scene, const EmitterLight& emitter, const FormFactorRows& rows,
+                                int threads) {
   if (emitter.row_patches != rows.row_patches)
     throw std::invalid_argument("with_emitter_columns: the light was computed for other rows");
   const std::vector<int>& surfaces = emitter.surfaces;
@@ -598,39 +631,30 @@ SparseRows with_emitter_columns(const Scene& scene, const EmitterLight& emitter,
   for (std::size_t e = 0; e < by_column.size(); ++e) by_column[e] = e;
   std::sort(by_column.begin(), by_column.end(), [&](std::size_t a, std::size_t b) { return emitters[a] < emitters[b]; });
 
-  SparseRows F(rows.F.rows(), rows.F.cols());
-  F.reserve(rows.F.nonZeros() + static_cast<Eigen::Index>((exact.array() > 0.0).count()));
-  for (Eigen::Index r = 0; r < rows.F.rows(); ++r) {
-    F.startVec(r);
+  // The rays that struck a luminaire only sampled its solid angle, which the closed
+  // form knows: scale the row's other entries so that it loses exactly the
+  // closed-form share and keeps its escaped and back-hit shares (see
+  // apply_closed_form_loss in core/operator/sample_rows.cpp, which does the same).
+  // Each row is a merge of its entries and the emitter columns, both ascending.
+  return build_rows(rows.F.rows(), rows.F.cols(), threads, [&](Eigen::Index r, const auto& emit) {
+    double kept = 0.0, struck = 0.0;
+    for (SparseRows::InnerIterator it(rows.F, r); it; ++it) (emitter_slot[it.col()] >= 0 ? struck : kept) += it.value();
+    const double scale = kept > 0.0 ? std::max(0.0, kept + struck - absorbed[r]) / kept : 1.0;
     SparseRows::InnerIterator it(rows.F, r);
     std::size_t k = 0;
     while (it || k < by_column.size()) {
       const int emitter_column = k < by_column.size() ? emitters[by_column[k]] : std::numeric_limits<int>::max();
       if (it && it.col() < emitter_column) {
-        if (emitter_slot[it.col()] < 0) F.insertBack(r, it.col()) = it.value();  // gathered hits on emitters are dropped
+        if (emitter_slot[it.col()] < 0) emit(it.col(), kept > 0.0 ? it.value() * scale : it.value());  // gathered hits on emitters are dropped
         ++it;
       } else {
         if (it && it.col() == emitter_column) ++it;
         const double value = exact(r, static_cast<Eigen::Index>(by_column[k]));
-        if (value > 0.0) F.insertBack(r, emitter_column) = value;
+        if (value > 0.0) emit(emitter_column, value);
         ++k;
       }
     }
-  }
-  F.finalize();
-  // The rays that struck a luminaire only sampled its solid angle, which the closed
-  // form knows: scale the row's other entries so that it loses exactly the
-  // closed-form share and keeps its escaped and back-hit shares (see
-  // apply_closed_form_loss in core/operator/sample_rows.cpp, which does the same).
-  for (Eigen::Index r = 0; r < F.rows(); ++r) {
-    double kept = 0.0, struck = 0.0;
-    for (SparseRows::InnerIterator it(rows.F, r); it; ++it) (emitter_slot[it.col()] >= 0 ? struck : kept) += it.value();
-    if (!(kept > 0.0)) continue;
-    const double scale = std::max(0.0, kept + struck - absorbed[r]) / kept;
-    for (SparseRows::InnerIterator it(F, r); it; ++it)
-      if (emitter_slot[it.col()] < 0) it.valueRef() *= scale;
-  }
-  return F;
+  });
 }
 
 static_assert(field_count<DirectLightOptions>() == 7, "DirectLightOptions changed: hash the new field here (or say why not)");

@@ -121,6 +121,13 @@ LuminaireLight compute_luminaire_light_at_points(const Scene& scene, const RayCa
 // The scene's luminaire surfaces, in surface order.
 std::vector<int> luminaire_surfaces(const Scene& scene);
 
+// The point sources a receiver's unoccluded light evaluates per photometric luminaire
+// (a Lambertian opening's closed form has none: 0), averaged over up to `samples` pairs
+// of `receivers` (at their centroids) and `luminaire_surfaces` drawn from a fixed
+// stream: more where the receivers are near a long opening. For the cost model.
+double mean_point_sources(const Scene& scene, std::span<const int> receivers, std::span<const int> luminaire_surfaces,
+                          std::size_t samples = 4096);
+
 // Replaces the columns of F (rows: rows.row_patches) that belong to the scene's
 // luminaires with their direct light: a luminaire patch's column holds
 // lux_per_lm x the patch's area, so that F B (B = exitance = flux / opening area)
@@ -150,8 +157,10 @@ EmitterLight emitter_light(const Scene& scene, const RayCaster& caster, const Di
                            const FormFactorRows& rows, const CheapDirectLight* cheap_rows = nullptr);
 std::uint64_t apply_emitter_columns(const Scene& scene, const EmitterLight& emitter, FormFactorRows& rows);
 // The F apply_emitter_columns gives `rows`, built from them left as they are (no copy of
-// their F first: a solve that keeps its raw rows).
-SparseRows with_emitter_columns(const Scene& scene, const EmitterLight& emitter, const FormFactorRows& rows);
+// their F first: a solve that keeps its raw rows), on `threads` threads (0: every core;
+// the same F for any count).
+SparseRows with_emitter_columns(const Scene& scene, const EmitterLight& emitter, const FormFactorRows& rows,
+                                int threads = 0);
 std::uint64_t replace_emitter_columns(const Scene& scene, const RayCaster& caster, const DirectLightOptions& options,
                                       FormFactorRows& rows, const CheapDirectLight* cheap_rows = nullptr);
 

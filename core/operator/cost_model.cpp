@@ -38,15 +38,42 @@ double row_nnz(double rows, int rays, std::size_t n) { return rows * std::min<do
 // One pass of the exact verification's decisive points (job_runner.cpp): a handful of
 // points gathered again, about kDominantPerPoint patches each made precise (rows and
 // direct light), one more solve and one more gather of every point.
-double decisive_pass_seconds(const CostCounts& c, const MachineCosts& m, double n, int row_rays, double Lv) {
+// Its solve is the verification's last (counted there).
+double decisive_pass_seconds(const CostCounts& c, const MachineCosts& m, double precise_pair_s, double Lv) {
   if (c.verify_decisive_rays <= 0 || c.grid_points == 0) return 0.0;
   constexpr double kDecisivePoints = 8.0, kDominantPerPoint = 20.0;
   const double P = static_cast<double>(c.grid_points), points = std::min(P, kDecisivePoints);
   const double rays = std::max(c.verify_rays, c.verify_decisive_rays);
   const double dominant = points * kDominantPerPoint;
   return (points * rays + dominant * std::max<double>(c.verify_rays, rays / 16.0) + P * c.verify_rays) * m.gather_ray_s +
-         dominant * c.direct_rays * m.precise_pair_ray_s * Lv +
-         m.gauss_seidel_sweeps * row_nnz(n, row_rays, c.patches) * m.gauss_seidel_nnz_s;
+         dominant * precise_pair_s * Lv;
+}
+
+// Direct light of one receiver-source pair: the cheap estimate (1 point, 2 rays), a
+// precise patch (direct_points points, their grid rays) and a grid point (one point).
+struct PairCosts {
+  double cheap = 0.0, precise = 0.0, point = 0.0;
+};
+
+PairCosts pair_costs(const CostCounts& c, const MachineCosts& m) {
+  PairCosts out;
+  const double lookups = c.photometric ? c.point_sources * m.point_source_s : 0.0;  // per point
+  const double rays = c.photometric ? m.precise_pair_ray_s : m.lambertian_precise_factor * m.precise_pair_ray_s;
+  constexpr double kGridCells = 4.0;
+  out.cheap = c.photometric ? m.photometric_cheap_pair_s : m.cheap_pair_s;
+  const double cells = c.photometric ? kGridCells * m.point_source_s : 0.0;
+  out.precise = c.direct_rays * rays + c.direct_points * (lookups + cells);
+  out.point = c.point_direct_rays * rays + lookups + cells;
+  return out;
+}
+
+// Gauss-Seidel sweeps of the exact verification: its first step from nothing, each
+// later step from the last solution (both to the steps' loose residual), and the last
+// solve on to the full tolerance; per sweep every non-zero of F, the colour channels
+// swept together.
+double verification_solve_seconds(const CostCounts& c, const MachineCosts& m, int steps, double nnz) {
+  const double sweeps = m.gauss_seidel_sweeps + (steps - 1) * m.gauss_seidel_step_sweeps + m.gauss_seidel_final_sweeps;
+  return sweeps * nnz * m.gauss_seidel_nnz_s * (1.0 + m.gauss_seidel_channel_share * (c.channels - 1));
 }
 
 // The interreflection solve (core/operator/contraction_solve.h): per channel, the first
@@ -143,7 +170,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                               ? row_nnz(G - P, c.rays_per_patch, c.patches) + row_nnz(P, point_rays, c.patches)
                               : 0.0;
   const double D_goal = 8.0 * G * L;
-  const double pair_factor = c.photometric ? m.photometric_pair_factor : 1.0;
+  const PairCosts pair = pair_costs(c, m);
   const std::string grid_setting = "grids[].spacing_m (fewer points) or grids[].max_points";
   out.phases.push_back({kScenePhase, n * m.scene_patch_s, 0.0,
                         "scene.max_patch_edge_m (fewer patches)"});
@@ -153,7 +180,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                           P * kGridPointBytes, grid_setting});
   out.phases.push_back({"goal rows and direct light at goal patches" + std::string(P > 0 ? " and grid points" : ""),
                         ((G - P) * c.rays_per_patch + P * point_rays) * m.gather_ray_s +
-                            ((G - P) * c.direct_rays + P * c.point_direct_rays) * L * m.precise_pair_ray_s,
+                            ((G - P) * pair.precise + P * pair.point) * L,
                         goal_nnz * kRowNnzPeakBytes + 2.0 * D_goal,
                         P > 0 ? grid_setting + ", or luminaires.candidate_spacing_m (fewer candidates)"
                               : "scene.max_patch_edge_m (fewer goal patches) or luminaires.candidate_spacing_m (fewer "
@@ -170,7 +197,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     phases.push_back({label + "sample rows (k = " + std::to_string(static_cast<long long>(kk)) + ")",
                       kk * c.rays_per_patch * m.gather_ray_s, held + sample_nnz * kRowNnzPeakBytes, setting});
     // The sample's direct light is the cheap estimate too, but a census's is precise.
-    const double sample_pair_s = kk >= pop ? c.direct_rays * m.precise_pair_ray_s : m.cheap_pair_s * pair_factor;
+    const double sample_pair_s = kk >= pop ? pair.precise : pair.cheap;
     // The hits in blocks: one block's direct light held at a time. A split build gives
     // each rank its share of the sources (T's columns, about Lr / shares): its columns of
     // every block's direct light, of the partial sums of F(rows,:) B1 (k + G rows per
@@ -186,7 +213,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                                             std::to_string(static_cast<long long>(Lr)) + " sources on this rank"
                                       : "") +
                           ")",
-                      kk * sample_pair_s * Lr + hits * m.cheap_pair_s * pair_factor * Ls,
+                      kk * sample_pair_s * Lr + hits * pair.cheap * Ls,
                       held + 2.0 * sample_nnz * kRowNnzBytes +
                           (shares > 1 ? std::max(3.0 * 8.0 * kk * Lr, 8.0 * kk * Ls + 2.0 * 8.0 * block * Ls + 2.0 * first_bytes)
                                       : 3.0 * 8.0 * kk * Lr + 2.0 * 8.0 * block * Lr + 2.0 * first_bytes),
@@ -233,11 +260,11 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     const int steps = first < indirect ? 2 : 1;
     const double other_rays = std::min<double>(indirect, first < indirect ? 2.0 * first : first);
     const int row_rays = n > 0.0 ? static_cast<int>(std::ceil((Gp * c.verify_rays + (n - Gp) * other_rays) / n)) : 1;
-    const double per = n * m.bvh_patch_s + (n * row_rays + P * c.verify_rays) * m.gather_ray_s +
-                       (((G - P) * c.direct_rays + P * c.point_direct_rays) * m.precise_pair_ray_s +
-                        n * m.cheap_pair_s * pair_factor) * Lv +
-                       steps * m.gauss_seidel_sweeps * row_nnz(n, row_rays, c.patches) * m.gauss_seidel_nnz_s +
-                       decisive_pass_seconds(c, m, n, row_rays, Lv);
+    // No BVH of its own: the job scene's is reused (RayCaster), the luminaires' alone built.
+    const double per = (n * row_rays + P * c.verify_rays) * m.gather_ray_s +
+                       ((G - P) * pair.precise + P * pair.point + n * pair.cheap) * Lv +
+                       verification_solve_seconds(c, m, steps, row_nnz(n, row_rays, c.patches)) +
+                       decisive_pass_seconds(c, m, pair.precise, Lv);
     out.phases.push_back({"verification (exact, " + std::to_string(c.verify_rays) + " rays per goal row, " +
                               std::to_string(static_cast<int>(other_rays)) + " elsewhere (up to " +
                               std::to_string(static_cast<int>(indirect)) + "), " + rounds_text(c.verify_rounds) + ")",
@@ -246,8 +273,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
   } else if (c.verify == CostCounts::Verify::sample) {
     const double kv = d(c.verify_sample_size);
     const double hits = std::max(0.0, hit_patches(kv + G, c.verify_rays) - kv - G);
-    const double per = n * m.bvh_patch_s + (kv + G) * c.verify_rays * m.gather_ray_s +
-                       ((kv + G) * c.direct_rays * m.precise_pair_ray_s + hits * m.cheap_pair_s * pair_factor) * Lv +
+    const double per = (kv + G) * c.verify_rays * m.gather_ray_s + ((kv + G) * pair.precise + hits * pair.cheap) * Lv +
                        interreflection_flops(kv, Lv, c.channels, c.verify_rays, m) * m.sparse_flop_s;
     out.phases.push_back({"verification (sample, k = " + std::to_string(c.verify_sample_size) + ", " +
                               rounds_text(c.verify_rounds) + ")",

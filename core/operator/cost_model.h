@@ -25,23 +25,34 @@ struct MachineCosts {
   double sparse_flop_s = 1.0 / 3.5e9;
   int interreflection_sweeps = 100;         // sweeps of a typical interreflection solve (q ~ 0.9, 1e-10)
   double blend_mac_s = 1.44e-10;            // search: one multiply-add of a candidate column, single precision
-  double gauss_seidel_nnz_s = 2.0e-9;       // one non-zero of F per Gauss-Seidel sweep
-  int gauss_seidel_sweeps = 24;             // sweeps a typical solve needs (relative residual 1e-6)
+  double gauss_seidel_nnz_s = 2.0e-9;       // one non-zero of F per Gauss-Seidel sweep, one channel
+  double gauss_seidel_channel_share = 0.5;  // each further colour channel, swept in the same pass
+  // Sweeps of the exact verification's solves (the classroom: 16, 8, then 16 to 1e-8 after
+  // its decisive pass): its first step to the steps' residual (1e-5), each later step
+  // from the last solution, the last solve on to solver.relative_residual.
+  int gauss_seidel_sweeps = 16;
+  int gauss_seidel_step_sweeps = 8;
+  int gauss_seidel_final_sweeps = 16;
   // With the patches' area shares (CostCounts::area_shares): the effective share of rays
   // that strike a reflecting patch, 0.5 from the classroom (46,050 cheap hits).
   double hit_area_factor = 0.5;
   double hit_coverage = 0.13;               // distinct patches hit ~ pop (1 - exp(-coverage rows rays / pop)): the
                                             // classroom's 3,537 rows of 128 rays hit 49,400 of 160,000 (2026-12-03)
-  // A photometric product's cheap direct light per pair (its intensity table looked up at
-  // each of the opening's point sources and shadow-ray targets) against a Lambertian
-  // panel's closed form: the classroom's pendant, 15.0 M cheap pairs at the patches the
-  // rows hit in 5.7 s, 3.8e-7 s a pair (2026-12-03). A precise pair's cost is its shadow
-  // rays' (office_products' goal rows: 3.3-4.3 s measured, 3.4 s estimated without it).
-  double photometric_pair_factor = 6.0;
+  // A photometric product's cheap pair (the opening's point sources and 2 shadow rays, each
+  // weighed by its target's intensity), per pair whose light is computed: 0.41, 0.49 and
+  // 0.58 us on the classroom, Sibenik and office_wallwash (2026-12-04, Intel Xeon 2.8 GHz),
+  // whatever their point sources a pair (4.0, 1.1-1.5, 4.2).
+  double photometric_cheap_pair_s = 4.5e-7;
+  // A precise photometric point's intensity lookups: at each point source the opening is
+  // cut into (CostCounts::point_sources) and at its 4 grid cells' centroids.
+  double point_source_s = 6.0e-8;
+  // A Lambertian panel's precise pair against its shadow rays alone: the opening's and
+  // each grid cell's closed-form form factor (the office's 1,682 goal patches x 96
+  // panels in 3.2 s, 4x their rays' cost).
+  double lambertian_precise_factor = 4.0;
   // Reading and meshing the model and building its BVH, per patch: the conference's
   // 346,551 patches in 0.71 + 0.28 s, the classroom's 167,659 in 0.15-0.30 + 0.20-0.24 s.
   double scene_patch_s = 2.8e-6;
-  double bvh_patch_s = 0.8e-6;              // the verification's own BVH (its scene holds the luminaires)
   // Writing the outputs: a fixed part (result.json, SVG plans: 0.05 s; rendering PNGs and the
   // PDF: 0.3 s more on the office) and, where the formats write every patch (scene.ply, illuminance.csv),
   // a part per patch (the classroom's 167,659 and the conference's 346,461 patches: 0.8
@@ -76,6 +87,11 @@ struct CostCounts {
   int direct_rays = 64;              // receiver points x shadow rays of precise direct light
   int point_direct_rays = 8;         // a grid point's: one receiver point, its shadow rays
   bool photometric = false;          // the candidates' product has a photometric file (not a Lambertian panel)
+  int direct_points = 8;             // receiver points of a precise patch
+  // Point sources per receiver point and photometric luminaire (mean_point_sources over
+  // the reflecting patches and the job scene's luminaires): more in a small room of long
+  // luminaires, whose receivers are near them.
+  double point_sources = 1.0;
   // A split build (core/operator/work_share.h): the sources (T's columns) split over
   // the ranks. The estimate is one rank's: the scene and BVH, the rows and the sample's
   // direct light replicated; its columns of the hits' direct light, of the first

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 
 #include "core/scene/scene.h"
@@ -22,6 +23,12 @@ class RayCaster {
  public:
   // threads = 0: Embree uses every core for the BVH build. The BVH is built here.
   explicit RayCaster(const Scene& scene, int threads = 0);
+  // `scene`'s BVH reusing `base`'s for its first patches: when base was built on exactly
+  // those (the job scene, to which a layout's luminaires were appended; checked vertex by
+  // vertex), only the patches after them get a BVH of their own and every query asks
+  // both, with the ray offset of `scene` as a whole: the same hits as a BVH of the whole
+  // scene. Otherwise (base null, or another scene) the whole scene's BVH is built.
+  RayCaster(std::shared_ptr<const RayCaster> base, const Scene& scene, int threads = 0);
   ~RayCaster();
   RayCaster(const RayCaster&) = delete;
   RayCaster& operator=(const RayCaster&) = delete;
@@ -37,6 +44,9 @@ class RayCaster {
   // Distance a ray origin is pushed along its patch normal: large enough to clear
   // float round-off at the scene's coordinates, small against any patch.
   double ray_offset_m() const { return ray_offset_m_; }
+
+  // Whether the BVH of a base caster is reused (the second constructor's check passed).
+  bool reuses_base() const;
 
   // Flush-to-zero and denormals-are-zero for the calling thread while the returned
   // guard lives, as Embree asks of every thread that casts rays; the guard restores the

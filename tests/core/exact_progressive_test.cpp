@@ -124,11 +124,67 @@ TEST(ProgressiveExactSolve, MakePreciseGivesThePreciseDirectLight) {
   const ExactSolution early = solve_exact(scene, options);
   const Eigen::VectorXd& now = late.solution().radiosity.direct_lux;
   for (int p : chosen) EXPECT_EQ(now[p], early.radiosity.direct_lux[p]) << "patch " << p;
-  for (int p : floor)
-    if (std::find(chosen.begin(), chosen.end(), p) == chosen.end()) EXPECT_EQ(now[p], cheap[p]) << "patch " << p;
+  for (int p : floor) {
+    if (std::find(chosen.begin(), chosen.end(), p) == chosen.end()) {
+      EXPECT_EQ(now[p], cheap[p]) << "patch " << p;
+    }
+  }
   double moved = 0.0;
   for (int p : chosen) moved = std::max(moved, std::abs(now[p] - cheap[p]) / early.radiosity.direct_lux[p]);
   EXPECT_GT(moved, 1e-6) << "the cheap and precise estimates should differ somewhere";
+}
+
+// The verification's steps before its last solve only to a loose residual: tighten()
+// then goes on from the loose solution to the tolerance set, and reaches the solve that
+// was tight from the start (the same system, solved twice to 1e-12).
+TEST(ProgressiveExactSolve, ALooseStepTightenedReachesTheTightSolve) {
+  Scene scene = reference::make_closed_box(V::Zero(), V(4.0, 3.0, 2.5), 0.7, 0.4);
+  add_square_luminaire(scene, "panel", V(2.0, 1.5, 2.45), 0.6, 3000.0);
+  ExactSolveOptions options;
+  options.form_factors.rays_per_patch = 32;
+  options.precise_patches = std::vector<int>{};
+  options.other_rays_per_patch = 16;
+  options.radiosity.relative_residual = 1e-12;
+  const ExactSolution tight = solve_exact(scene, options);
+  options.radiosity.relative_residual = 1e-3;
+  ProgressiveExactSolve solve(scene, options, 16);
+  const ExactSolveSummary& s = solve.solution().summary;
+  EXPECT_LE(s.relative_residual, 1e-3);
+  EXPECT_GT(s.relative_residual, 1e-12) << "the loose step should stop before the tight tolerance";
+  const int loose_sweeps = s.iterations;
+  EXPECT_FALSE(solve.tighten()) << "already within its own tolerance";
+  solve.set_relative_residual(1e-12);
+  EXPECT_TRUE(solve.tighten());
+  EXPECT_LE(s.relative_residual, 1e-12);
+  EXPECT_LT(s.iterations, tight.summary.iterations) << "from the loose solution, fewer sweeps than from the start";
+  EXPECT_GT(loose_sweeps, 0);
+  const Eigen::MatrixXd& B = solve.solution().radiosity.radiosity_lm_per_m2;
+  const Eigen::MatrixXd& reference = tight.radiosity.radiosity_lm_per_m2;
+  EXPECT_LE((B - reference).norm(), 1e-10 * reference.norm());
+  EXPECT_FALSE(solve.tighten());
+}
+
+// Merged rows (a doubling, patches made precise) are built on the solve's threads, each
+// row by one thread: the same radiosity, to the bit, on one thread or two.
+TEST(ProgressiveExactSolve, TheStepsGiveTheSameBitsOnAnyThreadCount) {
+  auto run = [](int threads) {
+    Scene scene = reference::make_closed_box(V::Zero(), V(4.0, 3.0, 2.5), 0.6, 0.4);
+    add_square_luminaire(scene, "panel", V(2.0, 1.5, 2.45), 0.6, 3000.0);
+    ExactSolveOptions options;
+    options.form_factors.rays_per_patch = 64;
+    options.form_factors.threads = threads;
+    options.direct_light.threads = threads;
+    options.radiosity.threads = threads;
+    options.precise_patches = std::vector<int>{};
+    options.other_rays_per_patch = 32;
+    ProgressiveExactSolve solve(scene, options, 8);
+    while (solve.can_refine()) solve.refine();
+    solve.make_precise({1, 4, 9}, 256);
+    return solve.solution().radiosity.radiosity_lm_per_m2;
+  };
+  const Eigen::MatrixXd one = run(1), two = run(2);
+  ASSERT_EQ(one.rows(), two.rows());
+  for (Eigen::Index i = 0; i < one.rows(); ++i) ASSERT_EQ(one(i, 0), two(i, 0)) << "patch " << i;
 }
 
 }  // namespace

@@ -1,11 +1,14 @@
 // Form-factor rows against closed forms, reciprocity, closure and determinism.
 #include "core/rays/form_factors.h"
+#include "core/rays/row_builder.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "core/rays/ray_caster.h"
 #include "core/scene/reference_scenes.h"
@@ -197,6 +200,41 @@ TEST(RayCasterThreadModes, TheCallersFloatingPointModesAreRestored) {
   EXPECT_GT(tiny, 0.0) << "flush-to-zero leaked to the caller's thread";
   volatile double half = tiny * 0.5;
   EXPECT_GT(half, 0.0);
+}
+
+}  // namespace
+}  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// build_rows (core/rays/row_builder.h): a matrix written row by row from counts and a
+// fill on several threads is the matrix the same entries give through Eigen's triplets,
+// empty rows and a dense row included, on one thread or two.
+TEST(BuildRows, GivesTheMatrixOfItsEntriesOnAnyThreadCount) {
+  constexpr Eigen::Index kRows = 5000, kCols = 300;
+  auto entries_of = [](Eigen::Index r) {
+    std::vector<std::pair<int, double>> out;
+    if (r % 7 == 3) return out;  // empty rows
+    const int step = r == 11 ? 1 : 1 + static_cast<int>(r % 13);
+    for (int c = static_cast<int>(r % 5); c < kCols; c += step) out.emplace_back(c, 0.25 + 1e-3 * static_cast<double>(r + c));
+    return out;
+  };
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (Eigen::Index r = 0; r < kRows; ++r)
+    for (const auto& [c, v] : entries_of(r)) triplets.emplace_back(static_cast<int>(r), c, v);
+  SparseRows expected(kRows, kCols);
+  expected.setFromTriplets(triplets.begin(), triplets.end());
+  for (int threads : {1, 2}) {
+    const SparseRows built = build_rows(kRows, kCols, threads, [&](Eigen::Index r, const auto& emit) {
+      for (const auto& [c, v] : entries_of(r)) emit(c, v);
+    });
+    ASSERT_TRUE(built.isCompressed());
+    ASSERT_EQ(built.nonZeros(), expected.nonZeros()) << threads << " threads";
+    EXPECT_EQ(Eigen::MatrixXd(built), Eigen::MatrixXd(expected)) << threads << " threads";
+    for (Eigen::Index r = 0; r <= kRows; ++r) ASSERT_EQ(built.outerIndexPtr()[r], expected.outerIndexPtr()[r]);
+  }
+  EXPECT_EQ(build_rows(0, 4, 2, [](Eigen::Index, const auto&) {}).nonZeros(), 0);
 }
 
 }  // namespace

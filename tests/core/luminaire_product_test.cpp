@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -310,6 +311,42 @@ TEST(ProductVariants, AFileThatCannotBeReadNamesTheConfigAndTheFile) {
     EXPECT_NE(what.find("job.yaml:12:5"), std::string::npos) << what;
     EXPECT_NE(what.find(bad), std::string::npos) << what;
   }
+}
+
+// The cost model's count of point sources per receiver and luminaire (mean_point_sources):
+// one receiver and one luminaire give that pair's count, ceil(side / (0.12 d)) along and
+// across the opening (at least 1, at most 24 a side); nearer receivers evaluate more, and
+// a Lambertian panel none (its closed form).
+TEST(MeanPointSources, CountsThePointSourcesOfAReceiverNearALongOpening) {
+  Scene scene = reference::make_closed_box(V::Zero(), V(4.0, 3.0, 2.5), 0.5, 0.25);
+  const LuminaireType type = photometric_luminaire_type("linear", photometry(kData + "linear_led_2112lm.ldt"));
+  ASSERT_GT(std::max(type.length_m, type.width_m), 1.0);
+  const int linear = add_luminaire(scene, "linear", type, {V(2.0, 1.5, 2.2), 0.0}, 2000.0);
+  const int panel = add_square_luminaire(scene, "panel", V(1.0, 1.0, 2.45), 0.6, 1000.0);
+  const std::vector<int> floor = reference::patches_of(scene, "floor");
+  ASSERT_FALSE(floor.empty());
+  auto expected = [&](int patch) {
+    const Patch& p = scene.patches[static_cast<std::size_t>(patch)];
+    const double d = ((p.vertices_m[0] + p.vertices_m[1] + p.vertices_m[2]) / 3.0 - V(2.0, 1.5, 2.2)).norm();
+    auto along = [&](double side) { return std::clamp(std::ceil(side / (0.12 * d)), 1.0, 24.0); };
+    return along(type.length_m) * along(type.width_m);
+  };
+  for (int patch : {floor.front(), floor[floor.size() / 2]}) {
+    const std::vector<int> one = {patch}, lum = {linear};
+    EXPECT_DOUBLE_EQ(mean_point_sources(scene, one, lum), expected(patch)) << "patch " << patch;
+  }
+  EXPECT_EQ(mean_point_sources(scene, floor, std::vector<int>{panel}), 0.0);
+  EXPECT_EQ(mean_point_sources(scene, std::vector<int>{}, std::vector<int>{linear}), 0.0);
+  // The ceiling, 0.3 m above the opening, is nearer than the floor: more sources a pair.
+  const std::vector<int> ceiling = reference::patches_of(scene, "ceiling");
+  const double near = mean_point_sources(scene, ceiling, std::vector<int>{linear});
+  const double far = mean_point_sources(scene, floor, std::vector<int>{linear});
+  EXPECT_GT(near, 1.5 * far);
+  EXPECT_GE(far, 1.0);
+  // Both luminaires: the panel's pairs count none, so the mean falls between.
+  const double both = mean_point_sources(scene, floor, std::vector<int>{linear, panel});
+  EXPECT_GT(both, 0.3 * far);
+  EXPECT_LT(both, 0.7 * far);
 }
 
 }  // namespace
