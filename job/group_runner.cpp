@@ -240,10 +240,35 @@ PreparedGroups prepare_groups(const JobConfig& job, const RunOptions& run, const
                               const std::string& cache_dir, const LogSink& log,
                               const std::function<void(const PreparedJob&)>& prepared_log) {
   PreparedGroups out;
+  if (job.groups.empty()) return out;
+  // The groups share the room (group_job changes only the search and the products): the
+  // model is read and its BVH built once, and every group's variants costed on it first,
+  // so that the whole run's estimate comes before any operator is built.
+  SharedScene shared = load_shared_scene(job, run);
+  if (log)
+    for (const std::string& line : shared.loaded->log) log(line);
+  std::vector<JobConfig> jobs;
+  std::vector<std::vector<VariantPlan>> plans;
+  std::vector<std::vector<CostedGeometry>> costed;
+  std::vector<std::vector<CostEstimate>> estimates;
+  for (std::size_t g = 0; g < job.groups.size(); ++g) {
+    jobs.push_back(group_job(job, g));
+    plans.push_back(plan_job(jobs.back(), run));
+    costed.push_back(cost_variants(shared, jobs.back(), plans.back(), run));
+    estimates.push_back(estimates_of(costed.back()));
+  }
+  if (log) {
+    std::ostringstream line;
+    line << "estimate: the whole run, building every group's operators, searching them together and verifying "
+            "once: about "
+         << std::fixed << std::setprecision(1) << groups_run_seconds(estimates) << " s for its " << job.groups.size()
+         << " groups";
+    log(line.str());
+  }
   for (std::size_t g = 0; g < job.groups.size(); ++g) {
     if (log) log("group '" + job.groups[g].name + "'");
-    const JobConfig one = group_job(job, g);
-    for (PreparedJob& p : prepare_variants(one, plan_job(one, run), run, progress, cache_dir, log, prepared_log)) {
+    for (PreparedJob& p : prepare_costed(shared, g + 1 == job.groups.size(), std::move(costed[g]), jobs[g], plans[g],
+                                         run, progress, cache_dir, log, prepared_log)) {
       out.prepared.push_back(std::move(p));
       out.group.push_back(g);
     }

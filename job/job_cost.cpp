@@ -198,4 +198,21 @@ double whole_run_seconds(const JobConfig& job, const std::vector<CostEstimate>& 
   return seconds;
 }
 
+double groups_run_seconds(const std::vector<std::vector<CostEstimate>>& groups) {
+  double seconds = 0.0, verification = 0.0;
+  bool first = true;
+  for (const std::vector<CostEstimate>& variants : groups)
+    for (const CostEstimate& e : variants) {
+      for (const PhaseEstimate& p : e.phases) {
+        if (p.name.starts_with("verification")) {
+          verification = std::max(verification, p.seconds);
+        } else if (first || (p.name != kOutputPhase && p.name != kScenePhase)) {
+          seconds += p.seconds;
+        }
+      }
+      first = false;
+    }
+  return seconds + verification;
+}
+
 }  // namespace ilp

@@ -56,5 +56,10 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
 // its BVH are read, and the outputs written, once), from each variant's estimate in
 // plan order. What `ilp inspect` and `ilp run` print for a job of several variants.
 double whole_run_seconds(const JobConfig& job, const std::vector<CostEstimate>& variants);
+// A job of luminaire groups (job.groups), each group's variants' estimates: every
+// group's variants are built and searched, but the run reads the model and writes its
+// outputs once and verifies the groups' layouts together once (the largest verification
+// of any variant counted).
+double groups_run_seconds(const std::vector<std::vector<CostEstimate>>& groups);
 
 }  // namespace ilp

@@ -61,31 +61,27 @@ std::string timing_note(const JobOutcome& outcome) {
 
 }  // namespace
 
-std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vector<VariantPlan>& plans,
-                                          const RunOptions& run, const ProgressCallback& progress,
-                                          const std::string& cache_dir, const LogSink& log,
-                                          const std::function<void(const PreparedJob&)>& prepared_log) {
-  std::vector<PreparedJob> out;
-  if (plans.empty()) return out;
-  // The scene, its BVH and every variant's geometry once (none depends on another variant).
-  SharedScene shared = load_shared_scene(job, run);
-  if (log)
-    for (const std::string& line : shared.loaded->log) log(line);
+std::vector<CostedGeometry> cost_variants(const SharedScene& shared, const JobConfig& job,
+                                          const std::vector<VariantPlan>& plans, const RunOptions& run) {
   const std::optional<MemoryBudget> memory = memory_budget(run.max_memory_bytes);
   std::vector<CostedGeometry> costed;
-  std::vector<CostEstimate> estimates;
-  for (const VariantPlan& plan : plans) {
+  for (const VariantPlan& plan : plans)
     costed.push_back(costed_geometry(job, shared.loaded->scene, plan.model, memory, shared.caster.get()));
-    estimates.push_back(costed.back().estimate);
-  }
-  if (plans.size() > 1 && log) {
-    // The whole run's estimate before the first variant: what a user plans with.
-    std::ostringstream line;
-    line << "estimate: the whole run, building every variant's operator and verifying its layout: about "
-         << std::fixed << std::setprecision(1) << whole_run_seconds(job, estimates) << " s for its " << plans.size()
-         << " variants, one after another";
-    log(line.str());
-  }
+  return costed;
+}
+
+std::vector<CostEstimate> estimates_of(const std::vector<CostedGeometry>& costed) {
+  std::vector<CostEstimate> out;
+  for (const CostedGeometry& c : costed) out.push_back(c.estimate);
+  return out;
+}
+
+std::vector<PreparedJob> prepare_costed(SharedScene& shared, bool takes_scene, std::vector<CostedGeometry> costed,
+                                        const JobConfig& job, const std::vector<VariantPlan>& plans,
+                                        const RunOptions& run, const ProgressCallback& progress,
+                                        const std::string& cache_dir, const LogSink& log,
+                                        const std::function<void(const PreparedJob&)>& prepared_log) {
+  std::vector<PreparedJob> out;
   for (std::size_t v = 0; v < plans.size(); ++v) {
     const VariantPlan& plan = plans[v];
     if (plan.listed && log) {
@@ -95,11 +91,32 @@ std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vecto
       log(line.str());
       for (const std::string& note : plan.product.notes) log(note);
     }
-    out.push_back(prepare_variant(shared, v + 1 == plans.size(), std::move(costed[v]), job, plan, run, progress,
-                                  cache_dir, log));
+    out.push_back(prepare_variant(shared, takes_scene && v + 1 == plans.size(), std::move(costed[v]), job, plan, run,
+                                  progress, cache_dir, log));
     if (prepared_log) prepared_log(out.back());
   }
   return out;
+}
+
+std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vector<VariantPlan>& plans,
+                                          const RunOptions& run, const ProgressCallback& progress,
+                                          const std::string& cache_dir, const LogSink& log,
+                                          const std::function<void(const PreparedJob&)>& prepared_log) {
+  if (plans.empty()) return {};
+  // The scene, its BVH and every variant's geometry once (none depends on another variant).
+  SharedScene shared = load_shared_scene(job, run);
+  if (log)
+    for (const std::string& line : shared.loaded->log) log(line);
+  std::vector<CostedGeometry> costed = cost_variants(shared, job, plans, run);
+  if (plans.size() > 1 && log) {
+    // The whole run's estimate before the first variant: what a user plans with.
+    std::ostringstream line;
+    line << "estimate: the whole run, building every variant's operator and verifying its layout: about "
+         << std::fixed << std::setprecision(1) << whole_run_seconds(job, estimates_of(costed)) << " s for its "
+         << plans.size() << " variants, one after another";
+    log(line.str());
+  }
+  return prepare_costed(shared, true, std::move(costed), job, plans, run, progress, cache_dir, log, prepared_log);
 }
 
 VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const JobConfig& goals_job,

@@ -19,6 +19,19 @@ std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vecto
                                           const std::string& cache_dir, const LogSink& log,
                                           const std::function<void(const PreparedJob&)>& prepared_log = {});
 
+// The two steps of prepare_variants, for jobs that prepare several lists of variants on
+// one scene (luminaire groups): every variant's costed geometry on the shared scene (none
+// depends on another), then the variants prepared from it (the last one takes the
+// shared scene when `takes_scene`).
+std::vector<CostedGeometry> cost_variants(const SharedScene& shared, const JobConfig& job,
+                                          const std::vector<VariantPlan>& plans, const RunOptions& run);
+std::vector<CostEstimate> estimates_of(const std::vector<CostedGeometry>& costed);
+std::vector<PreparedJob> prepare_costed(SharedScene& shared, bool takes_scene, std::vector<CostedGeometry> costed,
+                                        const JobConfig& job, const std::vector<VariantPlan>& plans,
+                                        const RunOptions& run, const ProgressCallback& progress,
+                                        const std::string& cache_dir, const LogSink& log,
+                                        const std::function<void(const PreparedJob&)>& prepared_log = {});
+
 struct VariantChoice {
   std::size_t variant = 0;          // into the prepared variants
   JobOutcome outcome;

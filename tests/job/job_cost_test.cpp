@@ -60,5 +60,19 @@ TEST(JobCost, TheWholeRunCountsTheSceneAndTheOutputsOnceAndLaterVerificationsAtH
   EXPECT_DOUBLE_EQ(whole_run_seconds(job, {}), 0.0);
 }
 
+// A job of luminaire groups: every group's variants built and searched, the model read and
+// the outputs written once, and one verification of the groups together (the largest).
+TEST(JobCost, GroupsReadTheModelWriteTheOutputsAndVerifyOnce) {
+  CostEstimate a, b;
+  a.phases = {{kScenePhase, 1.0, 0.0, ""}, {"search (10 evaluations)", 2.0, 0.0, ""},
+              {"verification (exact, ...)", 3.0, 0.0, ""}, {kOutputPhase, 0.5, 0.0, ""}};
+  b.phases = {{kScenePhase, 1.0, 0.0, ""}, {"search (10 evaluations)", 4.0, 0.0, ""},
+              {"verification (exact, ...)", 5.0, 0.0, ""}, {kOutputPhase, 0.5, 0.0, ""}};
+  EXPECT_DOUBLE_EQ(groups_run_seconds({{a}}), 6.5);
+  EXPECT_DOUBLE_EQ(groups_run_seconds({{a}, {b}}), 1.0 + 2.0 + 4.0 + 0.5 + 5.0);
+  EXPECT_DOUBLE_EQ(groups_run_seconds({{a, b}, {a}}), 1.0 + 2.0 + 4.0 + 2.0 + 0.5 + 5.0);
+  EXPECT_DOUBLE_EQ(groups_run_seconds({}), 0.0);
+}
+
 }  // namespace
 }  // namespace ilp

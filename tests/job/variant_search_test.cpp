@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "job/config.h"
+#include "job/group_runner.h"
 #include "job/plan.h"
 
 namespace ilp {
@@ -44,6 +45,29 @@ TEST(PrepareVariants, TheVariantsShareOneSceneAndBvhAndEachOperatorIsItsOwnAlone
     ASSERT_EQ(prepared[v].model.candidate_lux_per_lm.cols(), alone.model.candidate_lux_per_lm.cols());
     EXPECT_TRUE(prepared[v].model.candidate_lux_per_lm == alone.model.candidate_lux_per_lm) << "variant " << v;
   }
+}
+
+// A job of luminaire groups reads the model once for all its groups (it read it once a
+// group before), and prints the whole run's estimate before the first group's operator.
+TEST(PrepareVariants, TheGroupsShareOneSceneAndBvhAndTheWholeRunIsEstimatedFirst) {
+  JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
+  job.sample.fraction = 0.02;
+  job.form_factors.rays_per_patch = 16;
+  job.direct_light.receiver_points = 1;
+  job.direct_light.shadow_rays = 4;
+  ASSERT_EQ(job.groups.size(), 2u);
+  std::vector<std::string> log;
+  const PreparedGroups groups = prepare_groups(job, {}, {}, "", [&](const std::string& line) { log.push_back(line); });
+  ASSERT_GE(groups.prepared.size(), 2u);
+  for (const PreparedJob& p : groups.prepared) EXPECT_EQ(p.caster.get(), groups.prepared.front().caster.get());
+  std::size_t mesh_lines = 0, whole = 0, first_group = log.size();
+  for (std::size_t k = 0; k < log.size(); ++k) {
+    mesh_lines += log[k].starts_with("mesh ");
+    if (log[k].starts_with("estimate: the whole run")) whole = k;
+    if (log[k].starts_with("group '") && first_group == log.size()) first_group = k;
+  }
+  EXPECT_EQ(mesh_lines, 1u);
+  EXPECT_LT(whole, first_group) << "the whole run's estimate comes before the first group";
 }
 
 }  // namespace

@@ -44,6 +44,16 @@ TEST(Verification, IndirectRowsKeepEveryGoalWithinHalfAPercentOfTheFullSolve) {
   EXPECT_GE(v.indirect_rays_per_patch, 32);
   EXPECT_LT(v.indirect_rays_per_patch, 128);
   EXPECT_GT(v.refinement_change, 0.0);
+  // Where its time went (timings.json's verification_parts_s): every part, adding up.
+  ASSERT_EQ(v.parts_s.size(), 6u);
+  EXPECT_EQ(v.parts_s.front().first, "BVH");
+  EXPECT_EQ(v.parts_s.back().first, "the rest");
+  double parts = 0.0;
+  for (const auto& [name, seconds] : v.parts_s) {
+    EXPECT_GE(seconds, 0.0) << name;
+    parts += seconds;
+  }
+  EXPECT_NEAR(parts, v.seconds, 1e-9 + 1e-9 * v.seconds);
   const Eigen::VectorXd fast = verified_goal_lux(prepared.model, v);
 
   Scene scene = prepared.loaded.scene;

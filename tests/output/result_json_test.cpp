@@ -40,6 +40,7 @@ ResultRecord sample_record() {
   r.direct_check_note = "2 x 4 field: work_plane uniformity 0.41 with the luminaires' own direct light (predicted 0.64)";
   r.calibration = {"round 1: floor minimum predicted 100, verified 88.66; the next search aims at 113 for 100"};
   r.timings_s = {{"scene", 0.01}, {"operator", 1.41}, {"total", 8.27}};
+  r.verification_parts_s = {{"rows", 1.25}, {"direct light", 0.5}, {"the rest", 0.25}};
   r.attempts = {{4, 6643, 0.32, true, 123.4, "evaluation budget used", "step tolerance reached"}};
   return r;
 }
@@ -63,6 +64,7 @@ TEST(ResultJson, RoundTripsEveryField) {
   EXPECT_EQ(back.optimizer_seed, 9007199254740993ull);
   ASSERT_EQ(back.timings_s.size(), 3u);
   EXPECT_EQ(back.timings_s[1].first, "operator") << "phases keep their order";
+  EXPECT_EQ(back.verification_parts_s, r.verification_parts_s) << "from timings.json, in order";
   EXPECT_EQ(back.calibration, r.calibration);
   EXPECT_EQ(back.direct_checks, 3);
   EXPECT_EQ(back.direct_check_note, r.direct_check_note);
