@@ -33,6 +33,17 @@ CostCounts classroom() {
   return c;
 }
 
+// A room of `patches` (every one reflecting), `goals` goal patches, `sources` candidates
+// and a sample of k.
+CostCounts room_counts(std::size_t patches, std::size_t goals, std::size_t sources, std::size_t k) {
+  CostCounts c;
+  c.patches = c.population = patches;
+  c.goal_patches = goals;
+  c.sources = sources;
+  c.sample_size = k;
+  return c;
+}
+
 double phase_seconds(const CostEstimate& e, const std::string& prefix) {
   for (const PhaseEstimate& p : e.phases)
     if (p.name.rfind(prefix, 0) == 0) return p.seconds;
@@ -82,12 +93,8 @@ TEST(CostModel, ReproducesTheClassroomBenchWithinAThird) {
 // grids with closed-form cells): 3.49 s of goal rows measured (2026-12-04); a photometric
 // product's precise pairs grow with the point sources each receiver point evaluates.
 TEST(CostModel, PrecisePairsFollowTheirLightsKind) {
-  CostCounts office;
-  office.patches = office.population = 10330;
-  office.goal_patches = 1682;
-  office.sources = 96;
+  CostCounts office = room_counts(10330, 1682, 96, 517);
   office.rays_per_patch = 256;
-  office.sample_size = 517;
   const double goal_rows = phase_seconds(estimate_job_cost(office), "goal rows");
   EXPECT_NEAR(goal_rows, 3.49, 0.3 * 3.49);
   CostCounts near = office, far = office;
@@ -178,11 +185,7 @@ TEST(CostModel, HitPatchesFollowThePatchesAreas) {
 // The blended candidates (reflected_sources) run the sample's and hits' direct light and
 // the k x k solve over fewer columns; the goal rows' direct light stays every source's.
 TEST(CostModel, BlendedSourcesShrinkTheReflectedPhasesOnly) {
-  CostCounts c;
-  c.patches = c.population = 100000;
-  c.goal_patches = 500;
-  c.sources = 300;
-  c.sample_size = 2000;
+  CostCounts c = room_counts(100000, 500, 300, 2000);
   auto phase = [](const CostEstimate& e, const std::string& start) {
     for (const PhaseEstimate& p : e.phases)
       if (p.name.starts_with(start)) return p.seconds;

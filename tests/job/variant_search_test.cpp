@@ -14,13 +14,18 @@
 namespace ilp {
 namespace {
 
-TEST(PrepareVariants, TheVariantsShareOneSceneAndBvhAndEachOperatorIsItsOwnAlone) {
-  JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_products.yaml");
-  // Small operators: what is compared is that they are the same.
+// A shipped job with small operators: what the tests compare is that they are shared or the same.
+JobConfig small_job(const char* path) {
+  JobConfig job = load_job_config(path);
   job.sample.fraction = 0.02;
   job.form_factors.rays_per_patch = 16;
   job.direct_light.receiver_points = 1;
   job.direct_light.shadow_rays = 4;
+  return job;
+}
+
+TEST(PrepareVariants, TheVariantsShareOneSceneAndBvhAndEachOperatorIsItsOwnAlone) {
+  const JobConfig job = small_job(ILP_SOURCE_DIR "/configs/office_products.yaml");
   std::vector<VariantPlan> plans = plan_job(job);
   ASSERT_GE(plans.size(), 2u);
   plans.resize(2);
@@ -50,11 +55,7 @@ TEST(PrepareVariants, TheVariantsShareOneSceneAndBvhAndEachOperatorIsItsOwnAlone
 // A job of luminaire groups reads the model once for all its groups (it read it once a
 // group before), and prints the whole run's estimate before the first group's operator.
 TEST(PrepareVariants, TheGroupsShareOneSceneAndBvhAndTheWholeRunIsEstimatedFirst) {
-  JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
-  job.sample.fraction = 0.02;
-  job.form_factors.rays_per_patch = 16;
-  job.direct_light.receiver_points = 1;
-  job.direct_light.shadow_rays = 4;
+  const JobConfig job = small_job(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
   ASSERT_EQ(job.groups.size(), 2u);
   std::vector<std::string> log;
   const PreparedGroups groups = prepare_groups(job, {}, {}, "", [&](const std::string& line) { log.push_back(line); });
