@@ -56,7 +56,8 @@ void merge_rows(FormFactorRows& base, const FormFactorRows& more, const std::vec
   const Eigen::Index n = base.F.rows();
   const double w_old = static_cast<double>(n_base) / (n_base + n_more), w_new = 1.0 - w_old;
   std::vector<Eigen::Index> row_in_more(static_cast<std::size_t>(n), -1);
-  for (std::size_t r = 0; r < others.size(); ++r) row_in_more[static_cast<std::size_t>(others[r])] = static_cast<Eigen::Index>(r);
+  for (std::size_t r = 0; r < others.size(); ++r)
+    row_in_more[static_cast<std::size_t>(others[r])] = static_cast<Eigen::Index>(r);
   // Row i: as it was, or (i = others[r]) w_old x its entries + w_new x more's row r, the
   // union of both rows' columns.
   const SparseRows& old = base.F;
@@ -201,8 +202,8 @@ bool ProgressiveExactSolve::tighten() {
 void ProgressiveExactSolve::solve() {
   ExactSolveSummary& s = solution_.summary;
   // The luminaires' columns from raw_ as it is (no copy of its F first).
-  const FormFactorRows rows{raw_.row_patches, with_emitter_columns(scene_, emitter_, raw_, options_.form_factors.threads), raw_.escaped_fraction,
-                            raw_.back_hit_fraction, raw_.rays_cast, raw_.seconds};
+  const FormFactorRows rows{raw_.row_patches, with_emitter_columns(scene_, emitter_, raw_, options_.form_factors.threads),
+                            raw_.escaped_fraction, raw_.back_hit_fraction, raw_.rays_cast, raw_.seconds};
   s.form_factor_seconds = raw_.seconds;
   s.rays_cast = raw_.rays_cast;
   s.rays_per_second = raw_.seconds > 0.0 ? static_cast<double>(raw_.rays_cast) / raw_.seconds : 0.0;

@@ -645,7 +645,8 @@ SparseRows with_emitter_columns(const Scene& scene, const EmitterLight& emitter,
     while (it || k < by_column.size()) {
       const int emitter_column = k < by_column.size() ? emitters[by_column[k]] : std::numeric_limits<int>::max();
       if (it && it.col() < emitter_column) {
-        if (emitter_slot[it.col()] < 0) emit(it.col(), kept > 0.0 ? it.value() * scale : it.value());  // gathered hits on emitters are dropped
+        // Gathered hits on emitters are dropped (scale is 1 for a row that kept nothing).
+        if (emitter_slot[it.col()] < 0) emit(it.col(), it.value() * scale);
         ++it;
       } else {
         if (it && it.col() == emitter_column) ++it;

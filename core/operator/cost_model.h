@@ -14,7 +14,10 @@
 
 namespace ilp {
 
-// Per-unit costs, 2 threads of the reference machine (fitted on the classroom bench).
+// Per-unit costs on 2 threads of the reference machine: the direct light, the
+// verification's solves and rounds fitted on an Intel Xeon 2.8 GHz (2026-12-03,
+// docs/benchmarks.md "Cost model"), the rest earlier on an AMD EPYC, where the shipped
+// jobs ran 1.4-1.6x faster. No per-machine calibration yet.
 struct MachineCosts {
   double gather_ray_s = 1.0 / 5.3e6;        // one form-factor ray (closest hit, row assembly)
   double precise_pair_ray_s = 7.8e-8;       // direct light: per shadow ray of a precise receiver-source pair
