@@ -117,7 +117,8 @@ double expected_hit_patches(double rows, double rays, const AreaShareBins& bins,
 
 double exact_verification_bytes(std::size_t patches, int rays_per_patch) {
   const double n = d(patches);
-  return n * (kPatchBytes + kBvhBytesPerPatch + kIndexBytesPerPatch) + row_nnz(n, rays_per_patch, patches) * kRowNnzPeakBytes;
+  // The scene's copy with the layout; no BVH: the job scene's is reused (RayCaster).
+  return n * (kPatchBytes + kIndexBytesPerPatch) + row_nnz(n, rays_per_patch, patches) * kRowNnzPeakBytes;
 }
 
 double sample_verification_bytes(std::size_t k, std::size_t goal_patches, std::size_t sources, int rays_per_patch) {
@@ -281,7 +282,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     out.phases.push_back({"verification (sample, k = " + std::to_string(c.verify_sample_size) + ", " +
                               rounds_text(c.verify_rounds) + ")",
                           per,
-                          model_bytes + n * (kPatchBytes + kBvhBytesPerPatch) +
+                          model_bytes + n * kPatchBytes +
                               sample_verification_bytes(c.verify_sample_size, c.goal_patches + c.grid_points, c.luminaires + 1,
                                                        c.verify_rays),
                           "verification.sample_fraction or verification.method"});
