@@ -154,6 +154,7 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
     out.decisive_rays = decisive_rays(job.verification);
     out.precise_rays = dominant_rays(job.verification);
   }
+  out.bvh_reused = solve.caster().reuses_base();
   const ExactSolveSummary& summary = solve.solution().summary;
   out.parts_s = {{"BVH", summary.bvh_seconds},
                  {"rows", summary.form_factor_seconds},
@@ -205,6 +206,7 @@ Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int l
     verify_exact_progressively(prepared, scene, options, progress, out);
   } else {
     const RayCaster caster(prepared.caster, scene, worker_threads(job, run));
+    out.bvh_reused = caster.reuses_base();
     const std::vector<LightSource> sources = scene_light_sources(scene);
     SampleOperatorOptions options = operator_options(job, run);
     options.form_factors.rays_per_patch = settings.rays_per_patch;

@@ -114,6 +114,7 @@ struct Verification {
   int precise_rays = 0;             // those patches' rows
   double decisive_seconds = 0.0;    // all of it (a share of `seconds`)
   double point_gather_seconds = 0.0;  // the goal points' gathers, every step's
+  bool bvh_reused = false;            // the job scene's BVH served the verification's scene (RayCaster)
   // Exact: where `seconds` went (timings.json's verification_parts_s): the BVH, the rows,
   // the direct light, the Gauss-Seidel solves, the goal points' gathers (the decisive
   // ones' included) and the rest; each summed over the refinement's steps.

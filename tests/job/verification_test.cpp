@@ -44,6 +44,7 @@ TEST(Verification, IndirectRowsKeepEveryGoalWithinHalfAPercentOfTheFullSolve) {
   EXPECT_GE(v.indirect_rays_per_patch, 32);
   EXPECT_LT(v.indirect_rays_per_patch, 128);
   EXPECT_GT(v.refinement_change, 0.0);
+  EXPECT_TRUE(v.bvh_reused) << "the job scene's BVH, the luminaires' alone built";
   // Where its time went (timings.json's verification_parts_s): every part, adding up.
   ASSERT_EQ(v.parts_s.size(), 6u);
   EXPECT_EQ(v.parts_s.front().first, "BVH");
