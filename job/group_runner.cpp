@@ -244,17 +244,19 @@ PreparedGroups prepare_groups(const JobConfig& job, const RunOptions& run, const
   // The groups share the room (group_job changes only the search and the products): the
   // model is read and its BVH built once, and every group's variants costed on it first,
   // so that the whole run's estimate comes before any operator is built.
-  SharedScene shared = load_shared_scene(job, run);
+  // Read through the first group's job, which has a search (the whole job has only groups).
+  std::vector<JobConfig> jobs;
+  for (std::size_t g = 0; g < job.groups.size(); ++g) jobs.push_back(group_job(job, g));
+  SharedScene shared = load_shared_scene(jobs.front(), run);
   if (log)
     for (const std::string& line : shared.loaded->log) log(line);
-  std::vector<JobConfig> jobs;
+  for (const JobConfig& one : jobs) require_search_surfaces(one, shared.loaded->scene);
   std::vector<std::vector<VariantPlan>> plans;
   std::vector<std::vector<CostedGeometry>> costed;
   std::vector<std::vector<CostEstimate>> estimates;
   for (std::size_t g = 0; g < job.groups.size(); ++g) {
-    jobs.push_back(group_job(job, g));
-    plans.push_back(plan_job(jobs.back(), run));
-    costed.push_back(cost_variants(shared, jobs.back(), plans.back(), run));
+    plans.push_back(plan_job(jobs[g], run));
+    costed.push_back(cost_variants(shared, jobs[g], plans.back(), run));
     estimates.push_back(estimates_of(costed.back()));
   }
   if (log) {

@@ -108,6 +108,29 @@ void keep_only(const std::vector<std::string>& names, const std::vector<SurfaceP
 
 }  // namespace
 
+void require_search_surfaces(const JobConfig& job, const Scene& scene) {
+  if (!job.search) return;
+  auto require = [&](const std::string& name, const FileLoc& loc, const std::string& key) {
+    const int s = scene.find_surface(name);
+    if (s >= 0 && !scene.surfaces[static_cast<std::size_t>(s)].is_luminaire()) return;
+    std::string known;
+    int shown = 0;
+    for (const Surface& surface : scene.surfaces) {
+      if (surface.is_luminaire()) continue;
+      if (shown++ == 12) {
+        known += ", ...";
+        break;
+      }
+      known += (known.empty() ? "" : ", ") + surface.name;
+    }
+    throw ConfigError(located(loc, key + ": unknown surface '" + name + "' in " + job.mesh_path + " (surfaces: " + known + ")"));
+  };
+  if (!job.search->suspended_height_m)
+    require(job.search->mounting_surface, job.search->mounting_loc, "luminaires.mounting_surface");
+  if (!job.search->floor_surface.empty())
+    require(job.search->floor_surface, job.search->floor_loc, "luminaires.floor_surface");
+}
+
 JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   JobScene out;
   TriangleMesh mesh;

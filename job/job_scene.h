@@ -28,6 +28,12 @@ struct JobScene {
 // machine's available memory (memory_budget_bytes).
 JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out = nullptr);
 
+// The search's surfaces (luminaires.mounting_surface, unless suspended, and
+// luminaires.floor_surface) are surfaces of the scene's mesh: a located ConfigError naming
+// the surfaces there if not. load_job_scene checks them for its own job; a job of groups
+// reads its scene once and checks each group's.
+void require_search_surfaces(const JobConfig& job, const Scene& scene);
+
 // The operator cache's key (core/base/key_hash.h): everything load_job_scene's scene
 // depends on. The mesh file by its bytes (and, for OBJ, each mtllib's name and bytes;
 // a missing or unreadable file gives a marker, never an error), its format and, for

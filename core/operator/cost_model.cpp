@@ -147,9 +147,6 @@ const PhaseEstimate* CostEstimate::largest_phase() const {
 
 namespace {
 
-// Verification rounds: the first always; a later one only when a goal fails on
-// verification alone. The shipped jobs took 1.5 a variant on average when more were
-// allowed (the classroom: 2 and 1 for its two variants; office, conference: 1).
 // Verification rounds (a search again when a goal is missed on verification): every
 // shipped job verifies once (the flux correction meets what the verification finds), so
 // the search and verification are counted once, whatever verification.rounds allows.

@@ -43,7 +43,7 @@ struct MachineCosts {
                                             // classroom's 3,537 rows of 128 rays hit 49,400 of 160,000 (2026-12-03)
   // A photometric product's cheap pair (the opening's point sources and 2 shadow rays, each
   // weighed by its target's intensity), per pair whose light is computed: 0.41, 0.49 and
-  // 0.58 us on the classroom, Sibenik and office_wallwash (2026-12-04, Intel Xeon 2.8 GHz),
+  // 0.58 us on the classroom, Sibenik and office_wallwash (2026-12-03, Intel Xeon 2.8 GHz),
   // whatever their point sources a pair (4.0, 1.1-1.5, 4.2).
   double photometric_cheap_pair_s = 4.5e-7;
   // A precise photometric point's intensity lookups: at each point source the opening is

@@ -51,7 +51,7 @@ double phase_seconds(const CostEstimate& e, const std::string& prefix) {
   return 0.0;
 }
 
-// The shipped classroom job as it is now (2026-12-04): 167,659 patches, 184 grid points,
+// The shipped classroom job as it is now (2026-12-03): 167,659 patches, 184 grid points,
 // a photometric pendant at 326 candidate positions (reflected light computed for 109),
 // 4.0 point sources a pair, k = 3,353, 3 channels, 128 rays, counts up to 16, 5,400
 // arrangements, exact verification from 16 indirect rays.
@@ -76,7 +76,7 @@ CostCounts classroom_pendants() {
 
 TEST(CostModel, ReproducesTheClassroomBenchWithinAThird) {
   // Measured on the first variant, idle machine (./build/ilp run configs/classroom.yaml
-  // --no-cache, 2026-12-04, Intel Xeon 2.8 GHz): goal rows and direct light 2.61 s
+  // --no-cache, 2026-12-03, Intel Xeon 2.8 GHz): goal rows and direct light 2.61 s
   // (0.11 + 2.50), verification 3.51 s in one round (timings.json), 7.2 s for the
   // variant's share of the run (12.5 s for both, the scene and outputs once).
   const CostEstimate e = estimate_job_cost(classroom_pendants());
@@ -90,7 +90,7 @@ TEST(CostModel, ReproducesTheClassroomBenchWithinAThird) {
 }
 
 // The office's goal patches under Lambertian panels (1,682 x 96 pairs, 8 points, 9-ray
-// grids with closed-form cells): 3.49 s of goal rows measured (2026-12-04); a photometric
+// grids with closed-form cells): 3.49 s of goal rows measured (2026-12-03); a photometric
 // product's precise pairs grow with the point sources each receiver point evaluates.
 TEST(CostModel, PrecisePairsFollowTheirLightsKind) {
   CostCounts office = room_counts(10330, 1682, 96, 517);

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "core/base/error.h"
 #include "job/config.h"
 #include "job/group_runner.h"
 #include "job/plan.h"
@@ -69,6 +70,23 @@ TEST(PrepareVariants, TheGroupsShareOneSceneAndBvhAndTheWholeRunIsEstimatedFirst
   }
   EXPECT_EQ(mesh_lines, 1u);
   EXPECT_LT(whole, first_group) << "the whole run's estimate comes before the first group";
+  for (const std::string& line : log) EXPECT_FALSE(line.starts_with("warning: nothing emits light")) << line;
+}
+
+// Each group's search surfaces are checked on the shared scene, not only the first's.
+TEST(PrepareVariants, AGroupsUnknownMountingSurfaceIsALocatedError) {
+  JobConfig job = small_job(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
+  ASSERT_EQ(job.groups.size(), 2u);
+  job.groups[1].search.mounting_surface = "no_such_surface";
+  job.groups[1].search.suspended_height_m.reset();
+  try {
+    prepare_groups(job, {}, {}, "", {});
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("office_two_groups.yaml:"), std::string::npos) << message;
+    EXPECT_NE(message.find("luminaires.mounting_surface: unknown surface 'no_such_surface'"), std::string::npos) << message;
+  }
 }
 
 }  // namespace
