@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <iterator>
 #include <map>
+#include <set>
 #include <memory>
 #include <new>
 #include <sstream>
@@ -106,24 +107,31 @@ void keep_only(const std::vector<std::string>& names, const std::vector<SurfaceP
     if (!kept[s]) excluded[s] = true;
 }
 
+// "KEY: unknown surface 'NAME' in MESH (surfaces: a, b, ...)": the first 12 of `names`
+// (in order), located at `loc`.
+ConfigError unknown_surface(const FileLoc& loc, const std::string& key, const std::string& name,
+                            const std::string& mesh_path, const std::vector<std::string>& names) {
+  std::string known;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (k == 12) {
+      known += ", ...";
+      break;
+    }
+    known += (known.empty() ? "" : ", ") + names[k];
+  }
+  return ConfigError(located(loc, key + ": unknown surface '" + name + "' in " + mesh_path + " (surfaces: " + known + ")"));
+}
+
 }  // namespace
 
 void require_search_surfaces(const JobConfig& job, const Scene& scene) {
   if (!job.search) return;
+  std::set<std::string> mesh_surfaces;  // sorted, as load_job_scene names them
+  for (const Surface& surface : scene.surfaces)
+    if (!surface.is_luminaire()) mesh_surfaces.insert(surface.name);
   auto require = [&](const std::string& name, const FileLoc& loc, const std::string& key) {
-    const int s = scene.find_surface(name);
-    if (s >= 0 && !scene.surfaces[static_cast<std::size_t>(s)].is_luminaire()) return;
-    std::string known;
-    int shown = 0;
-    for (const Surface& surface : scene.surfaces) {
-      if (surface.is_luminaire()) continue;
-      if (shown++ == 12) {
-        known += ", ...";
-        break;
-      }
-      known += (known.empty() ? "" : ", ") + surface.name;
-    }
-    throw ConfigError(located(loc, key + ": unknown surface '" + name + "' in " + job.mesh_path + " (surfaces: " + known + ")"));
+    if (!mesh_surfaces.contains(name))
+      throw unknown_surface(loc, key, name, job.mesh_path, {mesh_surfaces.begin(), mesh_surfaces.end()});
   };
   if (!job.search->suspended_height_m)
     require(job.search->mounting_surface, job.search->mounting_loc, "luminaires.mounting_surface");
@@ -154,14 +162,9 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   auto require_surface = [&](const std::string& name, const FileLoc& loc, const std::string& key) {
     auto it = surface_of.find(name);
     if (it == surface_of.end()) {
-      std::string known;
-      int shown = 0;
-      for (const auto& [n, _] : surface_of) {
-        if (shown++ == 12) { known += ", ..."; break; }
-        known += (known.empty() ? "" : ", ") + n;
-      }
-      throw ConfigError(located(loc, key + ": unknown surface '" + name + "' in " + job.mesh_path +
-                                         " (surfaces: " + known + ")"));
+      std::vector<std::string> names;
+      for (const auto& [n, _] : surface_of) names.push_back(n);
+      throw unknown_surface(loc, key, name, job.mesh_path, names);
     }
     return it->second;
   };

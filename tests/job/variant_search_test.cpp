@@ -10,6 +10,7 @@
 #include "core/base/error.h"
 #include "job/config.h"
 #include "job/group_runner.h"
+#include "tests/test_support.h"
 #include "job/plan.h"
 
 namespace ilp {
@@ -79,14 +80,9 @@ TEST(PrepareVariants, AGroupsUnknownMountingSurfaceIsALocatedError) {
   ASSERT_EQ(job.groups.size(), 2u);
   job.groups[1].search.mounting_surface = "no_such_surface";
   job.groups[1].search.suspended_height_m.reset();
-  try {
-    prepare_groups(job, {}, {}, "", {});
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("office_two_groups.yaml:"), std::string::npos) << message;
-    EXPECT_NE(message.find("luminaires.mounting_surface: unknown surface 'no_such_surface'"), std::string::npos) << message;
-  }
+  const std::string message = test::error_of<ConfigError>([&] { prepare_groups(job, {}, {}, "", {}); }, "prepare_groups");
+  EXPECT_TRUE(test::Contains(message, "office_two_groups.yaml:"));
+  EXPECT_TRUE(test::Contains(message, "luminaires.mounting_surface: unknown surface 'no_such_surface'"));
 }
 
 }  // namespace
