@@ -1,6 +1,8 @@
 #include "apps/cli_support.h"
 
+#include "apps/commands.h"
 #include "core/operator/cost_model.h"
+#include "core/operator/machine_speed.h"
 
 #include <sys/resource.h>
 
@@ -72,11 +74,17 @@ double peak_memory_gb() {
   return static_cast<double>(usage.ru_maxrss) / (1024.0 * 1024.0);  // Linux reports KB
 }
 
-RunOptions run_options(int threads, const std::string& max_memory) {
+RunOptions run_options(int threads, const std::string& max_memory, bool estimates) {
   RunOptions run;
   if (threads >= 0) run.threads = threads;
   if (!max_memory.empty()) run.max_memory_bytes = parse_bytes(max_memory);
+  if (estimates) {
+    run.machine = machine_calibration();
+    std::cerr << describe(run.machine) << "\n";
+  }
   return run;
 }
+
+MachineCalibration machine_calibration() { return calibrate_machine(default_cache_dir()); }
 
 }  // namespace ilp::cli

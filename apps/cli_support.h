@@ -21,7 +21,12 @@ std::string csv_field(const std::string& text);
 std::string output_directory(const JobConfig& job, const std::string& override_dir);
 
 // --threads (negative: not given) and --max-memory ("" : not given) as run options.
-RunOptions run_options(int threads, const std::string& max_memory);
+// `estimates`: with this machine's calibration for the cost estimates (cached in
+// default_cache_dir(); probed, about a second, when none is), logged on stderr.
+RunOptions run_options(int threads, const std::string& max_memory, bool estimates = false);
+
+// This machine's calibration (core/operator/machine_speed.h), cached in default_cache_dir().
+MachineCalibration machine_calibration();
 
 // Peak resident memory of this process so far, GB.
 double peak_memory_gb();

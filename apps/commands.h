@@ -86,7 +86,14 @@ struct InspectArgs {
 int run_inspect(const InspectArgs& args);
 
 // $XDG_CACHE_HOME/ilp, else $HOME/.cache/ilp, else .ilp-cache in the working directory.
+// The operator cache's default folder and where this machine's calibration is kept.
 std::string default_cache_dir();
+
+struct CalibrateArgs {
+  bool cached = false;        // print the cached calibration (probe only when there is none)
+};
+// Exit 1 when the calibration could not be cached.
+int run_calibrate(const CalibrateArgs& args);
 
 struct UgrTableArgs {
   std::string file;           // a photometric file (.ies, .ldt)

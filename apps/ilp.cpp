@@ -242,6 +242,18 @@ CLI::App* add_ugr_table_command(CLI::App& app, ilp::cli::UgrTableArgs& args) {
   return command;
 }
 
+// This machine's speed for the cost estimate: `ilp calibrate`.
+CLI::App* add_calibrate_command(CLI::App& app, ilp::cli::CalibrateArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "calibrate", "Probe this machine's speed (form-factor rays, sparse sweeps, dense products; about a second) "
+                   "against the machine the cost model was measured on, and cache it where `ilp run` and `ilp "
+                   "inspect` read it for their estimates ($XDG_CACHE_HOME/ilp or ~/.cache/ilp). They probe once by "
+                   "themselves when nothing is cached; run this after a change of hardware or when the estimates "
+                   "drift");
+  command->add_flag("--cached", args.cached, "print the cached calibration instead (probe only when there is none)");
+  return command;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -270,6 +282,8 @@ int main(int argc, char** argv) {
   CLI::App* inspect = add_inspect_command(app, inspect_args);
   ilp::cli::UgrTableArgs ugr_table_args;
   CLI::App* ugr_table = add_ugr_table_command(app, ugr_table_args);
+  ilp::cli::CalibrateArgs calibrate_args;
+  CLI::App* calibrate = add_calibrate_command(app, calibrate_args);
 
   try {
     app.parse(argc, argv);
@@ -294,6 +308,7 @@ int main(int argc, char** argv) {
         if (*bench) return ilp::cli::run_bench(bench_args);
         if (*inspect) return ilp::cli::run_inspect(inspect_args);
         if (*ugr_table) return ilp::cli::run_ugr_table(ugr_table_args);
+        if (*calibrate) return ilp::cli::run_calibrate(calibrate_args);
         return 0;
       });
     if (*solve) return ilp::cli::run_solve(solve_args);
@@ -304,6 +319,7 @@ int main(int argc, char** argv) {
     if (*bench) return ilp::cli::run_bench(bench_args);
     if (*inspect) return ilp::cli::run_inspect(inspect_args);
     if (*ugr_table) return ilp::cli::run_ugr_table(ugr_table_args);
+    if (*calibrate) return ilp::cli::run_calibrate(calibrate_args);
   } catch (const ilp::dist::FailedElsewhere&) {
     return 1;  // rank 0 prints the one message
   } catch (const std::bad_alloc&) {

@@ -14,6 +14,7 @@
 #include "apps/commands.h"
 #include "job/config.h"
 #include "core/operator/cost_model.h"
+#include "core/operator/machine_speed.h"
 #include "job/job_scene.h"
 #include "job/plan.h"
 #include "core/rays/ray_caster.h"
@@ -110,17 +111,18 @@ void print_suggestion(const char* what, const SceneInspection& in, int index, bo
 namespace {
 
 // The estimate `ilp run` prints for each variant of the job (its products' files read),
-// the same figures from the same function (costed_geometry).
-double print_cost_estimates(const JobConfig& job, const RunOptions& run, const Scene& scene) {
+// the same figures from the same function (costed_geometry); `label` names a group.
+std::vector<CostEstimate> print_cost_estimates(const JobConfig& job, const RunOptions& run, const Scene& scene,
+                                               const std::string& label = {}) {
   const std::optional<MemoryBudget> budget = memory_budget(run.max_memory_bytes);
   const std::optional<double> bytes = budget ? std::optional<double>(budget->bytes) : std::nullopt;
   const std::vector<VariantPlan> plans = plan_job(job, run);
   std::vector<CostEstimate> estimates;
   for (const VariantPlan& plan : plans) {
-    const CostedGeometry costed = costed_geometry(job, scene, plan.model, budget);
+    const CostedGeometry costed = costed_geometry(job, scene, plan.model, budget, job_machine_costs(job, run));
     estimates.push_back(costed.estimate);
     const CostCounts& counts = costed.counts;
-    std::cout << "cost estimate of `ilp run`";
+    std::cout << "cost estimate of `ilp run`" << label;
     if (plans.size() > 1) std::cout << " for " << printable(plan.product.product) << " at " << plan.product.rotation_deg << " deg";
     std::cout << " (" << counts.goal_patches << " goal patches, " << counts.grid_points << " grid points, "
               << costed.model.grid.size() << " candidates, k = " << counts.sample_size << ", " << counts.channels
@@ -133,10 +135,27 @@ double print_cost_estimates(const JobConfig& job, const RunOptions& run, const S
     if (!verification.reason.empty()) std::cout << "  verification: " << verification.reason << "\n";
     if (!costed.refusal.empty()) std::cout << "  would be refused: " << costed.refusal << "\n";
   }
-  // Each variant (product x rotation) builds its own operator and runs its own verification.
-  const double whole_run_s = whole_run_seconds(job, estimates);  // the figure `ilp run` prints, from the same function
-  if (plans.size() > 1)
-    std::cout << "cost estimate of the whole run: about " << fixed(whole_run_s, 1) << " s for its " << plans.size()
+  return estimates;
+}
+
+// A single room: its variants' estimates and, for several, the whole run's (each variant
+// builds its own operator and runs its own verification), the figure `ilp run` prints
+// from the same function. A job of luminaire groups: each group's, then the whole run's
+// as groups_run_seconds counts it. Returns the whole run's seconds.
+double print_room_estimates(const JobConfig& job, const RunOptions& run, const Scene& scene) {
+  if (!job.groups.empty()) {
+    std::vector<std::vector<CostEstimate>> groups;
+    for (std::size_t g = 0; g < job.groups.size(); ++g)
+      groups.push_back(print_cost_estimates(group_job(job, g), run, scene, " for group '" + job.groups[g].name + "'"));
+    const double whole_s = groups_run_seconds(groups);
+    std::cout << "cost estimate of the whole run: about " << fixed(whole_s, 1) << " s for its " << groups.size()
+              << " groups (every group's operators, searched together, verified once)\n";
+    return whole_s;
+  }
+  const std::vector<CostEstimate> estimates = print_cost_estimates(job, run, scene);
+  const double whole_run_s = whole_run_seconds(job, estimates);
+  if (estimates.size() > 1)
+    std::cout << "cost estimate of the whole run: about " << fixed(whole_run_s, 1) << " s for its " << estimates.size()
               << " variants, one after another\n";
   return whole_run_s;
 }
@@ -148,7 +167,7 @@ void print_building_estimates(const JobConfig& job, const RunOptions& run) {
     const JobConfig& room = room_job(job, r);
     const JobScene loaded = load_job_scene(room);
     std::cout << "room " << job.rooms[r].name << " (" << loaded.scene.patches.size() << " patches):\n";
-    total_s += print_cost_estimates(room, run, loaded.scene);
+    total_s += print_room_estimates(room, run, loaded.scene);
   }
   std::cout << "cost estimate of the building: about " << fixed(total_s, 1) << " s for its " << job.rooms.size()
             << " rooms, one after another\n";
@@ -193,10 +212,13 @@ int run_inspect(const InspectArgs& args) {
   }
 
   // The cost of running the job, for an inverse job.
-  if ((job.search && !job.goals.empty()) || !job.rooms.empty()) {
+  if ((job.search && !job.goals.empty()) || !job.groups.empty() || !job.rooms.empty()) {
     try {
-      if (job.rooms.empty()) print_cost_estimates(job, run, scene);
-      else print_building_estimates(job, run);
+      RunOptions calibrated = run;  // the machine's speed, as `ilp run` reads it
+      calibrated.machine = machine_calibration();
+      std::cout << describe(calibrated.machine) << "\n";
+      if (job.rooms.empty()) print_room_estimates(job, calibrated, scene);
+      else print_building_estimates(job, calibrated);
     } catch (const IlpError& e) {
       std::cout << "cost estimate: not available: " << e.what() << "\n";
     } catch (const std::invalid_argument& e) {

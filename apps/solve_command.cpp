@@ -12,6 +12,7 @@
 #include "job/config.h"
 #include "core/operator/cost_model.h"
 #include "core/exact/exact_solver.h"
+#include "job/job_cost.h"
 #include "job/job_scene.h"
 #include "core/rays/point_gather.h"
 #include "job/plan.h"
@@ -190,7 +191,7 @@ void add_grid_points(CostCounts& c, const Scene& scene, const JobConfig& job) {
 int run_solve(const SolveArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   JobConfig job = load_job_config(args.config);
-  const RunOptions run = run_options(args.threads, args.max_memory);
+  const RunOptions run = run_options(args.threads, args.max_memory, true);
   if (args.method == "exact") job.method = SolveMethod::exact;
   if (args.method == "sample") job.method = SolveMethod::sample;
   job.mesh_read.import_limits.max_memory_bytes = memory_budget_bytes(run.max_memory_bytes);
@@ -220,7 +221,7 @@ int run_solve(const SolveArgs& args) {
     }
     add_grid_points(c, scene, job);
     const std::optional<MemoryBudget> budget = memory_budget(run.max_memory_bytes);
-    const CostEstimate estimate = estimate_job_cost(c);
+    const CostEstimate estimate = estimate_job_cost(c, job_machine_costs(job, run));
     for (const std::string& line : format_estimate(estimate)) std::cerr << line << "\n";
     require_fits(estimate, budget, job.path);
   }

@@ -155,8 +155,13 @@ struct RefusedBeforeGrids {
 
 }  // namespace
 
+MachineCosts job_machine_costs(const JobConfig& job, const RunOptions& run) {
+  return machine_costs(run.machine.speed, worker_threads(job, run));
+}
+
 CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, const ModelSpec& spec,
-                               const std::optional<MemoryBudget>& budget, const RayCaster* caster) {
+                               const std::optional<MemoryBudget>& budget, const MachineCosts& costs,
+                               const RayCaster* caster) {
   const std::optional<double> bytes = budget ? std::optional<double>(budget->bytes) : std::nullopt;
   auto before_grids = [&](const LightingModel& partial, const std::vector<CalcGridSize>& grids) {
     if (grids.empty()) return;
@@ -165,7 +170,7 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
     c.counts.photometric = !spec.candidates.type.lambertian();
     c.counts.shares = spec.operator_options.share.count;
     c.counts.hit_block_patches = static_cast<std::size_t>(spec.operator_options.hit_block_patches);
-    c.estimate = estimate_job_cost(c.counts);
+    c.estimate = estimate_job_cost(c.counts, costs);
     c.refusal = refusal_of(c.estimate, budget, job.path);
     if (!c.refusal.empty()) {
       c.model = partial;
@@ -182,7 +187,7 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
   out.counts.photometric = !spec.candidates.type.lambertian();
   out.counts.shares = spec.operator_options.share.count;
   out.counts.hit_block_patches = static_cast<std::size_t>(spec.operator_options.hit_block_patches);
-  out.estimate = estimate_job_cost(out.counts);
+  out.estimate = estimate_job_cost(out.counts, costs);
   out.refusal = refusal_of(out.estimate, budget, job.path);
   return out;
 }

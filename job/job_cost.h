@@ -48,7 +48,12 @@ struct CostedGeometry {
   std::string refusal;   // require_fits's message; empty when the job fits
 };
 CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, const ModelSpec& spec,
-                               const std::optional<MemoryBudget>& budget, const RayCaster* caster = nullptr);
+                               const std::optional<MemoryBudget>& budget, const MachineCosts& costs,
+                               const RayCaster* caster = nullptr);
+
+// The cost model's constants for this job on this machine: run.machine's speed at the
+// job's worker threads.
+MachineCosts job_machine_costs(const JobConfig& job, const RunOptions& run);
 
 // The whole run's time before any work: the sum of its variants' estimates (each
 // variant builds its own operator; the first verifies its layout in full, each later one

@@ -358,7 +358,8 @@ PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const Run
   if (log)
     for (const std::string& line : shared.loaded->log) log(line);
   CostedGeometry costed =
-      costed_geometry(job, shared.loaded->scene, plan.model, memory_budget(run.max_memory_bytes), shared.caster.get());
+      costed_geometry(job, shared.loaded->scene, plan.model, memory_budget(run.max_memory_bytes),
+                      job_machine_costs(job, run), shared.caster.get());
   return prepare_variant(shared, true, std::move(costed), job, plan, run, progress, cache_dir, log);
 }
 

@@ -64,9 +64,10 @@ std::string timing_note(const JobOutcome& outcome) {
 std::vector<CostedGeometry> cost_variants(const SharedScene& shared, const JobConfig& job,
                                           const std::vector<VariantPlan>& plans, const RunOptions& run) {
   const std::optional<MemoryBudget> memory = memory_budget(run.max_memory_bytes);
+  const MachineCosts costs = job_machine_costs(job, run);
   std::vector<CostedGeometry> costed;
   for (const VariantPlan& plan : plans)
-    costed.push_back(costed_geometry(job, shared.loaded->scene, plan.model, memory, shared.caster.get()));
+    costed.push_back(costed_geometry(job, shared.loaded->scene, plan.model, memory, costs, shared.caster.get()));
   return costed;
 }
 

@@ -10,6 +10,8 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
@@ -496,6 +498,65 @@ TEST(IlpInspect, TheWholeRunsEstimateIsTheSumOfItsVariants) {
       << r.out;
   EXPECT_EQ(std::stoi(m[2]), variants);
   EXPECT_NEAR(std::stod(m[1]), expected, 0.1 * variants + 0.05) << "from the rounded per-variant figures";
+}
+
+// A job of luminaire groups: inspect said "not an inverse job" and printed no estimate;
+// it now prints each group's and the whole run's, the figure `ilp run` prints (issue 21).
+TEST(IlpInspect, AJobOfLuminaireGroupsGetsTheWholeRunsEstimateThatRunPrints) {
+  TempDir dir;
+  const std::string job = std::string(ILP_SOURCE_DIR) + "/configs/office_two_groups.yaml";
+  const RunResult inspect = run_ilp(dir, {"inspect", job});
+  ASSERT_EQ(inspect.exit_code, 0) << inspect.err;
+  EXPECT_TRUE(OutputContains(inspect.out, "cost estimate of `ilp run` for group 'general'"));
+  EXPECT_TRUE(OutputContains(inspect.out, "cost estimate of `ilp run` for group 'wall wash'"));
+  std::smatch from_inspect, from_run;
+  ASSERT_TRUE(std::regex_search(inspect.out, from_inspect, std::regex("whole run: about ([0-9.]+) s for its 2 groups")))
+      << inspect.out;
+  const RunResult run = run_ilp(dir, {"run", job, "--out", dir.file("out"), "--no-cache", "-q"});
+  ASSERT_LT(run.exit_code, 3) << run.err;
+  ASSERT_TRUE(std::regex_search(run.err, from_run, std::regex("whole run, [^\n]*about ([0-9.]+) s for its 2 groups")))
+      << run.err;
+  EXPECT_EQ(from_inspect[1].str(), from_run[1].str());
+}
+
+// The estimates follow this machine's calibration (core/operator/machine_speed.h): cached
+// by the first command, read by the next, and a machine twice as slow at every kind of
+// work doubles every phase (issue 21: the constants were one machine's).
+TEST(IlpCalibrate, TheEstimatesFollowTheCachedSpeedOfThisMachine) {
+  TempDir dir;
+  const RunResult calibrate = run_ilp(dir, {"calibrate"});
+  ASSERT_EQ(calibrate.exit_code, 0) << calibrate.err;
+  EXPECT_TRUE(OutputContains(calibrate.out, "probed now (asked to probe again) and cached in"));
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(calibrate.out, m, std::regex("cached in (/[^)]*machine-[0-9a-f]+\\.txt)")))
+      << calibrate.out;
+  const std::string file = m[1];
+  const std::string job = std::string(ILP_SOURCE_DIR) + "/configs/office.yaml";
+  auto total_s = [&] {
+    const RunResult r = run_ilp(dir, {"inspect", job});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(OutputContains(r.out, "(cached in " + file + ")"));  // read, not probed again
+    std::smatch t;
+    EXPECT_TRUE(std::regex_search(r.out, t, std::regex("estimate: in all about ([0-9.]+) s"))) << r.out;
+    return t.empty() ? 0.0 : std::stod(t[1]);
+  };
+  const double as_probed = total_s();
+  // Every per-unit time of the file doubled.
+  std::istringstream lines(read_file(file));
+  std::ostringstream doubled;
+  doubled << std::scientific << std::setprecision(7);
+  for (std::string line; std::getline(lines, line);) {
+    const std::size_t colon = line.find("_s: ");
+    if (colon == std::string::npos) doubled << line << "\n";
+    else doubled << line.substr(0, colon + 4) << 2.0 * std::stod(line.substr(colon + 4)) << "\n";
+  }
+  std::ofstream(file, std::ios::trunc) << doubled.str();
+  const double twice = total_s();
+  EXPECT_GT(as_probed, 0.5);
+  EXPECT_NEAR(twice, 2.0 * as_probed, 0.15) << "each total is rounded to 0.1 s";
+  const RunResult cached = run_ilp(dir, {"calibrate", "--cached"});
+  EXPECT_EQ(cached.exit_code, 0);
+  EXPECT_TRUE(OutputContains(cached.out, "(cached in " + file + ")"));
 }
 
 // A 24 KB malformed COLLADA file (a fuzz finding) makes assimp 5.2.5 allocate without

@@ -1,0 +1,24 @@
+// `ilp calibrate`: probes this machine's speed again and caches it where `ilp run` and
+// `ilp inspect` read it (core/operator/machine_speed.h), then prints it.
+#include <iomanip>
+#include <iostream>
+
+#include "apps/commands.h"
+#include "core/operator/machine_speed.h"
+
+namespace ilp::cli {
+
+int run_calibrate(const CalibrateArgs& args) {
+  const MachineCalibration c = calibrate_machine(default_cache_dir(), !args.cached);
+  const MachineCalibration reference{kReferenceProbe, {}, {}, {}};
+  std::cout << "machine: " << machine_key_text() << "\n";
+  std::cout << std::scientific << std::setprecision(3) << "  per unit, one thread (CPU seconds): a form-factor ray "
+            << c.probe.ray_s << " s (reference " << reference.probe.ray_s << " s), a sparse non-zero "
+            << c.probe.sparse_nnz_s << " s (" << reference.probe.sparse_nnz_s << " s), a dense flop "
+            << c.probe.dense_flop_s << " s (" << reference.probe.dense_flop_s << " s)\n";
+  std::cout << describe(c) << "\n";
+  if (c.file.empty()) return 1;  // not cached: every run would probe anew
+  return 0;
+}
+
+}  // namespace ilp::cli
