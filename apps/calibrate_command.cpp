@@ -3,13 +3,14 @@
 #include <iomanip>
 #include <iostream>
 
+#include "apps/cli_support.h"
 #include "apps/commands.h"
 #include "core/operator/machine_speed.h"
 
 namespace ilp::cli {
 
 int run_calibrate(const CalibrateArgs& args) {
-  const MachineCalibration c = calibrate_machine(default_cache_dir(), !args.cached);
+  const MachineCalibration c = machine_calibration(!args.cached);
   const MachineCalibration reference{kReferenceProbe, {}, {}, {}};
   std::cout << "machine: " << machine_key_text() << "\n";
   std::cout << std::scientific << std::setprecision(3) << "  per unit, one thread (CPU seconds): a form-factor ray "

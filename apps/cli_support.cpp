@@ -7,6 +7,7 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -78,13 +79,17 @@ RunOptions run_options(int threads, const std::string& max_memory, bool estimate
   RunOptions run;
   if (threads >= 0) run.threads = threads;
   if (!max_memory.empty()) run.max_memory_bytes = parse_bytes(max_memory);
-  if (estimates) {
-    run.machine = machine_calibration();
-    std::cerr << describe(run.machine) << "\n";
-  }
+  if (estimates) run.machine = machine_calibration();
   return run;
 }
 
-MachineCalibration machine_calibration() { return calibrate_machine(default_cache_dir()); }
+void log_machine(const RunOptions& run) { std::cerr << describe(run.machine) << "\n"; }
+
+std::string machine_folder() {
+  if (const char* dir = std::getenv("ILP_MACHINE_DIR"); dir && *dir) return dir;
+  return default_cache_dir();
+}
+
+MachineCalibration machine_calibration(bool probe_again) { return calibrate_machine(machine_folder(), probe_again); }
 
 }  // namespace ilp::cli

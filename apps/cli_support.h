@@ -22,11 +22,17 @@ std::string output_directory(const JobConfig& job, const std::string& override_d
 
 // --threads (negative: not given) and --max-memory ("" : not given) as run options.
 // `estimates`: with this machine's calibration for the cost estimates (cached in
-// default_cache_dir(); probed, about a second, when none is), logged on stderr.
+// machine_folder(); probed, about half a second, when none is).
 RunOptions run_options(int threads, const std::string& max_memory, bool estimates = false);
 
-// This machine's calibration (core/operator/machine_speed.h), cached in default_cache_dir().
-MachineCalibration machine_calibration();
+// The calibration's line (describe) on stderr, for the run log.
+void log_machine(const RunOptions& run);
+
+// Where this machine's calibration is kept: $ILP_MACHINE_DIR, else default_cache_dir().
+std::string machine_folder();
+// This machine's calibration (core/operator/machine_speed.h), cached in machine_folder();
+// `probe_again`: probed and the file replaced (`ilp calibrate`).
+MachineCalibration machine_calibration(bool probe_again = false);
 
 // Peak resident memory of this process so far, GB.
 double peak_memory_gb();

@@ -86,7 +86,8 @@ struct InspectArgs {
 int run_inspect(const InspectArgs& args);
 
 // $XDG_CACHE_HOME/ilp, else $HOME/.cache/ilp, else .ilp-cache in the working directory.
-// The operator cache's default folder and where this machine's calibration is kept.
+// The operator cache's default folder and, unless $ILP_MACHINE_DIR says otherwise, where
+// this machine's calibration is kept.
 std::string default_cache_dir();
 
 struct CalibrateArgs {

@@ -192,6 +192,7 @@ int run_solve(const SolveArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   JobConfig job = load_job_config(args.config);
   const RunOptions run = run_options(args.threads, args.max_memory, true);
+  log_machine(run);
   if (args.method == "exact") job.method = SolveMethod::exact;
   if (args.method == "sample") job.method = SolveMethod::sample;
   job.mesh_read.import_limits.max_memory_bytes = memory_budget_bytes(run.max_memory_bytes);

@@ -133,6 +133,8 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
   c.verify_rounds = plan.method == VerificationMethod::none ? 1 : job.verification.rounds;
   c.output_patches = job.output.ply || job.output.csv ? c.patches : 0;
   c.output_renders = job.output.plan_png || job.output.isolux_png || job.output.pdf;
+  if (job.output.plan_png || job.output.pdf)  // the plan's outline: the mounting surface, else every patch (plan_svg.h)
+    c.plan_patches = geometry.grid.mounting_patches().empty() ? c.patches : geometry.grid.mounting_patches().size();
   return c;
 }
 

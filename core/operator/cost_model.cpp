@@ -287,7 +287,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
   if (c.writes_outputs)
     out.phases.push_back({kOutputPhase,
                           m.output_base_s + (c.output_renders ? m.output_render_s : 0.0) +
-                              d(c.output_patches) * m.output_patch_s,
+                              d(c.plan_patches) * m.output_plan_patch_s + d(c.output_patches) * m.output_patch_s,
                           0.0,
                           "output.formats (ply, csv write every patch)"});
   return out;

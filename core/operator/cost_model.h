@@ -17,7 +17,8 @@ namespace ilp {
 // Per-unit costs on 2 threads of the reference machine: the direct light, the
 // verification's solves and rounds fitted on an Intel Xeon 2.8 GHz (2026-12-03,
 // docs/benchmarks.md "Cost model"), the rest earlier on an AMD EPYC, where the shipped
-// jobs ran 1.4-1.6x faster. No per-machine calibration yet.
+// jobs ran 1.4-1.6x faster. Another machine's, and another thread count's, are these
+// scaled by its probed speed (machine_costs in core/operator/machine_speed.h).
 struct MachineCosts {
   double gather_ray_s = 1.0 / 5.3e6;        // one form-factor ray (closest hit, row assembly)
   double precise_pair_ray_s = 7.8e-8;       // direct light: per shadow ray of a precise receiver-source pair
@@ -62,6 +63,11 @@ struct MachineCosts {
   // and 1.3 s between the timings' total and the process's wall clock, 2026-12-03).
   double output_base_s = 0.05;
   double output_render_s = 0.3;             // when plans, isolux maps are rendered to PNG or the PDF is written
+  // A rendered plan (plan.png, the PDF's) fills the room's outline, one triangle a
+  // mounting patch (every patch for suspended luminaires): Sibenik's 222,000 outline
+  // triangles took 3.7 s in plan.png and 3.0 s in report.pdf, written side by side, and
+  // its outputs 3.5 s in all where 1.0 s was estimated (2026-12-03).
+  double output_plan_patch_s = 1.2e-5;
   double output_patch_s = 2.8e-6;
   int grid_rays_per_cell = 8;               // laying a grid: 6 inside-solid rays and 2 floor rays a cell
   double outline_test_s = 1.5e-8;           // one point against one outline triangle, 9 times (the band)
@@ -121,6 +127,7 @@ struct CostCounts {
   bool writes_outputs = true;        // the run writes its output set (the last phase)
   std::size_t output_patches = 0;    // patches the formats write one by one (scene.ply, illuminance.csv)
   bool output_renders = false;       // PNG plans or isolux maps, or the PDF report
+  std::size_t plan_patches = 0;      // the plan's outline triangles when it is rendered (the mounting surface's patches)
 };
 
 struct PhaseEstimate {

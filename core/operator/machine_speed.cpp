@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <ctime>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -30,7 +31,8 @@ namespace ilp {
 namespace {
 
 // Bump when a kernel changes: every cached calibration is then probed anew.
-constexpr int kProbeVersion = 1;
+constexpr int kProbeVersion = 3;
+constexpr int kProbeThreadsMax = 16;
 constexpr const char* kFileHeader = "ilp machine calibration 1";
 
 double thread_cpu_seconds() {
@@ -39,17 +41,22 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// The least of 5 timings of `kernel`, in CPU seconds of this thread: the one least
-// disturbed by other processes (whose switches cost this thread its caches).
+// One timing of `kernel`, in CPU seconds of this thread.
 template <class Kernel>
-double least_cpu_seconds(Kernel&& kernel) {
-  double least = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < 5; ++r) {
-    const double start = thread_cpu_seconds();
-    kernel();
-    least = std::min(least, thread_cpu_seconds() - start);
-  }
-  return least;
+double cpu_seconds(Kernel&& kernel) {
+  const double start = thread_cpu_seconds();
+  kernel();
+  return thread_cpu_seconds() - start;
+}
+
+// Rounds of the three kernels, interleaved: the speed of a shared host drifts from one
+// second to the next, and the median of rounds spread over half a second follows a run's
+// mix of it better than one longer timing or the fastest.
+constexpr int kRounds = 9;
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
 }
 
 // A furnished room: 8 x 6 x 3 m, twelve desks, patches of at most 0.25 m (about 18,000).
@@ -77,53 +84,59 @@ Scene probe_room() {
 }
 
 // Form-factor rows of every 40th patch at 128 rays, on this thread: seconds per ray.
-double probe_rays() {
-  const Scene scene = probe_room();
-  const RayCaster caster(scene, 1);
+double probe_rays(const Scene& scene, const RayCaster& caster) {
   std::vector<int> rows;
   for (std::size_t i = 0; i < scene.patches.size(); i += 40) rows.push_back(static_cast<int>(i));
   FormFactorOptions options;
   options.rays_per_patch = 128;
   options.threads = 1;
-  const double s = least_cpu_seconds([&] { (void)compute_form_factor_rows(scene, caster, rows, options); });
+  const double s = cpu_seconds([&] { (void)compute_form_factor_rows(scene, caster, rows, options); });
   return s / (static_cast<double>(rows.size()) * options.rays_per_patch);
 }
 
-// Gauss-Seidel sweeps over 2^18 rows of 16 random columns (50 MB of values and
-// indices, as a form-factor matrix is held): seconds per non-zero.
-double probe_sparse() {
-  constexpr std::size_t kRows = std::size_t{1} << 18, kPerRow = 16;
-  std::vector<int> columns(kRows * kPerRow);
-  std::vector<double> values(columns.size());
-  std::uint64_t state = 1;
-  for (std::size_t e = 0; e < columns.size(); ++e) {
-    state = splitmix64(state);
-    columns[e] = static_cast<int>(state % kRows);
-    values[e] = 0.9 / kPerRow * to_unit(splitmix64(state));
+// 2^18 rows of 16 random columns: 50 MB of values and indices, as a form-factor matrix
+// is held, much larger than the caches.
+struct SparseRowsProbe {
+  static constexpr std::size_t kRows = std::size_t{1} << 18, kPerRow = 16;
+  std::vector<int> columns;
+  std::vector<double> values;
+  SparseRowsProbe() : columns(kRows * kPerRow), values(kRows * kPerRow) {
+    std::uint64_t state = 1;
+    for (std::size_t e = 0; e < columns.size(); ++e) {
+      state = splitmix64(state);
+      columns[e] = static_cast<int>(state % kRows);
+      values[e] = 0.9 / kPerRow * to_unit(splitmix64(state));
+    }
   }
-  std::vector<double> x(kRows, 0.0);
-  const double s = least_cpu_seconds([&] {
+};
+
+// A Gauss-Seidel sweep over the rows into x, on this thread: seconds per non-zero.
+double probe_sparse(const SparseRowsProbe& m, std::vector<double>& x) {
+  constexpr std::size_t kRows = SparseRowsProbe::kRows, kPerRow = SparseRowsProbe::kPerRow;
+  x.resize(kRows, 0.0);
+  const double s = cpu_seconds([&] {
     for (std::size_t i = 0; i < kRows; ++i) {
       double sum = 1.0;
-      for (std::size_t e = i * kPerRow; e < (i + 1) * kPerRow; ++e) sum += values[e] * x[static_cast<std::size_t>(columns[e])];
+      for (std::size_t e = i * kPerRow; e < (i + 1) * kPerRow; ++e)
+        sum += m.values[e] * x[static_cast<std::size_t>(m.columns[e])];
       x[i] = sum;
     }
   });
   volatile double keep = x[kRows / 2];  // the sweeps are not optimised away
   (void)keep;
-  return s / static_cast<double>(columns.size());
+  return s / static_cast<double>(m.columns.size());
 }
 
-// A product of two 256 x 256 matrices: seconds per flop.
+// A product of two 384 x 384 matrices: seconds per flop.
 double probe_dense() {
-  constexpr int kSize = 256;
+  constexpr int kSize = 384;
   Eigen::MatrixXd a(kSize, kSize), b(kSize, kSize), c(kSize, kSize);
   std::uint64_t state = 7;
   for (Eigen::Index e = 0; e < a.size(); ++e) {
     a.data()[e] = to_unit(state = splitmix64(state));
     b.data()[e] = to_unit(state = splitmix64(state));
   }
-  const double s = least_cpu_seconds([&] { c.noalias() = a * b; });
+  const double s = cpu_seconds([&] { c.noalias() = a * b; });
   volatile double keep = c(kSize / 2, kSize / 2);
   (void)keep;
   return s / (2.0 * kSize * kSize * kSize);
@@ -260,12 +273,46 @@ MachineSpeed speed_against_reference(const ProbeTimes& here) {
 }
 
 ProbeTimes probe_machine() {
-  const RayCaster::ThreadModes modes;
-  return {probe_rays(), probe_sparse(), probe_dense()};
+  const Scene scene = probe_room();
+  const RayCaster caster(scene, 1);
+  const SparseRowsProbe rows;
+  // Every core at once, as a run's worker threads (they share the memory bus, and a
+  // virtual machine's cores need not be equally fast); the mean of their times.
+  const int cores = std::clamp(tbb::info::default_concurrency(), 1, kProbeThreadsMax);
+  std::vector<ProbeTimes> each(static_cast<std::size_t>(cores));
+  std::vector<std::exception_ptr> failed(each.size());
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < each.size(); ++i)
+    threads.emplace_back([&, i] {
+      try {
+        const RayCaster::ThreadModes modes;
+        std::vector<double> ray_s, sparse_s, dense_s, x;
+        for (int r = 0; r < kRounds; ++r) {
+          ray_s.push_back(probe_rays(scene, caster));
+          sparse_s.push_back(probe_sparse(rows, x));
+          dense_s.push_back(probe_dense());
+        }
+        each[i] = {median(ray_s), median(sparse_s), median(dense_s)};
+      } catch (...) {
+        failed[i] = std::current_exception();
+      }
+    });
+  for (std::thread& t : threads) t.join();
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
+  ProbeTimes mean;
+  for (const ProbeTimes& p : each) {
+    mean.ray_s += p.ray_s / cores;
+    mean.sparse_nnz_s += p.sparse_nnz_s / cores;
+    mean.dense_flop_s += p.dense_flop_s / cores;
+  }
+  return mean;
 }
 
 MachineCosts machine_costs(const MachineSpeed& speed, int threads, const MachineCosts& reference) {
-  const double t = threads > 0 ? threads : std::max(1, tbb::info::default_concurrency());
+  // More threads than the cores this process may use run no faster.
+  const int cores = std::max(1, tbb::info::default_concurrency());
+  const double t = threads > 0 ? std::min(threads, cores) : cores;
   const double amdahl = (kSerialShare + (1.0 - kSerialShare) / t) / (kSerialShare + (1.0 - kSerialShare) / 2.0);
   const double rays = speed.rays * amdahl, memory = speed.memory * amdahl, dense = speed.dense * amdahl;
   MachineCosts m = reference;
@@ -275,7 +322,8 @@ MachineCosts machine_costs(const MachineSpeed& speed, int threads, const Machine
   for (double* c : {&m.sparse_flop_s, &m.gauss_seidel_nnz_s, &m.blend_mac_s}) *c *= memory;
   m.dense_flop_s *= dense;
   // Reading the model and writing the outputs: mostly one thread.
-  for (double* c : {&m.scene_patch_s, &m.output_base_s, &m.output_render_s, &m.output_patch_s}) *c *= speed.rays;
+  for (double* c : {&m.scene_patch_s, &m.output_base_s, &m.output_render_s, &m.output_plan_patch_s, &m.output_patch_s})
+    *c *= speed.rays;
   return m;
 }
 

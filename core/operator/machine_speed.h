@@ -1,10 +1,10 @@
 // This machine's speed against the reference machine the cost model's constants were
 // measured on (MachineCosts in cost_model.h), so that the estimate a run prints holds
 // on any machine. A probe of a fraction of a second times the kernels the run's phases
-// are made of (form-factor rays, a memory-bound sparse sweep, a dense product) in CPU
-// seconds of one thread, so that a load on the other cores does not read as a slow
-// machine, and the result is cached per machine and build so that `ilp inspect` and
-// `ilp run` print the same estimate.
+// are made of (form-factor rays, a memory-bound sparse sweep, a dense product) on every
+// core at once, each thread in its own CPU seconds, so that another process's load does
+// not read as a slow machine, and the result is cached per machine and build so that
+// `ilp inspect` and `ilp run` print the same estimate.
 #pragma once
 
 #include <string>
@@ -35,7 +35,8 @@ struct MachineSpeed {
 
 MachineSpeed speed_against_reference(const ProbeTimes& here);
 
-// Times the three kernels on the calling thread (about 0.3 s on the reference).
+// Times the three kernels on one thread per core (up to 16) at once, each in its own CPU
+// seconds, and gives the mean (about 0.3 s of wall clock on the reference).
 ProbeTimes probe_machine();
 
 // The share of a 2-thread run on the reference machine that did not speed up with the
@@ -43,9 +44,10 @@ ProbeTimes probe_machine();
 // than on 1 (2026-12-04).
 inline constexpr double kSerialShare = 0.23;
 
-// MachineCosts for `threads` worker threads (0: every core) at `speed`: the reference
-// constants (measured on 2 threads) times the speed of their kind of work and, but for
-// reading the model and writing the outputs, Amdahl's factor from 2 threads to `threads`.
+// MachineCosts for `threads` worker threads (0: every core; at most the cores this
+// process may use) at `speed`: the reference constants (measured on 2 threads) times the
+// speed of their kind of work and, but for reading the model and writing the outputs,
+// Amdahl's factor from 2 threads to `threads`.
 MachineCosts machine_costs(const MachineSpeed& speed, int threads, const MachineCosts& reference = {});
 
 // The probe cached for this machine and build.

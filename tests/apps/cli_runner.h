@@ -4,8 +4,10 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,6 +22,12 @@ inline std::string quoted(const std::string& s) {
   return out + "'";
 }
 
+// One folder of the machine's calibration (ILP_MACHINE_DIR) for every CLI test of this
+// user: the first `ilp` to need it probes, the rest read it (core/operator/machine_speed.h).
+inline std::string suite_machine_dir() {
+  return (std::filesystem::temp_directory_path() / ("ilp_test_machine_" + std::to_string(::getuid()))).string();
+}
+
 struct RunResult {
   int exit_code = -1;
   std::string out;
@@ -32,8 +40,9 @@ inline RunResult run_ilp(const TempDir& dir, const std::vector<std::string>& arg
                          const std::vector<std::string>& prefix = {}) {
   const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
   std::ostringstream command;  // (string + on GCC 12 trips a false -Wrestrict)
-  // The operator cache goes to the test's folder, never to the user's.
-  command << "XDG_CACHE_HOME=" << quoted(dir.file("xdg-cache"));
+  // The operator cache goes to the test's folder, never to the user's; the machine's
+  // calibration is probed once for the whole suite (tests of it give their own folder).
+  command << "XDG_CACHE_HOME=" << quoted(dir.file("xdg-cache")) << " ILP_MACHINE_DIR=" << quoted(suite_machine_dir());
   for (const std::string& p : prefix) command << ' ' << quoted(p);
   command << ' ' << quoted(ILP_BINARY);
   for (const std::string& a : args) command << ' ' << quoted(a);

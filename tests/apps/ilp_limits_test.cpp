@@ -39,7 +39,8 @@ struct TimedRun {
 };
 TimedRun run_ilp_with(const TempDir& dir, const std::string& prefix, const std::vector<std::string>& args) {
   std::ostringstream command;
-  command << prefix << " XDG_CACHE_HOME=" << quoted(dir.file("xdg-cache")) << " timeout 60 " << quoted(ILP_BINARY);
+  command << prefix << " XDG_CACHE_HOME=" << quoted(dir.file("xdg-cache"))
+          << " ILP_MACHINE_DIR=" << quoted(ilp::test::suite_machine_dir()) << " timeout 60 " << quoted(ILP_BINARY);
   for (const std::string& a : args) command << ' ' << quoted(a);
   command << " >" << quoted(dir.file("stdout.txt")) << " 2>" << quoted(dir.file("stderr.txt")) << " </dev/null";
   const auto start = std::chrono::steady_clock::now();
