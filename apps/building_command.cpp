@@ -99,7 +99,6 @@ void stage_received(OutputSet& set, const std::string& name, const std::string& 
 int run_building_distributed(const RunArgs& args, const JobConfig& job, const dist::Communicator& comm) {
   const auto start = Clock::now();
   RunOptions run = run_options(args.threads, args.max_memory, true);
-  if (comm.is_root()) log_machine(run);
   // The ranks on one node share its memory: without --max-memory each may use its share
   // of what the node has, so the cost model refuses a room that does not fit beside the
   // others' (a scene and its BVH are per rank; docs/cluster.md).
@@ -212,7 +211,6 @@ int run_building(const RunArgs& args, const JobConfig& job) {
   if (comm.distributed()) return run_building_distributed(args, job, comm);
   const auto start = Clock::now();
   const RunOptions run = run_options(args.threads, args.max_memory, true);
-  log_machine(run);
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.
   OutputSet set(output_directory(job, args.out_dir), building_output_names(job));

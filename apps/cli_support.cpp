@@ -83,8 +83,6 @@ RunOptions run_options(int threads, const std::string& max_memory, bool estimate
   return run;
 }
 
-void log_machine(const RunOptions& run) { std::cerr << describe(run.machine) << "\n"; }
-
 std::string machine_folder() {
   if (const char* dir = std::getenv("ILP_MACHINE_DIR"); dir && *dir) return dir;
   return default_cache_dir();

@@ -25,9 +25,6 @@ std::string output_directory(const JobConfig& job, const std::string& override_d
 // machine_folder(); probed, about half a second, when none is).
 RunOptions run_options(int threads, const std::string& max_memory, bool estimates = false);
 
-// The calibration's line (describe) on stderr, for the run log.
-void log_machine(const RunOptions& run);
-
 // Where this machine's calibration is kept: $ILP_MACHINE_DIR, else default_cache_dir().
 std::string machine_folder();
 // This machine's calibration (core/operator/machine_speed.h), cached in machine_folder();

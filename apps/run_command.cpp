@@ -523,7 +523,6 @@ void print_peak_memory_per_rank(const dist::Communicator& comm, const std::strin
 // verifies alone while the others wait (docs/cluster.md).
 int run_split_room(const RunArgs& args, const JobConfig& job, const dist::Communicator& comm) {
   RunOptions run = run_options(args.threads, args.max_memory, true);
-  if (comm.is_root()) log_machine(run);
   run.operator_share = operator_share(comm);
   // The ranks on one node share its memory: without --max-memory each may use its share of
   // what the node has (rank 0's figure on every rank, so that every rank plans alike).
@@ -593,7 +592,6 @@ int run_job(const RunArgs& args) {
 int run_single_room(const RunArgs& args, const JobConfig& job, std::vector<PreparedJob> prepared,
                     double prepared_seconds) {
   const RunOptions run = run_options(args.threads, args.max_memory, true);
-  if (prepared.empty()) log_machine(run);  // a split room's was logged before its operator builds
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.
   OutputSet set(output_directory(job, args.out_dir), run_output_names(job, false));
@@ -614,7 +612,6 @@ int run_sweep(const SweepArgs& args) {
   if (!job.rooms.empty())
     throw ConfigError(job.path + ": rooms: ilp sweep runs single-room jobs; run the building with ilp run");
   const RunOptions run = run_options(args.threads, args.max_memory, true);
-  log_machine(run);
   SweepSetting sweep;
   if (!args.set.empty()) {
     sweep = parse_set(args.set);

@@ -192,12 +192,12 @@ int run_solve(const SolveArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   JobConfig job = load_job_config(args.config);
   const RunOptions run = run_options(args.threads, args.max_memory, true);
-  log_machine(run);
   if (args.method == "exact") job.method = SolveMethod::exact;
   if (args.method == "sample") job.method = SolveMethod::sample;
   job.mesh_read.import_limits.max_memory_bytes = memory_budget_bytes(run.max_memory_bytes);
   const JobScene loaded = load_job_scene(job);
   for (const std::string& line : loaded.log) std::cerr << line << "\n";
+  std::cerr << describe(run.machine) << "\n";
   {
     // The cost model: the exact solve as a verification of every patch, or one operator build.
     const Scene& scene = loaded.scene;

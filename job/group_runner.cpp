@@ -248,8 +248,7 @@ PreparedGroups prepare_groups(const JobConfig& job, const RunOptions& run, const
   std::vector<JobConfig> jobs;
   for (std::size_t g = 0; g < job.groups.size(); ++g) jobs.push_back(group_job(job, g));
   SharedScene shared = load_shared_scene(jobs.front(), run);
-  if (log)
-    for (const std::string& line : shared.loaded->log) log(line);
+  log_shared_scene(shared, run, log);
   for (const JobConfig& one : jobs) require_search_surfaces(one, shared.loaded->scene);
   std::vector<std::vector<VariantPlan>> plans;
   std::vector<std::vector<CostedGeometry>> costed;

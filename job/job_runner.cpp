@@ -352,11 +352,16 @@ SharedScene load_shared_scene(const JobConfig& job, const RunOptions& run) {
   return out;
 }
 
+void log_shared_scene(const SharedScene& shared, const RunOptions& run, const LogSink& log) {
+  if (!log) return;
+  for (const std::string& line : shared.loaded->log) log(line);
+  log(describe(run.machine));
+}
+
 PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const RunOptions& run,
                         const ProgressCallback& progress, const std::string& cache_dir, const LogSink& log) {
   SharedScene shared = load_shared_scene(job, run);
-  if (log)
-    for (const std::string& line : shared.loaded->log) log(line);
+  log_shared_scene(shared, run, log);
   CostedGeometry costed =
       costed_geometry(job, shared.loaded->scene, plan.model, memory_budget(run.max_memory_bytes),
                       job_machine_costs(job, run), shared.caster.get());

@@ -65,6 +65,9 @@ struct SharedScene {
   double scene_seconds = 0.0, bvh_seconds = 0.0;
 };
 SharedScene load_shared_scene(const JobConfig& job, const RunOptions& run);
+// Its log lines, then the machine's speed the estimates that follow are made at
+// (run.machine: core/operator/machine_speed.h).
+void log_shared_scene(const SharedScene& shared, const RunOptions& run, const LogSink& log);
 // prepare_job on a scene already read, with the variant's costed geometry
 // (costed_geometry on shared.loaded->scene with shared.caster), which it logs and refuses
 // as prepare_job does; it does not log the scene's lines. `last`: no later variant uses

@@ -106,8 +106,7 @@ std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vecto
   if (plans.empty()) return {};
   // The scene, its BVH and every variant's geometry once (none depends on another variant).
   SharedScene shared = load_shared_scene(job, run);
-  if (log)
-    for (const std::string& line : shared.loaded->log) log(line);
+  log_shared_scene(shared, run, log);
   std::vector<CostedGeometry> costed = cost_variants(shared, job, plans, run);
   if (plans.size() > 1 && log) {
     // The whole run's estimate before the first variant: what a user plans with.
