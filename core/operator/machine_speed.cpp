@@ -157,6 +157,12 @@ std::string cpu_model_name() {
   return "unknown";
 }
 
+#if defined(__has_feature)
+#define ILP_HAS_FEATURE(x) __has_feature(x)
+#else
+#define ILP_HAS_FEATURE(x) 0
+#endif
+
 std::string build_kind() {
   std::string out;
 #if defined(__OPTIMIZE__)
@@ -164,19 +170,11 @@ std::string build_kind() {
 #else
   out = "unoptimised";
 #endif
-#if defined(__SANITIZE_ADDRESS__)
-  out += ", address sanitizer";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
+#if defined(__SANITIZE_ADDRESS__) || ILP_HAS_FEATURE(address_sanitizer)
   out += ", address sanitizer";
 #endif
-#endif
-#if defined(__SANITIZE_THREAD__)
+#if defined(__SANITIZE_THREAD__) || ILP_HAS_FEATURE(thread_sanitizer)
   out += ", thread sanitizer";
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-  out += ", thread sanitizer";
-#endif
 #endif
   return out;
 }
