@@ -245,7 +245,7 @@ CLI::App* add_ugr_table_command(CLI::App& app, ilp::cli::UgrTableArgs& args) {
 // This machine's speed for the cost estimate: `ilp calibrate`.
 CLI::App* add_calibrate_command(CLI::App& app, ilp::cli::CalibrateArgs& args) {
   CLI::App* command = app.add_subcommand(
-      "calibrate", "Probe this machine's speed (form-factor rays, sparse sweeps, dense products; about a second) "
+      "calibrate", "Probe this machine's speed (form-factor rays, sparse sweeps, dense products; about half a second) "
                    "against the machine the cost model was measured on, and cache it where `ilp run` and `ilp "
                    "inspect` read it for their estimates ($ILP_MACHINE_DIR, else $XDG_CACHE_HOME/ilp or ~/.cache/ilp). They probe once by "
                    "themselves when nothing is cached; run this after a change of hardware or when the estimates "
