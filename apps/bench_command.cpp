@@ -51,7 +51,7 @@ void random_layout(const LightingModel& model, int count, std::mt19937_64& rng, 
 int run_bench(const BenchArgs& args) {
   const auto start = Clock::now();
   JobConfig job = load_job_config(args.config);
-  const RunOptions run = run_options(args.threads, args.max_memory);
+  const RunOptions run = run_options(args.threads, args.max_memory, true);  // its estimate of this machine
   if (args.patch_edge_m > 0.0) job.scene.max_patch_edge_m = args.patch_edge_m;
   if (args.sample_fraction > 0.0) {
     job.sample.size.reset();

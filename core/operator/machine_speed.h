@@ -55,7 +55,8 @@ struct MachineCalibration {
   ProbeTimes probe;
   MachineSpeed speed;
   std::string file;    // where it is cached; empty: not cached
-  std::string note;    // what was done, for the log ("probed and cached in ...", "not cached: ...")
+  // What was done, for the log ("probed now (...) and cached in ...", "cached in ...").
+  std::string note = "not probed: the reference machine's figures";
 };
 
 // What the cache file's name and first lines key on: the CPU's model name, the logical
