@@ -40,7 +40,8 @@ void run(const std::string& path) {
   const ilp::MemoryBudget budget{64e6, "the harness"};
   for (const ilp::VariantPlan& plan : plans) {
     if (!job.search || job.goals.empty()) break;
-    const ilp::CostedGeometry costed = ilp::costed_geometry(job, loaded.scene, plan.model, budget);
+    const ilp::CostedGeometry costed =
+        ilp::costed_geometry(job, loaded.scene, plan.model, budget, ilp::job_machine_costs(job, options));
     (void)costed;
   }
 }
