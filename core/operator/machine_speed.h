@@ -13,7 +13,7 @@
 
 namespace ilp {
 
-// CPU seconds of one thread per unit of each kernel.
+// Seconds per unit of each kernel, in a thread's own CPU time (the mean of the cores').
 struct ProbeTimes {
   double ray_s = 0.0;         // one form-factor ray: closest hit and the row's assembly
   double sparse_nnz_s = 0.0;  // one non-zero of a Gauss-Seidel sweep over rows much larger than the caches
@@ -21,9 +21,9 @@ struct ProbeTimes {
 };
 
 // The probe on the reference machine, where MachineCosts' constants were measured (Intel
-// Xeon 2.8 GHz, the Release build, 2026-12-03): what makes the estimates of the shipped
-// jobs and three real models, each run just after a probe, 1.0 on the median of the jobs'
-// estimate / measured (docs/benchmarks.md, "Cost model per machine").
+// Xeon 2.8 GHz, the Release build, 2026-12-03): with it, the shipped jobs and three real
+// models, each run just after a probe of its own, read 0.80-1.25 of their estimate, median
+// 1.05 (docs/benchmarks.md, "The cost model per machine").
 inline constexpr ProbeTimes kReferenceProbe{2.54e-7, 2.84e-9, 0.98e-10};
 
 // Time here over time on the reference, per kind of work (2: twice as slow).
@@ -35,13 +35,14 @@ struct MachineSpeed {
 
 MachineSpeed speed_against_reference(const ProbeTimes& here);
 
-// Times the three kernels on one thread per core (up to 16) at once, each in its own CPU
-// seconds, and gives the mean (about 0.3 s of wall clock on the reference).
+// Times the three kernels on one thread per core (up to 16) at once, each thread in its
+// own CPU seconds, the median of nine interleaved rounds; gives the mean of the threads
+// (0.4-0.6 s of wall clock on the reference).
 ProbeTimes probe_machine();
 
 // The share of a 2-thread run on the reference machine that did not speed up with the
 // second thread (Amdahl's serial share): the classroom ran 1.63x faster on 2 threads
-// than on 1 (2026-12-04).
+// than on 1 (2026-12-03).
 inline constexpr double kSerialShare = 0.23;
 
 // MachineCosts for `threads` worker threads (0: every core; at most the cores this

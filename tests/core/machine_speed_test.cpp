@@ -67,7 +67,7 @@ std::string write_calibration(const std::string& folder, const std::string& text
 
 std::string file_with(const ProbeTimes& p) {
   std::ostringstream os;
-  os << "ilp machine calibration 1\nkey: " << machine_key_text() << "\nprobed: 2026-12-04T00:00:00Z\nray_s: " << p.ray_s
+  os << "ilp machine calibration 1\nkey: " << machine_key_text() << "\nprobed: 2026-12-03T00:00:00Z\nray_s: " << p.ray_s
      << "\nsparse_nnz_s: " << p.sparse_nnz_s << "\ndense_flop_s: " << p.dense_flop_s << "\n";
   return os.str();
 }
