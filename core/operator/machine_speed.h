@@ -2,9 +2,10 @@
 // measured on (MachineCosts in cost_model.h), so that the estimate a run prints holds
 // on any machine. A probe of a fraction of a second times the kernels the run's phases
 // are made of (form-factor rays, a memory-bound sparse sweep, a dense product) on every
-// core at once, each thread in its own CPU seconds, so that another process's load does
-// not read as a slow machine, and the result is cached per machine and build so that
-// `ilp inspect` and `ilp run` print the same estimate.
+// core at once, each thread in its own CPU seconds, so that another process's load counts
+// less than in wall-clock time (a heavy one still reads high: docs/benchmarks.md), and the
+// result is cached per machine and build so that `ilp inspect` and `ilp run` print the
+// same estimate.
 #pragma once
 
 #include <string>
