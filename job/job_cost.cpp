@@ -158,7 +158,7 @@ struct RefusedBeforeGrids {
 }  // namespace
 
 MachineCosts job_machine_costs(const JobConfig& job, const RunOptions& run) {
-  return machine_costs(run.machine.speed, worker_threads(job, run));
+  return machine_costs(run.machine.speed, usable_threads(worker_threads(job, run)));
 }
 
 CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, const ModelSpec& spec,

@@ -64,9 +64,10 @@ struct MachineCosts {
   double output_base_s = 0.05;
   double output_render_s = 0.3;             // when plans, isolux maps are rendered to PNG or the PDF is written
   // A rendered plan (plan.png, the PDF's) fills the room's outline, one triangle a
-  // mounting patch (every patch for suspended luminaires): Sibenik's 222,000 outline
-  // triangles took 3.7 s in plan.png and 3.0 s in report.pdf, written side by side, and
-  // its outputs 3.5 s in all where 1.0 s was estimated (2026-12-03).
+  // mounting patch (every patch for suspended luminaires): with Sibenik's 222,000 outline
+  // triangles its outputs took 3.4-4.1 s (the wall clock of `ilp run --no-cache` less
+  // timings.json's total) where 1.0 s was estimated; the classroom's 9,500, 0.85-1.03 s
+  // (2026-12-03).
   double output_plan_patch_s = 1.2e-5;
   double output_patch_s = 2.8e-6;
   int grid_rays_per_cell = 8;               // laying a grid: 6 inside-solid rays and 2 floor rays a cell

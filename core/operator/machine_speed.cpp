@@ -186,21 +186,26 @@ std::string digest(const std::string& text) {
   return os.str();
 }
 
+// The calibration file of `key` in `folder`.
+std::string path_of(const std::string& folder, const std::string& key) {
+  return (std::filesystem::path(folder) / ("machine-" + digest(key) + ".txt")).string();
+}
+
 bool plausible(double per_unit_s) { return std::isfinite(per_unit_s) && per_unit_s > 1e-14 && per_unit_s < 1e-3; }
 
-std::string file_text(const ProbeTimes& p) {
+std::string file_text(const ProbeTimes& p, const std::string& key) {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   std::tm utc{};
   gmtime_r(&now, &utc);
   std::ostringstream os;
-  os << kFileHeader << "\nkey: " << machine_key_text() << "\nprobed: " << std::put_time(&utc, "%Y-%m-%dT%H:%M:%SZ")
+  os << kFileHeader << "\nkey: " << key << "\nprobed: " << std::put_time(&utc, "%Y-%m-%dT%H:%M:%SZ")
      << std::scientific << std::setprecision(6) << "\nray_s: " << p.ray_s << "\nsparse_nnz_s: " << p.sparse_nnz_s
      << "\ndense_flop_s: " << p.dense_flop_s << "\n";
   return os.str();
 }
 
-// The probe times a file holds, or why it cannot be used.
-std::optional<ProbeTimes> read_file(const std::string& path, std::string& why) {
+// The probe times a file of `key` holds, or why it cannot be used.
+std::optional<ProbeTimes> read_file(const std::string& path, const std::string& key, std::string& why) {
   std::ifstream in(path);
   if (!in) {
     why = "none cached";
@@ -211,7 +216,7 @@ std::optional<ProbeTimes> read_file(const std::string& path, std::string& why) {
     why = path + " is not a calibration of this version";
     return std::nullopt;
   }
-  if (!std::getline(in, line) || line != "key: " + machine_key_text()) {
+  if (!std::getline(in, line) || line != "key: " + key) {
     why = path + " is another machine's or build's";
     return std::nullopt;
   }
@@ -305,10 +310,13 @@ ProbeTimes probe_machine() {
   return mean;
 }
 
-MachineCosts machine_costs(const MachineSpeed& speed, int threads, const MachineCosts& reference) {
-  // More threads than the cores this process may use run no faster.
+int usable_threads(int threads) {
   const int cores = std::max(1, tbb::info::default_concurrency());
-  const double t = threads > 0 ? std::min(threads, cores) : cores;
+  return threads > 0 ? std::min(threads, cores) : cores;
+}
+
+MachineCosts machine_costs(const MachineSpeed& speed, int threads, const MachineCosts& reference) {
+  const double t = std::max(1, threads);
   const double amdahl = (kSerialShare + (1.0 - kSerialShare) / t) / (kSerialShare + (1.0 - kSerialShare) / 2.0);
   const double rays = speed.rays * amdahl, memory = speed.memory * amdahl, dense = speed.dense * amdahl;
   MachineCosts m = reference;
@@ -335,16 +343,15 @@ std::string machine_key_text() {
   return os.str();
 }
 
-std::string calibration_path(const std::string& folder) {
-  return (std::filesystem::path(folder) / ("machine-" + digest(machine_key_text()) + ".txt")).string();
-}
+std::string calibration_path(const std::string& folder) { return path_of(folder, machine_key_text()); }
 
 MachineCalibration calibrate_machine(const std::string& folder, bool probe_again) {
   MachineCalibration out;
-  const std::string path = folder.empty() ? std::string() : calibration_path(folder);
+  const std::string key = machine_key_text();  // reads /proc/cpuinfo: once
+  const std::string path = folder.empty() ? std::string() : path_of(folder, key);
   std::string why = "no cache folder";
   if (!path.empty()) {
-    std::optional<ProbeTimes> cached = probe_again ? std::nullopt : read_file(path, why);
+    std::optional<ProbeTimes> cached = probe_again ? std::nullopt : read_file(path, key, why);
     if (probe_again) why = "asked to probe again";
     if (cached) {
       out.probe = *cached;
@@ -361,12 +368,12 @@ MachineCalibration calibrate_machine(const std::string& folder, bool probe_again
     std::filesystem::create_directories(folder, ec);
     bool kept = false;
     const bool absent = !std::filesystem::exists(path, ec);
-    if (!write_file(path, file_text(out.probe), !absent, kept)) {
+    if (!write_file(path, file_text(out.probe, key), !absent, kept)) {
       out.note += ": cannot write " + path;
     } else if (!kept) {
       out.file = path;
       out.note = "probed now (" + why + ") and cached in " + path;
-    } else if (std::optional<ProbeTimes> theirs = read_file(path, why)) {
+    } else if (std::optional<ProbeTimes> theirs = read_file(path, key, why)) {
       out.probe = *theirs;  // another process probed first: its figures, as every later command reads them
       out.file = path;
       out.note = "cached in " + path + " by another process while this one probed";

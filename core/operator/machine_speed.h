@@ -46,10 +46,13 @@ ProbeTimes probe_machine();
 // than on 1 (2026-12-03).
 inline constexpr double kSerialShare = 0.23;
 
-// MachineCosts for `threads` worker threads (0: every core; at most the cores this
-// process may use) at `speed`: the reference constants (measured on 2 threads) times the
-// speed of their kind of work and, but for reading the model and writing the outputs,
-// Amdahl's factor from 2 threads to `threads`.
+// The worker threads that run at once: `threads` (0: every core) but at most the cores
+// this process may use (more run no faster).
+int usable_threads(int threads);
+
+// MachineCosts for `threads` (>= 1) worker threads at `speed`: the reference constants
+// (measured on 2 threads) times the speed of their kind of work and, but for reading the
+// model and writing the outputs, Amdahl's factor from 2 threads to `threads`.
 MachineCosts machine_costs(const MachineSpeed& speed, int threads, const MachineCosts& reference = {});
 
 // The probe cached for this machine and build.

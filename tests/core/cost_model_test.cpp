@@ -104,9 +104,10 @@ TEST(CostModel, PrecisePairsFollowTheirLightsKind) {
   EXPECT_GT(phase_seconds(estimate_job_cost(near), "goal rows"), phase_seconds(estimate_job_cost(far), "goal rows"));
 }
 
-// Sibenik's outputs took 3.5 s where 1.0 s was estimated (2026-12-03): plan.png and
-// report.pdf fill the plan's outline, 222,000 triangles there (suspended luminaires: every
-// patch), in 3.7 and 3.0 s side by side; the classroom's 9,500 in 0.8 and 0.5 s.
+// Sibenik's outputs took 3.5 s (median of 3; `ilp run --no-cache`'s wall clock less
+// timings.json's total) where 1.0 s was estimated (2026-12-03): plan.png and report.pdf
+// fill the plan's outline, 222,000 triangles there (suspended luminaires: every patch);
+// the classroom's outputs, with 9,500, 0.93 s.
 TEST(CostModel, ARenderedPlanCostsItsOutlineTriangles) {
   CostCounts sibenik = room_counts(204572, 0, 286, 4000);
   sibenik.output_patches = sibenik.patches;  // illuminance.csv
@@ -118,8 +119,7 @@ TEST(CostModel, ARenderedPlanCostsItsOutlineTriangles) {
   classroom.patches = classroom.output_patches = 167659;
   classroom.plan_patches = 9500;
   const double classroom_s = phase_seconds(estimate_job_cost(classroom), kOutputPhase);
-  EXPECT_GT(classroom_s, 0.8 / 1.3);
-  EXPECT_LT(classroom_s, 1.0 * 1.3);
+  EXPECT_NEAR(classroom_s / 0.93, 1.0, 0.3);
 }
 
 TEST(CostModel, TheInterreflectionSolveGrowsAsK) {
