@@ -8,9 +8,9 @@
 
 #include "apps/cli_support.h"
 #include "apps/commands.h"
-#include "core/operator/accuracy_study.h"
+#include "core/study/accuracy_study.h"
 #include "core/grid/calc_grid.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "job/config.h"
 #include "core/base/error.h"
 #include "job/job_scene.h"

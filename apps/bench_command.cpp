@@ -14,7 +14,7 @@
 #include "apps/cli_support.h"
 #include "apps/commands.h"
 #include "job/config.h"
-#include "core/operator/cost_model.h"
+#include "core/cost/cost_model.h"
 #include "core/exact/exact_solver.h"
 #include "job/job_runner.h"
 

@@ -15,7 +15,7 @@
 #include "apps/cli_support.h"
 #include "apps/run_support.h"
 #include "core/base/error.h"
-#include "core/operator/cost_model.h"
+#include "core/cost/cost_model.h"
 #include "dist/communicator.h"
 #include "job/building.h"
 #include "job/room_exchange.h"

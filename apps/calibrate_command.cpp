@@ -1,11 +1,11 @@
 // `ilp calibrate`: probes this machine's speed again and caches it where `ilp run` and
-// `ilp inspect` read it (core/operator/machine_speed.h), then prints it.
+// `ilp inspect` read it (core/cost/machine_speed.h), then prints it.
 #include <iomanip>
 #include <iostream>
 
 #include "apps/cli_support.h"
 #include "apps/commands.h"
-#include "core/operator/machine_speed.h"
+#include "core/cost/machine_speed.h"
 
 namespace ilp::cli {
 

@@ -1,8 +1,8 @@
 #include "apps/cli_support.h"
 
 #include "apps/commands.h"
-#include "core/operator/cost_model.h"
-#include "core/operator/machine_speed.h"
+#include "core/cost/cost_model.h"
+#include "core/cost/machine_speed.h"
 
 #include <sys/resource.h>
 

@@ -27,7 +27,7 @@ RunOptions run_options(int threads, const std::string& max_memory, bool estimate
 
 // Where this machine's calibration is kept: $ILP_MACHINE_DIR, else default_cache_dir().
 std::string machine_folder();
-// This machine's calibration (core/operator/machine_speed.h), cached in machine_folder();
+// This machine's calibration (core/cost/machine_speed.h), cached in machine_folder();
 // `probe_again`: probed and the file replaced (`ilp calibrate`).
 MachineCalibration machine_calibration(bool probe_again = false);
 

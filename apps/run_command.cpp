@@ -24,7 +24,7 @@
 #include "apps/run_support.h"
 #include "job/config.h"
 #include "core/light/luminaire_product.h"
-#include "core/operator/cost_model.h"
+#include "core/cost/cost_model.h"
 #include "optimizer/goal_metrics.h"
 #include "job/group_runner.h"
 #include "job/job_runner.h"

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/rays/form_factors.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/form_factors.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/reference_scenes.h"
 
 int main() {
@@ -32,7 +32,7 @@ int main() {
         options.rays_per_patch = rays;
         options.seed = static_cast<std::uint64_t>(seed);
         const auto rows = ilp::compute_form_factor_rows(scene, caster, scene.all_patches(), options);
-        const double error = ilp::reference::surface_form_factor(scene, rows, "bottom", "top") - exact;
+        const double error = ilp::surface_form_factor(scene, rows, "bottom", "top") - exact;
         sum_squares += error * error;
         worst = std::max(worst, std::abs(error));
       }

@@ -7,7 +7,7 @@
 //   ./build/bench/ilp_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
 // Embree is used directly here only for the baseline; the library keeps it in
-// core/rays/ray_caster.cpp.
+// core/transport/ray_caster.cpp.
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
@@ -22,11 +22,11 @@
 #include "job/config.h"
 #include "core/exact/exact_solver.h"
 #include "job/plan.h"
-#include "core/rays/form_factors.h"
+#include "core/transport/form_factors.h"
 #include "job/job_scene.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/operator/sample_operator.h"
-#include "core/rays/sampling.h"
+#include "core/transport/sampling.h"
 
 namespace {
 

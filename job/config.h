@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "core/grid/calc_grid.h"
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 #include "core/base/error.h"
-#include "core/rays/form_factors.h"
+#include "core/transport/form_factors.h"
 #include "core/scene/mesh.h"
 #include "core/operator/patch_sample.h"
 #include "core/exact/radiosity.h"

@@ -89,7 +89,7 @@ std::vector<GroupChoices> group_choices(const JobConfig& job, const std::vector<
 }
 
 // The outcome's luminaires and groups from the search's pair.
-void place_groups(JobOutcome& out, const JobConfig& job, const std::vector<GroupLights>& lights,
+void place_groups(FoundLayout& out, const JobConfig& job, const std::vector<GroupLights>& lights,
                   const std::vector<GroupChoices>& choices, const GroupSearchResult& found) {
   for (std::size_t g = 0; g < choices.size(); ++g) {
     const GroupPick& pick = found.groups[g];
@@ -111,63 +111,6 @@ void place_groups(JobOutcome& out, const JobConfig& job, const std::vector<Group
   }
 }
 
-// Every group's luminaires placed as real ones in the job's scene, each of its group's type.
-Scene scene_with_groups(const PreparedJob& primary, const JobOutcome& out) {
-  Scene scene = primary.loaded.scene;
-  for (std::size_t j = 0; j < out.luminaires.size(); ++j) {
-    const SearchLuminaire& s = outcome_plan(primary, out, j).search.luminaire;
-    add_luminaire(scene, outcome_luminaire_name(out, j), s.type, {out.luminaires[j].position_m, s.rotation_deg, s.tilt_deg},
-                  out.luminaires[j].flux_lm);
-  }
-  return scene;
-}
-
-// Per observer: the verified indirect light at the eye, and the real luminaires' glare terms.
-void verified_eyes(const PreparedJob& primary, const JobOutcome& out, Eigen::VectorXd& eye, Eigen::VectorXd& glare) {
-  const LightingModel& model = primary.model;
-  const auto n = static_cast<Eigen::Index>(model.observers.size());
-  eye.resize(n);
-  glare = model.fixed_glare;
-  const auto patches = static_cast<Eigen::Index>(model.goal_patches.size());
-  for (Eigen::Index o = 0; o < n; ++o) {
-    const Eigen::Index q = model.observer_rows[static_cast<std::size_t>(o)] - patches;
-    eye[o] = std::max(0.0, out.verification.point_lux[q] - out.verification.point_direct_lux[q]);
-    for (std::size_t j = 0; j < out.luminaires.size(); ++j) {
-      const SearchLuminaire& s = outcome_plan(primary, out, j).search.luminaire;
-      const PlacedLuminaire& l = out.luminaires[j];
-      glare[o] += glare_term(glare_source(s.type, {l.position_m, s.rotation_deg, s.tilt_deg}, l.flux_lm),
-                             model.observers[static_cast<std::size_t>(o)]);
-    }
-  }
-}
-
-// One flux scale for every group (illuminance is linear in every flux together), each
-// luminaire within its own product's range; applied to the outcome's fluxes and light.
-double correct_fluxes(JobOutcome& out, const PreparedJob& primary, const SearchSpec& spec,
-                      const std::vector<GoalJudgement>& verified, const std::vector<GoalMargin>& margins) {
-  std::vector<double> flux, lo, hi;
-  for (std::size_t j = 0; j < out.luminaires.size(); ++j) {
-    const SearchLuminaire& s = outcome_plan(primary, out, j).search.luminaire;
-    flux.push_back(out.luminaires[j].flux_lm);
-    lo.push_back(s.flux_min_lm);
-    hi.push_back(s.flux_max_lm);
-  }
-  const double scale = verified_flux_scale(spec, verified, margins, flux, lo, hi, out.flux_correction_limited);
-  if (std::abs(scale - 1.0) <= 1e-12) return 1.0;
-  for (PlacedLuminaire& l : out.luminaires) {
-    l.flux_lm *= scale;
-    l.power_w *= scale;
-  }
-  out.predicted_lux *= scale;
-  Verification& v = out.verification;
-  v.lux *= scale;
-  v.direct_lux *= scale;
-  v.point_lux *= scale;
-  v.point_direct_lux *= scale;
-  v.point_error_lux *= scale;
-  return scale;
-}
-
 // The prepared variant a group of the outcome placed.
 const PreparedJob& group_variant(const GroupLights& lights, const OutcomeGroup& group) {
   for (const PreparedJob* v : lights.variants)
@@ -179,7 +122,7 @@ const PreparedJob& group_variant(const GroupLights& lights, const OutcomeGroup& 
 
 // The layout's direct light at the goal rows as predicted: each luminaire through its
 // own group's candidates' direct columns, plus the fixed sources'.
-Eigen::VectorXd predicted_direct(const JobOutcome& out, const std::vector<GroupLights>& lights, const LightingModel& primary) {
+Eigen::VectorXd predicted_direct(const FoundLayout& out, const std::vector<GroupLights>& lights, const LightingModel& primary) {
   Eigen::VectorXd a = primary.fixed_direct_lux;
   for (std::size_t g = 0; g < out.groups.size(); ++g) {
     const LightingModel& model = group_variant(lights[g], out.groups[g]).model;
@@ -304,66 +247,19 @@ VariantChoice solve_groups(const PreparedGroups& groups, const JobConfig& job, c
     throw ConfigError(job.path + ": luminaires.groups: no pair of arrangements can be placed together (in every pair a "
                                  "luminaire of one group lies on one of the other's; give the groups separate zones)");
 
+  FoundLayout found_layout;
+  place_groups(found_layout, job, lights, choices, found);
+  found_layout.light = {found.lux, found.eye_indirect_lux, found.glare};
+  found_layout.direct_lux = predicted_direct(found_layout, lights, primary.model);
+  found_layout.as_searched = found.goals;
+  found_layout.feasible = found.feasible;
   VariantChoice choice;
+  choice.outcome = verify_found(
+      primary, spec, std::move(found_layout), cap,
+      [&](const JobOutcome& o) { return group_constraints(o, lights, cap); }, progress);
   JobOutcome& out = choice.outcome;
-  place_groups(out, job, lights, choices, found);
   out.search.evaluations = static_cast<int>(found.solved);
   out.search.seconds = found.seconds;
-  out.predicted_lux = found.lux;
-  Eigen::VectorXd eye = found.eye_indirect_lux, glare = found.glare;
-  out.verification = verify_scene(primary, scene_with_groups(primary, out), static_cast<int>(out.luminaires.size()), progress);
-  out.verify_seconds = out.verification.seconds;
-  out.margin_floor = job.verification.margin;
-  std::optional<std::vector<GoalJudgement>> verified;
-  std::vector<GoalMargin> margins(spec.goals.size());
-  if (out.verification.method != "none") {
-    Eigen::VectorXd v_eye, v_glare;
-    verified_eyes(primary, out, v_eye, v_glare);
-    const Eigen::VectorXd lux = verified_goal_lux(primary.model, out.verification);
-    verified = judge_goals(primary.model, spec, GoalLight{lux, v_eye, v_glare});
-    margins = goal_margins(primary.model, *verified, lux, out.verification.point_error_lux, out.margin_floor, false);
-    if (primary.model.fixed_lux.cwiseAbs().maxCoeff() == 0.0) {
-      out.flux_correction = correct_fluxes(out, primary, spec, *verified, margins);
-      verified_eyes(primary, out, v_eye, v_glare);
-      verified = judge_goals(primary.model, spec, GoalLight{verified_goal_lux(primary.model, out.verification), v_eye, v_glare});
-      eye *= out.flux_correction;
-      glare *= out.flux_correction * out.flux_correction;
-    }
-  }
-  const std::vector<GoalJudgement> predicted = judge_goals(primary.model, spec, GoalLight{out.predicted_lux, eye, glare});
-  for (std::size_t k = 0; k < out.luminaires.size(); ++k) out.power_w += out.luminaires[k].power_w;
-  for (OutcomeGroup& g : out.groups)
-    for (std::size_t j = g.first; j < g.first + g.count; ++j) g.power_w += out.luminaires[j].power_w;
-  out.predicted_direct_lux = predicted_direct(out, lights, primary.model);
-  out.fixed_flux_lm = primary.model.fixed_flux_lm;
-  out.mounting_area_m2 = primary.model.grid.mounting_area_m2();
-  out.maintenance_factor = mf;
-  out.floor_area_m2 = cap.area_m2;
-  out.floor_area_source = cap.area_source;
-  out.power_density_w_per_m2 = cap.area_m2 > 0.0 ? out.power_w / cap.area_m2 : 0.0;
-  out.feasible = found.feasible;
-  out.constraints = group_constraints(out, lights, cap);
-  out.all_met = std::all_of(out.constraints.begin(), out.constraints.end(), [](const ConstraintOutcome& c) { return c.met; });
-  for (std::size_t g = 0; g < predicted.size(); ++g) {
-    GoalOutcome o;
-    o.predicted = predicted[g];
-    o.searched_value = found.goals[g].value;
-    o.tolerance = goal_tolerance(job.objective, predicted[g].metric);
-    o.relative_error = margins[g].relative_error;
-    o.margin = margins[g].margin;
-    const bool predicted_met = found.goals[g].violation <= o.tolerance + 1e-9;
-    o.met = verified ? (*verified)[g].violation <= o.tolerance + 1e-9 : predicted_met;
-    if (verified) o.verified = (*verified)[g];
-    o.fails_only_on_verification = predicted_met && !o.met;
-    out.all_met = out.all_met && o.met;
-    out.goals.push_back(o);
-  }
-  for (const GoalOutcome& o : out.goals)
-    if (o.predicted.metric == GoalMetric::average) {
-      const double maintained = (o.verified ? o.verified->value : o.predicted.value) * mf;
-      if (maintained > 0.0) out.power_density_w_per_m2_per_100_lx = out.power_density_w_per_m2 / (maintained / 100.0);
-      break;
-    }
   choice.variant = 0;
   choice.search_seconds = found.seconds;
   choice.verify_seconds = out.verify_seconds;

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "core/base/error.h"
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 #include "core/operator/sample_operator.h"
 
 namespace ilp {

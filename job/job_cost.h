@@ -1,4 +1,4 @@
-// The cost model (core/operator/cost_model.h) applied to an inverse job: its counts from the
+// The cost model (core/cost/cost_model.h) applied to an inverse job: its counts from the
 // job and the model's geometry (goal patches, candidates), and the verification
 // method `auto` resolves to on this machine (exact when its sparse rows fit in
 // memory, else a sample whose dense k x k solve fits and stays quick).
@@ -9,7 +9,7 @@
 
 #include "job/config.h"
 #include "job/plan.h"
-#include "core/operator/cost_model.h"
+#include "core/cost/cost_model.h"
 #include "core/scene/scene.h"
 #include "optimizer/lighting_model.h"
 

@@ -16,7 +16,7 @@
 #include "core/exact/exact_solver.h"
 #include "core/glare/ugr.h"
 #include "job/plan.h"
-#include "core/rays/point_gather.h"
+#include "core/exact/point_illuminance.h"
 #include "optimizer/goal_metrics.h"
 #include "core/operator/sample_operator.h"
 #include "job/job_cost.h"
@@ -174,9 +174,9 @@ Verification verify_layout(const PreparedJob& prepared, const std::vector<Placed
   Verification out;
   const VerificationSettings& settings = job.verification;
   if (settings.method == VerificationMethod::none) return out;
-  Scene scene = prepared.loaded.scene;
-  add_layout(scene, prepared.plan.search.luminaire, layout);
-  return verify_scene(prepared, scene, static_cast<int>(layout.size()), progress);
+  JobOutcome placed;
+  placed.luminaires = layout;
+  return verify_scene(prepared, scene_with_layout(prepared, placed), static_cast<int>(layout.size()), progress);
 }
 
 Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int luminaires,
@@ -308,6 +308,16 @@ std::string outcome_luminaire_name(const JobOutcome& outcome, std::size_t j) {
 const VariantPlan& outcome_plan(const PreparedJob& prepared, const JobOutcome& outcome, std::size_t j) {
   const OutcomeGroup* g = outcome_group(outcome, j);
   return g ? g->plan : prepared.plan;
+}
+
+Scene scene_with_layout(const PreparedJob& primary, const JobOutcome& outcome) {
+  Scene scene = primary.loaded.scene;
+  for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
+    const SearchLuminaire& s = outcome_plan(primary, outcome, j).search.luminaire;
+    const PlacedLuminaire& l = outcome.luminaires[j];
+    add_luminaire(scene, outcome_luminaire_name(outcome, j), s.type, {l.position_m, s.rotation_deg, s.tilt_deg}, l.flux_lm);
+  }
+  return scene;
 }
 
 void add_layout(Scene& scene, const SearchLuminaire& search, const std::vector<PlacedLuminaire>& layout) {
@@ -483,41 +493,27 @@ std::pair<double, std::string> power_density_area(const PreparedJob& prepared) {
 
 namespace {
 
-// The glare side of a layout's light (GoalLight): per observer, the indirect illuminance at
-// the eye and the glare terms.
-struct EyeLight {
-  Eigen::VectorXd eye_indirect_lux, glare;
-};
-
-// As predicted: the search's, every flux scaled by `scale` (lux by scale, terms by scale^2).
-EyeLight predicted_eye_light(const LayoutEvaluation& best, double scale) {
-  return {best.eye_indirect_lux * scale, best.glare * (scale * scale)};
-}
-
-// As verified: the indirect light at each eye from the verification's solve, and the glare
-// terms of the real luminaires at their positions (not blended) plus the fixed ones'.
-EyeLight verified_eye_light(const PreparedJob& prepared, const std::vector<PlacedLuminaire>& layout,
-                            const Verification& v) {
-  const LightingModel& model = prepared.model;
-  const SearchLuminaire& s = prepared.plan.search.luminaire;
-  EyeLight out;
+// As verified: the indirect light at each observer's eye from the verification's solve,
+// and the glare terms of the real luminaires at their positions (not blended), each of
+// its own variant, plus the fixed ones'.
+LayoutLight verified_light(const PreparedJob& primary, const JobOutcome& out) {
+  const LightingModel& model = primary.model;
+  const Verification& v = out.verification;
+  LayoutLight light{verified_goal_lux(model, v), Eigen::VectorXd(), model.fixed_glare};
   const auto n = static_cast<Eigen::Index>(model.observers.size());
-  out.eye_indirect_lux.resize(n);
-  out.glare = model.fixed_glare;
+  light.eye_indirect_lux.resize(n);
   const auto patches = static_cast<Eigen::Index>(model.goal_patches.size());
   for (Eigen::Index o = 0; o < n; ++o) {
     const Eigen::Index q = model.observer_rows[static_cast<std::size_t>(o)] - patches;
-    out.eye_indirect_lux[o] = std::max(0.0, v.point_lux[q] - v.point_direct_lux[q]);
-    for (const PlacedLuminaire& l : layout)
-      out.glare[o] += glare_term(glare_source(s.type, {l.position_m, s.rotation_deg, s.tilt_deg}, l.flux_lm),
-                                 model.observers[static_cast<std::size_t>(o)]);
+    light.eye_indirect_lux[o] = std::max(0.0, v.point_lux[q] - v.point_direct_lux[q]);
+    for (std::size_t j = 0; j < out.luminaires.size(); ++j) {
+      const SearchLuminaire& s = outcome_plan(primary, out, j).search.luminaire;
+      const PlacedLuminaire& l = out.luminaires[j];
+      light.glare[o] += glare_term(glare_source(s.type, {l.position_m, s.rotation_deg, s.tilt_deg}, l.flux_lm),
+                                   model.observers[static_cast<std::size_t>(o)]);
+    }
   }
-  return out;
-}
-
-std::vector<GoalJudgement> judge(const LightingModel& model, const SearchSpec& spec, const Eigen::VectorXd& lux,
-                                 const EyeLight& eyes) {
-  return judge_goals(model, spec, {lux, eyes.eye_indirect_lux, eyes.glare});
+  return light;
 }
 
 // The search layout's direct light at the goal rows, through the candidates' direct columns
@@ -557,86 +553,53 @@ PointDirectLight point_direct_light(const PreparedJob& prepared, const SearchLum
   };
 }
 
-// One search (at the targets of `searched`) and its verification, judged against the
-// real targets of `real`.
-JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real, const SearchSpec& searched,
-                             const PowerDensityCap& power_cap, const ProgressCallback& progress,
-                             const SearchBounds& bounds) {
-  const LightingModel& model = prepared.model;
-  const SearchSpec& job = real;
-  JobOutcome out;
-  out.search = search_layout(model, searched, progress, bounds, point_direct_light(prepared, searched.luminaire));
-  if (out.search.beaten) return out;  // nothing to verify
-  const LayoutEvaluation& best = out.search.best;
-  out.luminaires = best.luminaires;
-  out.predicted_lux = best.lux;
-  out.predicted_direct_lux = predicted_direct_lux(model, best);
-  // Met as predicted is judged on the search's own layout, before any flux correction.
-  const std::vector<GoalJudgement> as_searched = judge(model, job, out.predicted_lux, predicted_eye_light(best, 1.0));
-  std::vector<GoalJudgement> predicted = as_searched;
-
-  out.verification = verify_layout(prepared, out.luminaires, progress);
-  out.verify_seconds = out.verification.seconds;
-  std::optional<std::vector<GoalJudgement>> verified;
-  std::vector<GoalMargin> margins(job.goals.size());
-  out.margin_floor = prepared.job.verification.margin;
-  if (out.verification.method != "none") {
-    const Eigen::VectorXd verified_lux = verified_goal_lux(model, out.verification);
-    verified = judge(model, job, verified_lux, verified_eye_light(prepared, out.luminaires, out.verification));
-    margins = goal_margins(model, *verified, verified_lux, out.verification.point_error_lux, out.margin_floor,
-                           objective_rule(job.objective).averages_are_targets);
-    // Without fixed sources every illuminance is proportional to the common flux scale.
-    const bool no_fixed = model.fixed_lux.cwiseAbs().maxCoeff() == 0.0;
-    if (no_fixed && !out.luminaires.empty()) {
-      std::vector<double> flux, flux_min, flux_max;
-      for (const PlacedLuminaire& l : out.luminaires) {
-        flux.push_back(l.flux_lm);
-        flux_min.push_back(job.luminaire.flux_min_lm);
-        flux_max.push_back(job.luminaire.flux_max_lm);
-      }
-      out.flux_correction = verified_flux_scale(job, *verified, margins, flux, flux_min, flux_max, out.flux_correction_limited);
-      if (std::abs(out.flux_correction - 1.0) > 1e-12) {
-        for (PlacedLuminaire& l : out.luminaires) {
-          l.flux_lm *= out.flux_correction;
-          l.power_w *= out.flux_correction;
-        }
-        out.predicted_lux *= out.flux_correction;
-        out.predicted_direct_lux *= out.flux_correction;
-        out.verification.lux *= out.flux_correction;
-        out.verification.direct_lux *= out.flux_correction;
-        out.verification.point_lux *= out.flux_correction;
-        out.verification.point_direct_lux *= out.flux_correction;
-        out.verification.point_error_lux *= out.flux_correction;
-        predicted = judge(model, job, out.predicted_lux, predicted_eye_light(best, out.flux_correction));
-        verified = judge(model, job, verified_goal_lux(model, out.verification),
-                         verified_eye_light(prepared, out.luminaires, out.verification));
-      }
-    }
+// Every flux of the outcome and its light scaled by `scale` (illuminance is linear in
+// every flux together): the luminaires, the prediction and the verification.
+void scale_outcome(JobOutcome& out, double scale) {
+  for (PlacedLuminaire& l : out.luminaires) {
+    l.flux_lm *= scale;
+    l.power_w *= scale;
   }
-  for (const PlacedLuminaire& l : out.luminaires) out.power_w += l.power_w;
-  out.fixed_flux_lm = model.fixed_flux_lm;
-  out.mounting_area_m2 = model.grid.mounting_area_m2();
-  out.maintenance_factor = prepared.plan.maintenance_factor;
-  out.floor_area_m2 = power_cap.area_m2;
-  out.floor_area_source = power_cap.area_source;
-  out.power_density_w_per_m2 = out.floor_area_m2 > 0.0 ? out.power_w / out.floor_area_m2 : 0.0;
-  // Feasible as predicted: against the real targets, with the distance constraint and the power cap.
-  out.feasible = best.distance_violation <= 1e-4 &&
-                 constraint_met(ConstraintRule::at_most, job.layout.max_power_w, 0.0, best.power_w, kConstraintLineTolerance);
-  out.constraints = check_constraints(job, model.grid.surface_box_m(), prepared.plan.model.candidates.wall_distance_m,
-                                      out.luminaires, power_cap);
-  out.all_met = std::all_of(out.constraints.begin(), out.constraints.end(), [](const ConstraintOutcome& c) { return c.met; });
+  out.predicted_lux *= scale;
+  out.predicted_direct_lux *= scale;
+  Verification& v = out.verification;
+  v.lux *= scale;
+  v.direct_lux *= scale;
+  v.point_lux *= scale;
+  v.point_direct_lux *= scale;
+  v.point_error_lux *= scale;
+}
+
+// The one flux scale for every luminaire (each within its own variant's range) that the
+// verified goals ask for (verified_flux_scale).
+double flux_correction(const PreparedJob& primary, const SearchSpec& real, const JobOutcome& out,
+                       const std::vector<GoalJudgement>& verified, const std::vector<GoalMargin>& margins,
+                       bool& limited) {
+  std::vector<double> flux, lo, hi;
+  for (std::size_t j = 0; j < out.luminaires.size(); ++j) {
+    const SearchLuminaire& s = outcome_plan(primary, out, j).search.luminaire;
+    flux.push_back(out.luminaires[j].flux_lm);
+    lo.push_back(s.flux_min_lm);
+    hi.push_back(s.flux_max_lm);
+  }
+  return verified_flux_scale(real, verified, margins, flux, lo, hi, limited);
+}
+
+// The goal lines of the outcome: as predicted (after the flux correction), as searched,
+// as verified, each with its tolerance and margin; feasible and all_met follow them.
+void judge_goal_lines(JobOutcome& out, const SearchSpec& real, const std::vector<GoalJudgement>& predicted,
+                      const std::vector<GoalJudgement>& as_searched,
+                      const std::optional<std::vector<GoalJudgement>>& verified, const std::vector<GoalMargin>& margins) {
   for (std::size_t g = 0; g < predicted.size(); ++g) {
     GoalOutcome o;
     o.predicted = predicted[g];
     o.searched_value = as_searched[g].value;
-    o.tolerance = goal_tolerance(job.objective, predicted[g].metric);
+    o.tolerance = goal_tolerance(real.objective, predicted[g].metric);
     o.relative_error = margins[g].relative_error;
     o.margin = margins[g].margin;
     // The closed-form scale meets goals to round-off; allow for it.
     const bool predicted_met = as_searched[g].violation <= o.tolerance + 1e-9;
-    if (!is_target_goal(job.objective, predicted[g].metric))
-      out.feasible = out.feasible && predicted_met;
+    if (!is_target_goal(real.objective, predicted[g].metric)) out.feasible = out.feasible && predicted_met;
     if (verified) {
       o.verified = (*verified)[g];
       if (margins[g].applies) o.margin = kept_margin(o.margin, o.verified->value, o.verified->target);
@@ -648,12 +611,107 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
     out.all_met = out.all_met && o.met;
     out.goals.push_back(o);
   }
+}
+
+// One search (at the targets of `searched`), as FoundLayout for verify_found.
+FoundLayout search_one(const PreparedJob& prepared, const SearchSpec& real, const SearchSpec& searched,
+                       const PowerDensityCap& power_cap, const ProgressCallback& progress, const SearchBounds& bounds,
+                       SearchResult& result) {
+  const LightingModel& model = prepared.model;
+  result = search_layout(model, searched, progress, bounds, point_direct_light(prepared, searched.luminaire));
+  FoundLayout found;
+  if (result.beaten) return found;
+  const LayoutEvaluation& best = result.best;
+  found.luminaires = best.luminaires;
+  found.light = {best.lux, best.eye_indirect_lux, best.glare};
+  found.direct_lux = predicted_direct_lux(model, best);
+  // Met as predicted is judged on the search's own layout, before any flux correction.
+  found.as_searched = judge_goals(model, real, found.light.goal_light());
+  // Feasible as predicted: against the real targets, with the distance constraint and the power cap.
+  found.feasible = best.distance_violation <= 1e-4 &&
+                   constraint_met(ConstraintRule::at_most, real.layout.max_power_w, 0.0, best.power_w, kConstraintLineTolerance);
+  return found;
+}
+
+}  // namespace
+
+JobOutcome verify_found(const PreparedJob& primary, const SearchSpec& real, FoundLayout found,
+                        const PowerDensityCap& power_cap, const ConstraintLines& constraints,
+                        const ProgressCallback& progress) {
+  const LightingModel& model = primary.model;
+  JobOutcome out;
+  out.luminaires = std::move(found.luminaires);
+  out.groups = std::move(found.groups);
+  out.predicted_lux = found.light.lux;
+  out.predicted_direct_lux = std::move(found.direct_lux);
+  std::vector<GoalJudgement> predicted = found.as_searched;
+  out.verification = verify_scene(primary, scene_with_layout(primary, out), static_cast<int>(out.luminaires.size()), progress);
+  out.verify_seconds = out.verification.seconds;
+  std::optional<std::vector<GoalJudgement>> verified;
+  std::vector<GoalMargin> margins(real.goals.size());
+  out.margin_floor = primary.job.verification.margin;
+  if (out.verification.method != "none") {
+    const LayoutLight light = verified_light(primary, out);
+    verified = judge_goals(model, real, light.goal_light());
+    margins = goal_margins(model, *verified, light.lux, out.verification.point_error_lux, out.margin_floor,
+                           objective_rule(real.objective).averages_are_targets);
+    // Without fixed sources every illuminance is proportional to the common flux scale.
+    const bool no_fixed = model.fixed_lux.cwiseAbs().maxCoeff() == 0.0;
+    if (no_fixed && !out.luminaires.empty()) {
+      out.flux_correction = flux_correction(primary, real, out, *verified, margins, out.flux_correction_limited);
+      if (std::abs(out.flux_correction - 1.0) > 1e-12) {
+        const double scale = out.flux_correction;
+        scale_outcome(out, scale);
+        const LayoutLight scaled{out.predicted_lux, found.light.eye_indirect_lux * scale,
+                                 found.light.glare * (scale * scale)};
+        predicted = judge_goals(model, real, scaled.goal_light());
+        verified = judge_goals(model, real, verified_light(primary, out).goal_light());
+      }
+    }
+  }
+  for (const PlacedLuminaire& l : out.luminaires) out.power_w += l.power_w;
+  for (OutcomeGroup& g : out.groups)
+    for (std::size_t j = g.first; j < g.first + g.count; ++j) g.power_w += out.luminaires[j].power_w;
+  out.fixed_flux_lm = model.fixed_flux_lm;
+  out.mounting_area_m2 = model.grid.mounting_area_m2();
+  out.maintenance_factor = primary.plan.maintenance_factor;
+  out.floor_area_m2 = power_cap.area_m2;
+  out.floor_area_source = power_cap.area_source;
+  out.power_density_w_per_m2 = out.floor_area_m2 > 0.0 ? out.power_w / out.floor_area_m2 : 0.0;
+  out.feasible = found.feasible;
+  out.constraints = constraints(out);
+  out.all_met = std::all_of(out.constraints.begin(), out.constraints.end(), [](const ConstraintOutcome& c) { return c.met; });
+  judge_goal_lines(out, real, predicted, found.as_searched, verified, margins);
   for (const GoalOutcome& o : out.goals)
     if (o.predicted.metric == GoalMetric::average) {
       const double maintained = (o.verified ? o.verified->value : o.predicted.value) * out.maintenance_factor;
       if (maintained > 0.0) out.power_density_w_per_m2_per_100_lx = out.power_density_w_per_m2 / (maintained / 100.0);
       break;
     }
+  return out;
+}
+
+namespace {
+
+// One search (at the targets of `searched`) and its verification, judged against the
+// real targets of `real`.
+JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real, const SearchSpec& searched,
+                             const PowerDensityCap& power_cap, const ProgressCallback& progress,
+                             const SearchBounds& bounds) {
+  SearchResult result;
+  FoundLayout found = search_one(prepared, real, searched, power_cap, progress, bounds, result);
+  if (result.beaten) {  // nothing to verify
+    JobOutcome out;
+    out.search = std::move(result);
+    return out;
+  }
+  const CandidateSpec& c = prepared.plan.model.candidates;
+  const Eigen::AlignedBox2d box = prepared.model.grid.surface_box_m();
+  JobOutcome out = verify_found(
+      prepared, real, std::move(found), power_cap,
+      [&](const JobOutcome& o) { return check_constraints(real, box, c.wall_distance_m, o.luminaires, power_cap); },
+      progress);
+  out.search = std::move(result);
   return out;
 }
 

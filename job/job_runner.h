@@ -19,7 +19,8 @@
 #include "job/plan.h"
 #include "job/verification_margin.h"
 #include "core/base/progress.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
+#include "optimizer/goal_metrics.h"
 #include "optimizer/layout_search.h"
 #include "optimizer/lighting_model.h"
 
@@ -38,7 +39,7 @@ struct PreparedJob {
   bool loaded_from_cache = false;  // the operator came from the cache folder
   std::string cache_status;        // for the run log; empty without a cache folder
   double cache_seconds = 0.0;      // computing the key and reading, or writing, the cache file
-  std::vector<std::string> estimate_log;  // the cost model's estimate (core/operator/cost_model.h), for the run log
+  std::vector<std::string> estimate_log;  // the cost model's estimate (core/cost/cost_model.h), for the run log
 };
 
 // Throws ConfigError when the job does not describe an inverse problem (no
@@ -66,7 +67,7 @@ struct SharedScene {
 };
 SharedScene load_shared_scene(const JobConfig& job, const RunOptions& run);
 // Its log lines, then the machine's speed the estimates that follow are made at
-// (run.machine: core/operator/machine_speed.h).
+// (run.machine: core/cost/machine_speed.h).
 void log_shared_scene(const SharedScene& shared, const RunOptions& run, const LogSink& log);
 // prepare_job on a scene already read, with the variant's costed geometry
 // (costed_geometry on shared.loaded->scene with shared.caster), which it logs and refuses
@@ -101,7 +102,7 @@ struct Verification {
   // gather of the exact radiosity with rays_per_patch rays; sample, the sample operator's rows.
   Eigen::VectorXd point_lux, point_direct_lux;
   // Exact: each goal point's statistical error (lux, one standard error, of its gather;
-  // core/rays/point_gather.h). Empty when there is no estimate (sample).
+  // core/exact/point_illuminance.h). Empty when there is no estimate (sample).
   Eigen::VectorXd point_error_lux;
   // Exact: rays per row of the patches that are not goals, where the progressive
   // refinement stopped and where it started (verification.first_indirect_rays), and
@@ -175,6 +176,40 @@ struct JobOutcome {
   int searches = 1;                         // search rounds run (see VerificationSettings::rounds)
   std::vector<std::string> calibration;     // what each round changed in the search targets
 };
+
+// A layout's light at the model's goal rows and observers (GoalLight's values).
+struct LayoutLight {
+  Eigen::VectorXd lux, eye_indirect_lux, glare;
+  GoalLight goal_light() const { return {lux, eye_indirect_lux, glare}; }
+};
+
+// What a search found, before its verification: the layout at the fluxes found, its light
+// as predicted, and its goals as judged then at the real targets.
+struct FoundLayout {
+  std::vector<PlacedLuminaire> luminaires;
+  std::vector<OutcomeGroup> groups;  // several groups: what each placed; empty for a single search
+  LayoutLight light;                 // as predicted
+  Eigen::VectorXd direct_lux;        // the direct part of light.lux
+  std::vector<GoalJudgement> as_searched;
+  bool feasible = false;             // as predicted: the distances and the power cap (groups: every goal too)
+};
+
+// The constraint lines of an outcome's final layout (after the flux correction).
+using ConstraintLines = std::function<std::vector<ConstraintOutcome>(const JobOutcome&)>;
+
+// The one verification and outcome assembly of every search, a single one and one of
+// luminaire groups: the found layout placed as real luminaires (each of its variant,
+// scene_with_layout) and solved as job.verification says, the one flux correction for
+// every luminaire, each goal as predicted, searched and verified, the constraints, power
+// and power density. `real`: the goals at their real (initial) targets and the objective.
+// The outcome's search is left for the caller.
+JobOutcome verify_found(const PreparedJob& primary, const SearchSpec& real, FoundLayout found,
+                        const PowerDensityCap& power_cap, const ConstraintLines& constraints,
+                        const ProgressCallback& progress = {});
+
+// The job's scene with the outcome's luminaires placed as real ones: each of its own
+// variant (outcome_plan), named as the outcome names it (L1, ... or A1, B1, ...).
+Scene scene_with_layout(const PreparedJob& primary, const JobOutcome& outcome);
 
 // Is a better than b: every goal met (as verified) first, then least power, then the
 // search's own order.

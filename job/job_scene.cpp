@@ -18,7 +18,7 @@
 #include <string_view>
 
 #include "core/base/key_hash.h"
-#include "core/operator/cost_model.h"
+#include "core/cost/cost_model.h"
 #include "core/scene/mesh_import.h"
 
 namespace ilp {

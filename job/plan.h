@@ -10,7 +10,7 @@
 
 #include "core/exact/exact_solver.h"
 #include "core/light/luminaire_product.h"
-#include "core/operator/machine_speed.h"
+#include "core/cost/machine_speed.h"
 #include "core/operator/sample_operator.h"
 #include "job/config.h"
 #include "optimizer/lighting_model.h"
@@ -25,7 +25,7 @@ struct RunOptions {
   // Under mpirun, a single-room job's operator builds split over the ranks (the lighting
   // model's only: the verification's operator stays whole on rank 0). Default: one process.
   WorkShare operator_share;
-  // This machine's speed against the cost model's reference (core/operator/machine_speed.h),
+  // This machine's speed against the cost model's reference (core/cost/machine_speed.h),
   // for the estimates alone: the reference's own by default.
   MachineCalibration machine;
 };

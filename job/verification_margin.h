@@ -6,7 +6,7 @@
 // The margin of a goal is kMarginStandardErrors times the verification's own estimate of
 // its relative error, and never less than a floor (verification.margin, default 0.5 %)
 // that stands for what the estimate leaves out. The estimate: each grid point's gather
-// of the verified radiosity carries the spread of its rays (core/rays/point_gather.h);
+// of the verified radiosity carries the spread of its rays (core/exact/point_illuminance.h);
 // an average over points carries sqrt(sum w_i^2 se_i^2), a minimum its lowest point's.
 // Goals over patches, and every goal of a sample verification, have no estimate: the
 // floor alone.

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/glare/ugr.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "optimizer/lighting_model.h"
 
 namespace ilp {

@@ -22,7 +22,7 @@
 #include "core/light/luminaire.h"
 #include "core/operator/sample_size.h"
 #include "core/base/progress.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/operator/sample_operator.h"
 #include "core/scene/scene.h"
 #include "optimizer/candidate_grid.h"

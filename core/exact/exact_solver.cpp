@@ -6,8 +6,8 @@
 #include <iterator>
 #include <ostream>
 
-#include "core/rays/ray_caster.h"
-#include "core/rays/row_builder.h"
+#include "core/transport/ray_caster.h"
+#include "core/transport/row_builder.h"
 
 namespace ilp {
 namespace {

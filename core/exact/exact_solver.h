@@ -9,9 +9,9 @@
 #include <optional>
 #include <vector>
 
-#include "core/light/direct_light.h"
-#include "core/rays/form_factors.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/direct_light.h"
+#include "core/transport/form_factors.h"
+#include "core/transport/ray_caster.h"
 #include "core/base/progress.h"
 #include "core/exact/radiosity.h"
 #include "core/scene/scene.h"

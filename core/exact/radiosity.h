@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "core/rays/form_factors.h"
+#include "core/transport/form_factors.h"
 #include "core/scene/scene.h"
 
 namespace ilp {

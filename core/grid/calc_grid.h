@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "core/base/error.h"
-#include "core/light/direct_light.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/direct_light.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/scene.h"
 
 namespace ilp {

@@ -2,7 +2,7 @@
 // light leaves it) and where it is (position, rotation about the vertical axis, tilt).
 // Everything that places, lights, draws or caches a luminaire goes through this
 // header: the scene adds its opening as patches (add_luminaire in core/scene/scene.h),
-// the direct light asks it for its intensity (core/light/direct_light.h), the candidate
+// the direct light asks it for its intensity (core/transport/direct_light.h), the candidate
 // grid for its footprint, the operator cache for its key.
 //
 // Frames. A luminaire's own frame has z up, the opening's centre at the origin, the

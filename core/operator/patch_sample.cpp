@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/rays/sampling.h"
+#include "core/transport/sampling.h"
 
 namespace ilp {
 namespace {

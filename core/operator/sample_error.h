@@ -8,7 +8,7 @@
 #include <span>
 
 #include "core/base/progress.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/operator/sample_operator.h"
 #include "core/scene/scene.h"
 

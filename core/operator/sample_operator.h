@@ -35,11 +35,11 @@
 #include <vector>
 
 #include "core/base/progress.h"
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 #include "core/operator/patch_sample.h"
 #include "core/operator/work_share.h"
-#include "core/rays/form_factors.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/form_factors.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/scene.h"
 
 namespace ilp {

@@ -15,8 +15,8 @@
 #include "core/base/progress.h"
 #include "core/operator/contraction_solve.h"
 #include "core/operator/sample_operator.h"
-#include "core/rays/form_factors.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/form_factors.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/scene.h"
 
 namespace ilp::detail {

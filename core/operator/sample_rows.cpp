@@ -8,11 +8,11 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 #include "core/operator/sample_operator.h"
 #include "core/operator/sample_operator_stages.h"
 #include "core/operator/work_share.h"
-#include "core/rays/point_gather.h"
+#include "core/transport/point_gather.h"
 
 namespace ilp {
 namespace detail {

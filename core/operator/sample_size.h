@@ -10,7 +10,7 @@
 
 #include "core/base/progress.h"
 #include "core/operator/sample_operator.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/scene.h"
 
 namespace ilp {

@@ -54,22 +54,6 @@ std::vector<int> patches_of(const Scene& scene, const std::string& surface) {
   return out;
 }
 
-double surface_form_factor(const Scene& scene, const FormFactorRows& rows, const std::string& from,
-                           const std::string& to) {
-  const int s_to = scene.find_surface(to);
-  double weighted = 0.0, area = 0.0;
-  for (std::size_t r = 0; r < rows.row_patches.size(); ++r) {
-    const Patch& p = scene.patches[rows.row_patches[r]];
-    if (scene.surfaces[p.surface].name != from) continue;
-    double f = 0.0;
-    for (SparseRows::InnerIterator it(rows.F, static_cast<Eigen::Index>(r)); it; ++it)
-      if (scene.patches[it.col()].surface == s_to) f += it.value();
-    weighted += p.area_m2 * f;
-    area += p.area_m2;
-  }
-  return weighted / area;
-}
-
 double parallel_rectangles_form_factor(double a, double b, double c) {
   const double X = a / c, Y = b / c;
   const double X2 = 1 + X * X, Y2 = 1 + Y * Y;

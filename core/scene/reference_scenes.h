@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "core/rays/form_factors.h"
 #include "core/scene/scene.h"
 
 namespace ilp::reference {
@@ -29,11 +28,6 @@ Scene make_closed_box(const Eigen::Vector3d& origin, const Eigen::Vector3d& size
                       double max_patch_edge_m);
 
 std::vector<int> patches_of(const Scene& scene, const std::string& surface);
-
-// Area-weighted form factor from surface `from` to surface `to`, given rows for
-// every patch of the scene.
-double surface_form_factor(const Scene& scene, const FormFactorRows& rows, const std::string& from,
-                           const std::string& to);
 
 // Directly opposed parallel rectangles a x b at distance c.
 double parallel_rectangles_form_factor(double a, double b, double c);

@@ -23,7 +23,7 @@ inline std::string quoted(const std::string& s) {
 }
 
 // One folder of the machine's calibration (ILP_MACHINE_DIR) for every CLI test of this
-// user: the first `ilp` to need it probes, the rest read it (core/operator/machine_speed.h).
+// user: the first `ilp` to need it probes, the rest read it (core/cost/machine_speed.h).
 inline std::string suite_machine_dir() {
   return (std::filesystem::temp_directory_path() / ("ilp_test_machine_" + std::to_string(::getuid()))).string();
 }

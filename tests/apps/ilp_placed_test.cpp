@@ -136,7 +136,7 @@ const CsvPoint* point_at(const std::vector<CsvPoint>& points, double x, double y
 
 // The tolerance of the closed form. Both openings (a 76 mm disc, 0.16 x 0.04 m) are at
 // most 0.12 x the 1.6 m height: the direct light takes each as one point source at its
-// centre (core/light/direct_light.cpp), so the closed form is the code's model, not an
+// centre (core/transport/direct_light.cpp), so the closed form is the code's model, not an
 // approximation of it. What is left: grid.csv rounds lux to 0.01 (0.005), and the direct
 // light reads the intensity from a table of the file's interpolant every 0.5 degree of C
 // and 0.125 of gamma, bilinearly (core/light/luminaire_product.h). Measured on these 36

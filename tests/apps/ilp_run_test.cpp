@@ -519,7 +519,7 @@ TEST(IlpInspect, AJobOfLuminaireGroupsGetsTheWholeRunsEstimateThatRunPrints) {
   EXPECT_EQ(from_inspect[1].str(), from_run[1].str());
 }
 
-// The estimates follow this machine's calibration (core/operator/machine_speed.h): cached
+// The estimates follow this machine's calibration (core/cost/machine_speed.h): cached
 // by the first command, read by the next, and a machine twice as slow at every kind of
 // work doubles every phase (issue 21: the constants were one machine's).
 TEST(IlpCalibrate, TheEstimatesFollowTheCachedSpeedOfThisMachine) {

@@ -16,8 +16,8 @@
 #include "core/exact/exact_solver.h"
 #include "job/job_scene.h"
 #include "job/plan.h"
-#include "core/light/direct_light.h"
-#include "core/rays/point_gather.h"
+#include "core/transport/direct_light.h"
+#include "core/exact/point_illuminance.h"
 #include "core/scene/reference_scenes.h"
 #include "core/operator/sample_operator.h"
 

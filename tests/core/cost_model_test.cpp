@@ -1,7 +1,7 @@
 // The cost model: its phase estimates against the classroom bench measured on this
 // machine (docs/benchmarks.md), the refusal message, the byte parser, and the
 // automatic verification never choosing a sample that does not fit.
-#include "core/operator/cost_model.h"
+#include "core/cost/cost_model.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The closed-form direct term against Howell's point-to-rectangle factor, and its
 // shadow rays against blockers of known size.
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <numbers>
 #include <optional>
 
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/reference_scenes.h"
 
 namespace ilp {

@@ -1,6 +1,6 @@
 // Form-factor rows against closed forms, reciprocity, closure and determinism.
-#include "core/rays/form_factors.h"
-#include "core/rays/row_builder.h"
+#include "core/transport/form_factors.h"
+#include "core/transport/row_builder.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/reference_scenes.h"
 
 namespace ilp {
@@ -49,7 +49,7 @@ TEST(FormFactor, ParallelSquaresMatchClosedFormWithinToleranceThatShrinksWithRay
     const auto source = reference::patches_of(scene, "bottom");
     double previous_tolerance = 1.0;
     for (int rays : {64, 1024, 16384, 65536}) {
-      const double estimate = reference::surface_form_factor(scene, all_rows(scene, rays), "bottom", "top");
+      const double estimate = surface_form_factor(scene, all_rows(scene, rays), "bottom", "top");
       const double tolerance = mc_tolerance(exact, static_cast<double>(rays) * source.size());
       EXPECT_LT(tolerance, previous_tolerance);
       previous_tolerance = tolerance;
@@ -70,7 +70,7 @@ TEST(FormFactor, PerpendicularRectanglesSharingAnEdgeMatchClosedForm) {
         0.0);
     const double exact = reference::perpendicular_rectangles_form_factor(c.l, c.w, c.h);
     const int rays = 65536;
-    const double estimate = reference::surface_form_factor(scene, all_rows(scene, rays), "from", "to");
+    const double estimate = surface_form_factor(scene, all_rows(scene, rays), "from", "to");
     EXPECT_NEAR(estimate, exact, mc_tolerance(exact, 2.0 * rays)) << "l " << c.l << " w " << c.w << " h " << c.h;
   }
 }
@@ -124,7 +124,7 @@ TEST(FormFactor, ClosedBoxStaysClosedAtAnyScaleAndPosition) {
     // The floor-to-ceiling factor does not depend on where the box is or its units.
     const double exact = reference::parallel_rectangles_form_factor(3.0, 2.0, 1.0);
     const auto floor_rows = reference::patches_of(scene, "floor");
-    EXPECT_NEAR(reference::surface_form_factor(scene, rows, "floor", "ceiling"), exact,
+    EXPECT_NEAR(surface_form_factor(scene, rows, "floor", "ceiling"), exact,
                 mc_tolerance(exact, 256.0 * floor_rows.size()));
   }
 }
@@ -208,7 +208,7 @@ TEST(RayCasterThreadModes, TheCallersFloatingPointModesAreRestored) {
 namespace ilp {
 namespace {
 
-// build_rows (core/rays/row_builder.h): a matrix written row by row from counts and a
+// build_rows (core/transport/row_builder.h): a matrix written row by row from counts and a
 // fill on several threads is the matrix the same entries give through Eigen's triplets,
 // empty rows and a dense row included, on one thread or two.
 TEST(BuildRows, GivesTheMatrixOfItsEntriesOnAnyThreadCount) {

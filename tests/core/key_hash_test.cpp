@@ -14,11 +14,11 @@
 
 #include "core/base/key_hash.h"
 #include "core/grid/calc_grid.h"
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 #include "core/light/luminaire.h"
 #include "core/operator/sample_operator.h"
 #include "core/operator/sample_size.h"
-#include "core/rays/form_factors.h"
+#include "core/transport/form_factors.h"
 #include "core/scene/mesh.h"
 #include "core/scene/scene.h"
 #include "core/scene/surface_split.h"

@@ -15,7 +15,7 @@
 #include "core/base/error.h"
 #include "core/light/luminaire_product.h"
 #include "core/light/photometry.h"
-#include "core/operator/cost_model.h"
+#include "core/cost/cost_model.h"
 #include "core/scene/mesh.h"
 #include "job/config.h"
 #include "tests/core/config_room.h"

@@ -13,9 +13,9 @@
 #include <fstream>
 #include <numbers>
 
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 #include "core/exact/exact_solver.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/reference_scenes.h"
 
 namespace ilp {

@@ -1,7 +1,7 @@
-// This machine's speed for the cost model (core/operator/machine_speed.h): the
+// This machine's speed for the cost model (core/cost/machine_speed.h): the
 // reference constants scaled by kind of work and threads, and the calibration cached
 // once per machine, read back as written, and replaced when it cannot be used.
-#include "core/operator/machine_speed.h"
+#include "core/cost/machine_speed.h"
 
 #include <gtest/gtest.h>
 

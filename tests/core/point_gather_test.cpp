@@ -1,7 +1,7 @@
-// dominant_patches (core/rays/point_gather.h): the patches a grid point gathers a given
+// dominant_patches (core/exact/point_illuminance.h): the patches a grid point gathers a given
 // share of its reflected light from, which the verification solves precisely for the
 // points deciding a minimum (job_runner.cpp).
-#include "core/rays/point_gather.h"
+#include "core/exact/point_illuminance.h"
 
 #include <gtest/gtest.h>
 

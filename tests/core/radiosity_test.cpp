@@ -9,8 +9,8 @@
 #include "core/exact/exact_solver.h"
 #include "job/config.h"
 #include "job/job_scene.h"
-#include "core/light/direct_light.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/direct_light.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/reference_scenes.h"
 
 namespace ilp {

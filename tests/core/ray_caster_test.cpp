@@ -2,7 +2,7 @@
 // scene) and builds one only for the patches appended after them (a layout's
 // luminaires) answers every query as a BVH of the whole scene does; a base built on
 // another scene is not reused.
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 
 #include <gtest/gtest.h>
 

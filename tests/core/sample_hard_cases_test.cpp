@@ -23,7 +23,7 @@
 
 #include "core/base/error.h"
 #include "core/exact/exact_solver.h"
-#include "core/rays/form_factors.h"
+#include "core/transport/form_factors.h"
 #include "core/scene/mesh.h"
 #include "core/scene/reference_scenes.h"
 #include "tests/test_support.h"

@@ -1,12 +1,12 @@
 // ilp inspect's diagnosis: geometry, topology, winding and openings, on rooms whose
 // defects are known by construction.
-#include "core/scene/scene_inspect.h"
+#include "core/study/scene_inspect.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/scene.h"
 #include "tests/test_support.h"
 

@@ -8,9 +8,9 @@
 #include <algorithm>
 
 #include "job/config.h"
-#include "core/rays/form_factors.h"
+#include "core/transport/form_factors.h"
 #include "job/job_scene.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/reference_scenes.h"
 
 namespace ilp {

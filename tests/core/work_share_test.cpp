@@ -12,7 +12,7 @@
 #include <string>
 #include <thread>
 
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 #include "core/operator/sample_operator.h"
 #include "job/config.h"
 #include "job/job_scene.h"

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/exact/exact_solver.h"
-#include "core/rays/point_gather.h"
-#include "core/rays/ray_caster.h"
+#include "core/exact/point_illuminance.h"
+#include "core/transport/ray_caster.h"
 #include "job/config.h"
 #include "job/job_runner.h"
 #include "job/plan.h"

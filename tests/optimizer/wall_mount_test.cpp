@@ -10,9 +10,9 @@
 #include <numbers>
 #include <sstream>
 
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 #include "core/light/luminaire_product.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/reference_scenes.h"
 #include "tests/core/asymmetric_web.h"
 #include "optimizer/candidate_grid.h"

@@ -1,7 +1,7 @@
 #include <cstdio>
 #include "job/config.h"
 #include "job/job_scene.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 using namespace ilp;
 int main(int argc, char** argv) {
   const JobConfig job = load_job_config(argv[1]);

@@ -3,7 +3,7 @@
 #include "job/config.h"
 #include "job/plan.h"
 #include "job/job_runner.h"
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 using namespace ilp;
 // For a layout (result.json's xy, one flux): each work-plane point's predicted total
 // (the search's blend), and the same with the blended direct part replaced by the

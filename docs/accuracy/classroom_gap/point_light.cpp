@@ -3,8 +3,8 @@
 #include "job/config.h"
 #include "job/plan.h"
 #include "job/job_runner.h"
-#include "core/light/direct_light.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/direct_light.h"
+#include "core/transport/ray_caster.h"
 using namespace ilp;
 int main(int argc, char** argv) {
   const std::string cfg = argv[1];

@@ -2,7 +2,7 @@
 #include "job/config.h"
 #include "job/plan.h"
 #include "job/job_runner.h"
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 using namespace ilp;
 // direct lux at a grid point from one real luminaire swept along y at fixed x, vs the search's blend
 int main(int argc, char** argv) {

@@ -10,7 +10,7 @@
 
 #include <string>
 
-#include "core/operator/cost_model.h"
+#include "core/cost/cost_model.h"
 
 namespace ilp {
 

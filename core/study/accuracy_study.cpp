@@ -1,4 +1,4 @@
-#include "core/operator/accuracy_study.h"
+#include "core/study/accuracy_study.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,8 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/rays/point_gather.h"
-#include "core/rays/ray_caster.h"
+#include "core/exact/point_illuminance.h"
+#include "core/transport/ray_caster.h"
 
 namespace ilp {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/rays/form_factors.h"
+#include "core/transport/form_factors.h"
 
 namespace ilp {
 

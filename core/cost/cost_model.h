@@ -18,7 +18,7 @@ namespace ilp {
 // verification's solves and rounds fitted on an Intel Xeon 2.8 GHz (2026-12-03,
 // docs/benchmarks.md "Cost model"), the rest earlier on an AMD EPYC, where the shipped
 // jobs ran 1.4-1.6x faster. Another machine's, and another thread count's, are these
-// scaled by its probed speed (machine_costs in core/operator/machine_speed.h).
+// scaled by its probed speed (machine_costs in core/cost/machine_speed.h).
 struct MachineCosts {
   double gather_ray_s = 1.0 / 5.3e6;        // one form-factor ray (closest hit, row assembly)
   double precise_pair_ray_s = 7.8e-8;       // direct light: per shadow ray of a precise receiver-source pair

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/scene/mesh.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/scene.h"
 
 namespace ilp {

@@ -1,4 +1,4 @@
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>

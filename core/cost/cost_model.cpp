@@ -1,4 +1,4 @@
-#include "core/operator/cost_model.h"
+#include "core/cost/cost_model.h"
 
 #include <algorithm>
 #include <cctype>

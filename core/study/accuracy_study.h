@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 #include "core/exact/exact_solver.h"
 #include "core/base/progress.h"
 #include "core/operator/sample_error.h"

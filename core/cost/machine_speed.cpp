@@ -1,4 +1,4 @@
-#include "core/operator/machine_speed.h"
+#include "core/cost/machine_speed.h"
 
 #include <unistd.h>
 
@@ -20,9 +20,9 @@
 
 #include <tbb/info.h>
 
-#include "core/rays/form_factors.h"
-#include "core/rays/ray_caster.h"
-#include "core/rays/sampling.h"
+#include "core/transport/form_factors.h"
+#include "core/transport/ray_caster.h"
+#include "core/transport/sampling.h"
 #include "core/scene/reference_scenes.h"
 
 namespace ilp {

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "core/rays/form_factors.h"
+#include "core/transport/form_factors.h"
 #include "core/base/progress.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/scene.h"
 
 namespace ilp {

@@ -1,22 +1,15 @@
-// Gather rows from receiver points (grid points, which are not patches): the
-// fraction of a point's cosine-weighted rays reaching each patch, F(point, :), as
-// compute_form_factor_rows gives for patches. A point is a differential area: its
-// row is the indirect light it receives, H = F B, from the radiosity B of the patches.
+// The exact reference at receiver points (grid points, which are not patches): each
+// point's gather row (core/transport/point_gather.h) over the solved radiosity, with
+// the luminaires' direct light in closed form; what the verification reads at goal points.
 #pragma once
 
 #include <span>
 
-#include "core/rays/form_factors.h"
-#include "core/light/direct_light.h"
 #include "core/exact/radiosity.h"
+#include "core/transport/direct_light.h"
+#include "core/transport/point_gather.h"
 
 namespace ilp {
-
-// One row per point, in order (row_patches holds -1 - point index). Rays leave the
-// point pushed ray_offset_m along its normal; back hits and escapes are counted as for
-// patch rows. Deterministic for options.seed whatever the thread count.
-FormFactorRows compute_point_rows(const Scene& scene, const RayCaster& caster, std::span<const ReceiverPoint> points,
-                                  const FormFactorOptions& options, const ProgressCallback& progress = {});
 
 // The exact solver's illuminance at points (verification): luminaires' direct light by
 // compute_luminaire_light_at_points at their flux, and each point's gather over the solved

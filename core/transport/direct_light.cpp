@@ -1,4 +1,4 @@
-#include "core/light/direct_light.h"
+#include "core/transport/direct_light.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/rays/row_builder.h"
-#include "core/rays/sampling.h"
+#include "core/transport/row_builder.h"
+#include "core/transport/sampling.h"
 #include "core/base/key_hash.h"
 
 namespace ilp {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/base/progress.h"
-#include "core/rays/ray_caster.h"
+#include "core/transport/ray_caster.h"
 #include "core/scene/scene.h"
 
 namespace ilp {
@@ -80,5 +80,10 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
 Eigen::MatrixXd compute_row_bin_fractions(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
                                           std::span<const int> bin_of_patch, int bins,
                                           const FormFactorOptions& options, const ProgressCallback& progress = {});
+
+// Area-weighted form factor from surface `from` to surface `to`, given rows for
+// every patch of the scene.
+double surface_form_factor(const Scene& scene, const FormFactorRows& rows, const std::string& from,
+                           const std::string& to);
 
 }  // namespace ilp

@@ -1,4 +1,4 @@
-#include "core/rays/form_factors.h"
+#include "core/transport/form_factors.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -10,7 +10,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "core/rays/sampling.h"
+#include "core/transport/sampling.h"
 #include "core/base/key_hash.h"
 
 namespace ilp {
@@ -204,6 +204,22 @@ static_assert(field_count<FormFactorOptions>() == 3, "FormFactorOptions changed:
 void hash_fields(KeyWriter& k, const FormFactorOptions& o) {
   k.field("rays_per_patch", o.rays_per_patch).field("seed", o.seed);
   // Not threads: the same rows for any thread count.
+}
+
+double surface_form_factor(const Scene& scene, const FormFactorRows& rows, const std::string& from,
+                           const std::string& to) {
+  const int s_to = scene.find_surface(to);
+  double weighted = 0.0, area = 0.0;
+  for (std::size_t r = 0; r < rows.row_patches.size(); ++r) {
+    const Patch& p = scene.patches[rows.row_patches[r]];
+    if (scene.surfaces[p.surface].name != from) continue;
+    double f = 0.0;
+    for (SparseRows::InnerIterator it(rows.F, static_cast<Eigen::Index>(r)); it; ++it)
+      if (scene.patches[it.col()].surface == s_to) f += it.value();
+    weighted += p.area_m2 * f;
+    area += p.area_m2;
+  }
+  return weighted / area;
 }
 
 }  // namespace ilp

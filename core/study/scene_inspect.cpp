@@ -1,4 +1,4 @@
-#include "core/scene/scene_inspect.h"
+#include "core/study/scene_inspect.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
