@@ -392,8 +392,12 @@ std::optional<double> preset_target(const GoalPreset& p, GoalMetric metric, bool
     case GoalMetric::cylindrical: return p.cylindrical_lux > 0.0 ? std::optional(p.cylindrical_lux) : std::nullopt;
     case GoalMetric::cylindrical_uniformity:
       return p.cylindrical_lux > 0.0 ? std::optional(kRoomSurfaceUniformity) : std::nullopt;
-    default: return std::nullopt;
+    case GoalMetric::minimum:  // EN 12464-1's rows give none of these
+    case GoalMetric::maximum:
+    case GoalMetric::modelling:
+      return std::nullopt;
   }
+  return std::nullopt;
 }
 
 // walls: / ceiling: of a preset entry: a goal on those surfaces with the row's Em and U0 >= 0.10.
@@ -917,6 +921,7 @@ void read_room_keys(const Map& map, JobConfig& job, bool products_named) {
   if (auto v = map.get("grids")) read_grids(*v, job);
   if (auto v = map.get("maintenance_factor")) read_maintenance_factor(*v, job);
   if (auto v = map.get("goals")) read_goals(*v, job);
+  if (auto v = map.get("scenarios")) read_scenarios(*v, job);
   if (auto v = map.get("constraints")) read_constraints(Map(*v, {"max_luminaires", "min_distance_m", "max_power_density_w_per_m2"}), job);
   if (auto v = map.get("objective")) read_objective(*v, job);
   if (auto v = map.get("energy")) read_energy(*v, job);
@@ -925,7 +930,7 @@ void read_room_keys(const Map& map, JobConfig& job, bool products_named) {
 // A building job's shared keys: the product catalogue, the maintenance factor and the
 // energy profile every room starts from; what belongs to one room is refused here.
 void read_building_keys(const Map& top, JobConfig& job) {
-  for (const char* key : {"goals", "grids", "constraints", "objective", "sweep", "report"})
+  for (const char* key : {"goals", "grids", "constraints", "objective", "sweep", "report", "scenarios"})
     if (top.get(key))
       throw ConfigError(located(top.key_loc(key), std::string(key) + ": with rooms, each room states its own (rooms[]." +
                                                       key + "; docs/building.md)"));
@@ -1003,7 +1008,7 @@ JobConfig load_job_config(const std::string& path) {
   try {
     const Map top(Value(root, "", job.path), {"scene", "luminaires", "grids", "maintenance_factor", "goals",
                                               "constraints", "objective", "solver", "optimizer", "verification",
-                                              "output", "energy", "sweep", "report", "rooms"});
+                                              "output", "energy", "sweep", "report", "rooms", "scenarios"});
     read_scene(Map(top.require("scene"), {"mesh", "up_axis", "scale_to_m", "max_patch_edge_m", "surfaces_from",
                                           "reflectance", "default_reflectance", "emitting_surfaces",
                                           "exclude_surfaces", "two_sided", "weld_tolerance_m", "regions", "add_floor"}),

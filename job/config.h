@@ -25,6 +25,7 @@
 #include "core/scene/surface_split.h"
 #include "optimizer/goal_spec.h"
 #include "optimizer/lighting_model.h"
+#include "optimizer/scenario_spec.h"
 #include "optimizer/search_spec.h"
 
 namespace ilp {
@@ -374,6 +375,9 @@ struct JobConfig {
   std::vector<LuminaireGroup> groups;     // luminaires.groups (then search is empty)
   std::vector<GoalSetting> goals;
   std::vector<CalcGridSetting> grids;     // calculation grids goals can name
+  // scenarios: the layout's other lighting states (optimizer/scenario_spec.h), each
+  // judged on the layout found and verified on its verification; targets maintained.
+  std::vector<ScenarioSpec> scenarios;
   // Targets are maintained values; the search and the verification work on initial
   // values = target / maintenance_factor (lux metrics; U0 is a ratio and unchanged).
   double maintenance_factor = 1.0;

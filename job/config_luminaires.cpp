@@ -6,6 +6,7 @@
 
 #include "job/config_yaml.h"
 #include "job/products.h"
+#include "optimizer/group_search.h"
 
 namespace ilp::config_yaml {
 namespace {
@@ -437,7 +438,8 @@ void read_groups(const Map& luminaires, const Value& groups, JobConfig& job) {
     if (auto v = luminaires.get(key)) v->fail("not with luminaires.groups (each group gives its own)");
   const std::vector<Value> items = groups.list();
   if (items.empty()) groups.fail("must list at least one group");
-  if (items.size() > 2) items[2].fail("at most two groups are searched together");
+  if (items.size() > static_cast<std::size_t>(kMaxSearchedGroups))
+    items[static_cast<std::size_t>(kMaxSearchedGroups)].fail("at most " + std::to_string(kMaxSearchedGroups) + " groups are searched together");
   if (job.products.empty()) groups.fail("needs luminaires.products (each group names its products)");
   for (const Value& item : items) {
     LuminaireGroup group = read_group(item, job);

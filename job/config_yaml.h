@@ -282,6 +282,8 @@ inline Eigen::Vector2d pair_of(const Value& v, double (*check)(const Value&)) {
 // products_named: luminaires.products is a list of names chosen from job.products (a
 // room choosing from its building's catalogue), not the products' definitions.
 void read_luminaires(const Map& luminaires, JobConfig& job, bool products_named = false);
+// config_scenarios.cpp: the scenarios section (after goals, whose areas it names).
+void read_scenarios(const Value& section, JobConfig& job);
 std::vector<std::string> luminaire_keys();  // every key of the luminaires section
 
 // (job/config.cpp) The keys a single-room job and each room of a building job have:

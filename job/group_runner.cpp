@@ -253,6 +253,9 @@ VariantChoice solve_groups(const PreparedGroups& groups, const JobConfig& job, c
   found_layout.direct_lux = predicted_direct(found_layout, lights, primary.model);
   found_layout.as_searched = found.goals;
   found_layout.feasible = found.feasible;
+  for (std::size_t g = 0; g < found_layout.groups.size(); ++g)
+    found_layout.models.insert(found_layout.models.end(), found_layout.groups[g].count,
+                               &group_variant(lights[g], found_layout.groups[g]).model);
   VariantChoice choice;
   choice.outcome = verify_found(
       primary, spec, std::move(found_layout), cap,

@@ -22,6 +22,7 @@
 #include "job/job_cost.h"
 #include "job/model_cache.h"
 #include "job/round_calibration.h"
+#include "job/scenario.h"
 #include "job/verification_margin.h"
 
 namespace ilp {
@@ -103,8 +104,40 @@ void take_exact_solution(const PreparedJob& prepared, const Scene& scene, const 
 // still moves by more than its margin allows (refinement_settled); the last step's
 // change at each goal point joins its gather's own error (the same gather rays each
 // step, so the change is the radiosity's).
+// `scene` with every patch's exitance scaled by its surface's fraction in `state`.
+Scene lit_scene(const Scene& scene, const LitState& state) {
+  if (state.surface_fraction.size() != scene.surfaces.size())
+    throw std::logic_error("verification: a lighting state of another scene");
+  Scene lit = scene;
+  for (Patch& p : lit.patches) p.exitance_lm_per_m2 *= state.surface_fraction[static_cast<std::size_t>(p.surface)];
+  return lit;
+}
+
+// The other lighting states on the exact solve's rows: each solved from its own
+// exitance, read at the goal patches and gathered at the goal points.
+void verify_states_exactly(const PreparedJob& prepared, const Scene& scene, const ProgressiveExactSolve& solve,
+                           const ExactSolveOptions& options, const std::vector<LitState>& states,
+                           const ProgressCallback& progress, Verification& out) {
+  const LightingModel& model = prepared.model;
+  for (const LitState& state : states) {
+    const Scene lit = lit_scene(scene, state);
+    const RadiositySolution solution = solve.solve_lit(lit);
+    const Eigen::VectorXd& at_patches = state.direct_only ? solution.direct_lux : solution.total_lux;
+    Eigen::VectorXd lux(model.goal_rows());
+    for (std::size_t r = 0; r < model.goal_patches.size(); ++r)
+      lux[static_cast<Eigen::Index>(r)] = at_patches[model.goal_patches[r]];
+    if (!model.goal_points.empty()) {
+      const PointIlluminance at = exact_point_illuminance(lit, solve.caster(), solution, model.goal_points,
+                                                          options.form_factors, options.direct_light, progress);
+      lux.tail(static_cast<Eigen::Index>(model.goal_points.size())) = state.direct_only ? at.direct_lux : at.total_lux;
+    }
+    out.state_lux.push_back(std::move(lux));
+  }
+}
+
 void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene, const ExactSolveOptions& options,
-                                const ProgressCallback& progress, Verification& out) {
+                                const std::vector<LitState>& states, const ProgressCallback& progress,
+                                Verification& out) {
   const JobConfig& job = prepared.job;
   const LightingModel& model = prepared.model;
   // The steps before the last solve only to kStepResidual: their values decide whether to
@@ -155,6 +188,7 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
     out.precise_rays = dominant_rays(job.verification);
   }
   out.bvh_reused = solve.caster().reuses_base();
+  verify_states_exactly(prepared, scene, solve, options, states, progress, out);
   const ExactSolveSummary& summary = solve.solution().summary;
   out.parts_s = {{"BVH", summary.bvh_seconds},
                  {"rows", summary.form_factor_seconds},
@@ -180,7 +214,7 @@ Verification verify_layout(const PreparedJob& prepared, const std::vector<Placed
 }
 
 Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int luminaires,
-                          const ProgressCallback& progress) {
+                          const ProgressCallback& progress, const std::vector<LitState>& states) {
   const JobConfig& job = prepared.job;
   const RunOptions& run = prepared.run;
   Verification out;
@@ -203,7 +237,7 @@ Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int l
     options.precise_patches = prepared.model.goal_patches;
     options.other_rays_per_patch = settings.indirect_rays_per_patch;
     options.base_caster = prepared.caster;
-    verify_exact_progressively(prepared, scene, options, progress, out);
+    verify_exact_progressively(prepared, scene, options, states, progress, out);
   } else {
     const RayCaster caster(prepared.caster, scene, worker_threads(job, run));
     out.bvh_reused = caster.reuses_base();
@@ -227,6 +261,17 @@ Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int l
     out.direct_lux = direct.head(G);
     out.point_lux = lux.tail(Q);
     out.point_direct_lux = direct.tail(Q);
+    // The other states through the same sample operator, each source's flux scaled.
+    for (const LitState& state : states) {
+      Eigen::VectorXd scaled = flux;
+      for (std::size_t s = 0; s < sources.size(); ++s)
+        scaled[static_cast<Eigen::Index>(s)] *= state.surface_fraction.at(static_cast<std::size_t>(sources[s].surface));
+      const Eigen::VectorXd at = state.direct_only ? op.direct_lux(scaled) : op.illuminance_lux(scaled);
+      Eigen::VectorXd rows(prepared.model.goal_rows());
+      rows.head(G) = at.head(G);
+      rows.tail(Q) = at.tail(Q);
+      out.state_lux.push_back(std::move(rows));
+    }
   }
   out.seconds = seconds_since(start);
   if (!out.parts_s.empty()) {
@@ -563,6 +608,7 @@ void scale_outcome(JobOutcome& out, double scale) {
   out.predicted_lux *= scale;
   out.predicted_direct_lux *= scale;
   Verification& v = out.verification;
+  for (Eigen::VectorXd& state : v.state_lux) state *= scale;
   v.lux *= scale;
   v.direct_lux *= scale;
   v.point_lux *= scale;
@@ -645,7 +691,11 @@ JobOutcome verify_found(const PreparedJob& primary, const SearchSpec& real, Foun
   out.predicted_lux = found.light.lux;
   out.predicted_direct_lux = std::move(found.direct_lux);
   std::vector<GoalJudgement> predicted = found.as_searched;
-  out.verification = verify_scene(primary, scene_with_layout(primary, out), static_cast<int>(out.luminaires.size()), progress);
+  {
+    const Scene scene = scene_with_layout(primary, out);
+    out.verification = verify_scene(primary, scene, static_cast<int>(out.luminaires.size()), progress,
+                                    scenario_states(primary.plan.scenarios, scene, out));
+  }
   out.verify_seconds = out.verification.seconds;
   std::optional<std::vector<GoalJudgement>> verified;
   std::vector<GoalMargin> margins(real.goals.size());
@@ -682,6 +732,8 @@ JobOutcome verify_found(const PreparedJob& primary, const SearchSpec& real, Foun
   out.constraints = constraints(out);
   out.all_met = std::all_of(out.constraints.begin(), out.constraints.end(), [](const ConstraintOutcome& c) { return c.met; });
   judge_goal_lines(out, real, predicted, found.as_searched, verified, margins);
+  out.scenarios = judge_scenarios(primary.plan.scenarios, model, found.models, real.objective, out);
+  for (const ScenarioOutcome& s : out.scenarios) out.all_met = out.all_met && s.all_met;
   for (const GoalOutcome& o : out.goals)
     if (o.predicted.metric == GoalMetric::average) {
       const double maintained = (o.verified ? o.verified->value : o.predicted.value) * out.maintenance_factor;

@@ -23,6 +23,7 @@
 #include "optimizer/goal_metrics.h"
 #include "optimizer/layout_search.h"
 #include "optimizer/lighting_model.h"
+#include "optimizer/scenario_spec.h"
 
 namespace ilp {
 
@@ -91,6 +92,14 @@ struct GoalOutcome {
   double margin = 0.0;
 };
 
+// A lighting state the verification solves beside the layout's own (a scenario,
+// job/scenario.h): each surface's exitance scaled by its fraction; all the light, or only
+// its direct part.
+struct LitState {
+  std::vector<double> surface_fraction;  // per surface of the verification's scene
+  bool direct_only = false;
+};
+
 struct Verification {
   std::string method = "none";  // "exact", "sample" or "none"
   int rays_per_patch = 0;
@@ -123,6 +132,9 @@ struct Verification {
   // the direct light, the Gauss-Seidel solves, the goal points' gathers (the decisive
   // ones' included) and the rest; each summed over the refinement's steps.
   std::vector<std::pair<std::string, double>> parts_s;
+  // Per LitState asked for: its verified illuminance at the model's goal rows (patches,
+  // then points), on the same rows or operator as the layout's own.
+  std::vector<Eigen::VectorXd> state_lux;
 };
 
 // Places `layout` as real luminaires in the job's scene and solves it as
@@ -144,6 +156,18 @@ struct OutcomeGroup {
   std::string arrangement;             // "4 x 3 field"
   Eigen::Vector2d spacing_m = Eigen::Vector2d::Zero();
   double power_w = 0.0;                // after the flux correction
+};
+
+// A scenario of the plan judged on the installation found (job/scenario.h).
+struct ScenarioOutcome {
+  std::string name;
+  LightCounted light = LightCounted::total;
+  std::vector<double> fractions;  // per luminaire of the outcome
+  std::size_t lit = 0;            // luminaires with a fraction above 0
+  double power_w = 0.0;           // the layout's power at those fractions (proportional to output)
+  std::vector<GoalOutcome> goals;
+  bool all_met = false;
+  Eigen::VectorXd predicted_lux, verified_lux;  // at the model's goal rows (verified: empty when not)
 };
 
 struct JobOutcome {
@@ -175,6 +199,7 @@ struct JobOutcome {
   double verify_seconds = 0.0;             // all verification rounds
   int searches = 1;                         // search rounds run (see VerificationSettings::rounds)
   std::vector<std::string> calibration;     // what each round changed in the search targets
+  std::vector<ScenarioOutcome> scenarios;   // the plan's other lighting states, judged on this layout
 };
 
 // A layout's light at the model's goal rows and observers (GoalLight's values).
@@ -192,6 +217,7 @@ struct FoundLayout {
   Eigen::VectorXd direct_lux;        // the direct part of light.lux
   std::vector<GoalJudgement> as_searched;
   bool feasible = false;             // as predicted: the distances and the power cap (groups: every goal too)
+  std::vector<const LightingModel*> models;  // per luminaire, the model it was searched on (empty: the primary's)
 };
 
 // The constraint lines of an outcome's final layout (after the flux correction).
@@ -231,8 +257,9 @@ const VariantPlan& outcome_plan(const PreparedJob& prepared, const JobOutcome& o
 
 // Solves the job's scene with `scene` (the job's, the layout's `luminaires` real
 // luminaires added) as job.verification says: what verify_layout does once it has placed them.
+// `states`: the other lighting states to verify on the same solve (Verification::state_lux).
 Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int luminaires,
-                          const ProgressCallback& progress = {});
+                          const ProgressCallback& progress = {}, const std::vector<LitState>& states = {});
 
 // The power density's area and what it is the area of (JobOutcome::floor_area_m2).
 std::pair<double, std::string> power_density_area(const PreparedJob& prepared);

@@ -474,7 +474,7 @@ void hash_fields(KeyWriter& k, const LuminaireSetting& l) {
 }
 
 // Each JobConfig field is a scene input below or named in the comment at the end.
-static_assert(field_count<JobConfig>() == 44,
+static_assert(field_count<JobConfig>() == 45,
               "JobConfig changed: if load_job_scene reads the new field, hash it in hash_scene_inputs; "
               "if the operator depends on it otherwise, it must reach it through plan_job's ModelSpec");
 void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
@@ -518,7 +518,7 @@ void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
   // scene), max_memory_bytes (lowers scene.max_patches, a limit that refuses a scene);
   // form_factors, direct_light, sample, search, groups (each through group_job and plan_job), goals, grids (the operator's, through
   // plan_job's ModelSpec); radiosity, method, maintenance_factor, maintenance_loc,
-  // constraints, objective, optimizer, verification, output, energy, sweep (not the operator's).
+  // constraints, objective, optimizer, verification, output, energy, sweep, scenarios (not the operator's).
 }
 
 }  // namespace ilp

@@ -178,6 +178,10 @@ std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
     plan.maintenance_factor = product.maintenance_factor.value_or(job.maintenance_factor);
     plan.model = model_spec(job, plan.product, run);
     plan.search = search_spec(job, plan, run);
+    plan.scenarios = job.scenarios;
+    for (ScenarioSpec& s : plan.scenarios)
+      for (GoalSpec& g : s.goals)
+        if (metric_rule(g.metric).lux) g.target /= plan.maintenance_factor;
     out.push_back(std::move(plan));
   }
   return out;

@@ -14,6 +14,7 @@
 #include "core/operator/sample_operator.h"
 #include "job/config.h"
 #include "optimizer/lighting_model.h"
+#include "optimizer/scenario_spec.h"
 #include "optimizer/search_spec.h"
 
 namespace ilp {
@@ -42,6 +43,7 @@ struct VariantPlan {
   double maintenance_factor = 1.0;  // the product's own, else the job's
   ModelSpec model;
   SearchSpec search;
+  std::vector<ScenarioSpec> scenarios;  // the job's other lighting states, goals at initial targets
 };
 
 // Every variant the job searches: each product at each rotation, or the plain panel.

@@ -156,6 +156,40 @@ VerdictLines verdict_lines(const JobConfig& job, const JobOutcome& outcome) {
   return out;
 }
 
+std::vector<ScenarioRecord> scenario_records(const JobConfig& job, const JobOutcome& outcome) {
+  std::vector<ScenarioRecord> out;
+  for (std::size_t s = 0; s < outcome.scenarios.size(); ++s) {
+    const ScenarioOutcome& o = outcome.scenarios[s];
+    ScenarioRecord rec{o.name, o.light == LightCounted::direct ? "direct" : "total", static_cast<int>(o.lit),
+                       static_cast<int>(outcome.luminaires.size()), o.power_w, o.all_met, {}};
+    for (std::size_t g = 0; g < o.goals.size(); ++g) {
+      const GoalOutcome& line = o.goals[g];
+      const MetricRule& rule = metric_rule(line.predicted.metric);
+      VerdictLine v;
+      v.name = line.predicted.name;
+      for (const GoalSetting& goal : job.goals)
+        if (goal.name == v.name) {
+          v.surfaces = goal.surfaces;
+          v.grid = goal.grid;
+          break;
+        }
+      v.metric = std::string(rule.name);
+      v.unit = std::string(rule.unit);
+      const double mf = rule.lux ? outcome.maintenance_factor : 1.0;
+      v.target = job.scenarios.at(s).goals.at(g).target;
+      v.predicted = line.predicted.value * mf;
+      if (line.verified) v.verified = line.verified->value * mf;
+      v.met = line.met;
+      v.fails_only_on_verification = line.fails_only_on_verification;
+      v.tolerance = line.tolerance;
+      v.rule = rule.lower_bound ? ">=" : "<=";
+      rec.goals.push_back(v);
+    }
+    out.push_back(std::move(rec));
+  }
+  return out;
+}
+
 VariantRecord variant_record(const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
                              const std::string& summary, bool chosen) {
   VariantRecord v;
@@ -209,6 +243,7 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   const VerdictLines lines = verdict_lines(job, outcome);
   r.goals = lines.goals;
   r.constraints = lines.constraints;
+  r.scenarios = scenario_records(job, outcome);
   r.margin_floor = outcome.margin_floor;
   r.power_w = outcome.power_w;
   r.mounting_area_m2 = outcome.mounting_area_m2;
@@ -224,7 +259,8 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
   r.fixed_flux_lm = outcome.fixed_flux_lm;
   r.feasible = outcome.feasible;
   // Met exactly when every line is: never "not met" without a line that says why.
-  r.all_met = lines.all_met();
+  r.all_met = lines.all_met() && std::all_of(r.scenarios.begin(), r.scenarios.end(),
+                                             [](const ScenarioRecord& s) { return s.all_met; });
   r.flux_correction = outcome.flux_correction;
   r.flux_correction_limited = outcome.flux_correction_limited;
   r.verification = outcome.verification.method;

@@ -32,8 +32,14 @@ std::optional<double> relative_error(const LightingModel& model, const GoalArea&
     case GoalMetric::uniformity:
       if (!(average > 0.0 && lux[lowest] > 0.0)) return std::nullopt;
       return std::hypot(average_error, minimum_error);
-    default: return std::nullopt;  // maximum: its highest point's; not needed for a margin
+    case GoalMetric::maximum:  // its highest point's; not needed for a margin
+    case GoalMetric::ugr:      // the others are not scaled by the flux correction
+    case GoalMetric::cylindrical:
+    case GoalMetric::cylindrical_uniformity:
+    case GoalMetric::modelling:
+      return std::nullopt;
   }
+  return std::nullopt;
 }
 
 // The relative change of a goal's value from `before` to `after` (the same rows), for
@@ -56,8 +62,14 @@ std::optional<double> relative_change(const GoalArea& area, GoalMetric metric, c
     case GoalMetric::average: return average;
     case GoalMetric::minimum: return minimum;
     case GoalMetric::uniformity: return std::hypot(average, minimum);
-    default: return std::nullopt;
+    case GoalMetric::maximum:  // neither an average, a minimum nor their ratio
+    case GoalMetric::ugr:
+    case GoalMetric::cylindrical:
+    case GoalMetric::cylindrical_uniformity:
+    case GoalMetric::modelling:
+      return std::nullopt;
   }
+  return std::nullopt;
 }
 
 }  // namespace

@@ -13,17 +13,26 @@ namespace {
 
 constexpr double kMaxLux = 1e7;
 
+// Each metric's rule: what the stages do with it (docs/config.md lists the keys).
+constexpr MetricDomain kInstant = MetricDomain::instant;
+constexpr LightCounted kTotal = LightCounted::total;
 const std::vector<MetricRule> kRules = {
-    {GoalMetric::average, "average_lux", "average", "lx", true, true, true, false, kMaxLux},
-    {GoalMetric::minimum, "min_lux", "minimum", "lx", true, true, true, true, kMaxLux},
-    {GoalMetric::maximum, "max_lux", "maximum", "lx", false, true, false, false, kMaxLux},
-    {GoalMetric::uniformity, "uniformity", "uniformity", "", true, false, false, false, 1.0},
-    {GoalMetric::ugr, "ugr_max", "UGR", "", false, false, false, false, 30.0, AreaKind::glare, 10.0},
+    {GoalMetric::average, "average_lux", "average", "lx", true, true, true, false, kMaxLux, AreaKind::illuminance, 0.0,
+     kInstant, kTotal, "illuminance"},
+    {GoalMetric::minimum, "min_lux", "minimum", "lx", true, true, true, true, kMaxLux, AreaKind::illuminance, 0.0,
+     kInstant, kTotal, "illuminance"},
+    {GoalMetric::maximum, "max_lux", "maximum", "lx", false, true, false, false, kMaxLux, AreaKind::illuminance, 0.0,
+     kInstant, kTotal, "illuminance"},
+    {GoalMetric::uniformity, "uniformity", "uniformity", "", true, false, false, false, 1.0, AreaKind::illuminance, 0.0,
+     kInstant, kTotal, "illuminance ratio"},
+    {GoalMetric::ugr, "ugr_max", "UGR", "", false, false, false, false, 30.0, AreaKind::glare, 10.0, kInstant, kTotal,
+     "glare rating"},
     {GoalMetric::cylindrical, "cylindrical_lux", "cylindrical", "lx", true, true, true, false, kMaxLux,
-     AreaKind::cylindrical},
+     AreaKind::cylindrical, 0.0, kInstant, kTotal, "cylindrical illuminance"},
     {GoalMetric::cylindrical_uniformity, "cylindrical_uniformity", "cylindrical U0", "", true, false, false, false, 1.0,
-     AreaKind::cylindrical},
-    {GoalMetric::modelling, "modelling", "modelling", "", true, false, false, false, 5.0, AreaKind::cylindrical},
+     AreaKind::cylindrical, 0.0, kInstant, kTotal, "cylindrical illuminance ratio"},
+    {GoalMetric::modelling, "modelling", "modelling", "", true, false, false, false, 5.0, AreaKind::cylindrical, 0.0,
+     kInstant, kTotal, "cylindrical over horizontal illuminance"},
 };
 
 double weighted_average(const GoalArea& area, const Eigen::VectorXd& v) {
@@ -175,8 +184,15 @@ std::optional<double> largest_flux_scale(GoalMetric metric, double value, double
       // Below 10 no source counts (0) and at kUgrWithoutBackground nothing scales.
       if (value > 0.0 && value < kUgrWithoutBackground) return std::pow(10.0, (target - value) / 8.0);
       return std::nullopt;
-    default: return std::nullopt;
+    case GoalMetric::average:  // lower bounds, and ratios a common scale leaves unchanged
+    case GoalMetric::minimum:
+    case GoalMetric::uniformity:
+    case GoalMetric::cylindrical:
+    case GoalMetric::cylindrical_uniformity:
+    case GoalMetric::modelling:
+      return std::nullopt;
   }
+  return std::nullopt;
 }
 
 double relative_violation(GoalMetric metric, double value, double target, bool two_sided_average) {

@@ -57,6 +57,13 @@ const ObjectiveRule* objective_rule_for_key(std::string_view key);
 // closest_to_target), rather than a bound?
 bool is_target_goal(Objective objective, GoalMetric metric);
 
+// Which light a metric counts: all of it (every reflection), or only what comes straight
+// from the sources (EN 1838's emergency values: reflected light does not count).
+enum class LightCounted { total, direct };
+// Over what time a metric is judged: one state of the lighting (an instant), or every
+// hour of a year (climate-based daylight metrics, annual energy).
+enum class MetricDomain { instant, year };
+
 struct MetricRule {
   GoalMetric metric;
   std::string_view key;   // in goals entries and sweep keys: average_lux, min_lux, max_lux, uniformity,
@@ -70,6 +77,9 @@ struct MetricRule {
   double max_target;      // the largest valid target (1e7 lx; 1 for U0)
   AreaKind area = AreaKind::illuminance;  // what the metric is measured over
   double min_target = 0.0;  // the least valid target (exclusive unless zero_allowed; inclusive for UGR)
+  MetricDomain domain = MetricDomain::instant;  // every metric so far: one lighting state
+  LightCounted light = LightCounted::total;     // every metric so far counts reflected light
+  std::string_view quantity = "illuminance";    // what is measured: illuminance, glare rating, cylindrical illuminance, ratio
 };
 
 // Every metric, in GoalMetric order.

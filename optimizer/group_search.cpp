@@ -6,6 +6,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include <glpk.h>
+
 #include "optimizer/goal_metrics.h"
 
 namespace ilp {
@@ -60,7 +62,7 @@ class PairEvaluator {
     }
   }
 
-  PairLight light(const std::vector<const GroupOption*>& pair, const Eigen::Vector2d& s) const {
+  PairLight light(const std::vector<const GroupOption*>& pair, const Eigen::VectorXd& s) const {
     PairLight out{model_.fixed_lux, fixed_eye_, model_.fixed_glare};
     for (std::size_t g = 0; g < pair.size(); ++g) {
       const ArrangementLight& a = *pair[g]->light;
@@ -131,6 +133,58 @@ double least_pair_power_w(const std::vector<const GroupOption*>& pair, const std
   return least_w;
 }
 
+
+// cost . s as the two-group search always summed it (a Vector2d's dot): the same bits
+// for one or two groups as before any number were searched.
+double power_of(const Eigen::VectorXd& cost, const Eigen::VectorXd& s) {
+  double sum = 0.0;
+  for (Eigen::Index g = 0; g < cost.size(); ++g) sum += cost[g] * s[g];
+  return sum;
+}
+
+// The least cost . s over the box cut by the constraints by GLPK's primal simplex method
+// (bounded columns, one row a constraint), the solution clamped into the box.
+std::optional<Eigen::VectorXd> least_cost_simplex(const std::vector<OutputConstraintN>& constraints,
+                                                  const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                                                  const Eigen::VectorXd& cost) {
+  const int k = static_cast<int>(lo.size());
+  glp_prob* lp = glp_create_prob();
+  glp_set_obj_dir(lp, GLP_MIN);
+  glp_add_cols(lp, k);
+  for (int g = 0; g < k; ++g) {
+    glp_set_col_bnds(lp, g + 1, lo[g] < hi[g] ? GLP_DB : GLP_FX, lo[g], hi[g]);
+    glp_set_obj_coef(lp, g + 1, cost[g]);
+  }
+  std::vector<int> ia{0}, ja{0};
+  std::vector<double> ar{0.0};
+  if (!constraints.empty()) {
+    glp_add_rows(lp, static_cast<int>(constraints.size()));
+    for (std::size_t r = 0; r < constraints.size(); ++r) {
+      const int row = static_cast<int>(r) + 1;
+      glp_set_row_bnds(lp, row, GLP_LO, constraints[r].rhs, 0.0);
+      for (int g = 0; g < k; ++g)
+        if (constraints[r].coeff[g] != 0.0) {
+          ia.push_back(row);
+          ja.push_back(g + 1);
+          ar.push_back(constraints[r].coeff[g]);
+        }
+    }
+    glp_load_matrix(lp, static_cast<int>(ia.size()) - 1, ia.data(), ja.data(), ar.data());
+  }
+  glp_smcp parm;
+  glp_init_smcp(&parm);
+  parm.msg_lev = GLP_MSG_OFF;
+  parm.presolve = GLP_ON;  // an infeasible programme then ends at once, with no basis to report
+  const int rc = glp_simplex(lp, &parm);
+  std::optional<Eigen::VectorXd> out;
+  if (rc == 0 && glp_get_status(lp) == GLP_OPT) {
+    Eigen::VectorXd s(k);
+    for (int g = 0; g < k; ++g) s[g] = glp_get_col_prim(lp, g + 1);
+    out = s.cwiseMax(lo).cwiseMin(hi);
+  }
+  glp_delete_prob(lp);
+  return out;
+}
 }  // namespace
 
 bool groups_collide(const GroupOption& a, const GroupOption& b) {
@@ -159,18 +213,21 @@ std::optional<Eigen::Vector2d> least_cost_outputs(const std::vector<OutputConstr
   return best.cwiseMax(lo).cwiseMin(hi);  // the slack may leave a vertex a hair outside
 }
 
-std::vector<OutputConstraint> linear_goal_constraints(const LightingModel& model, const std::vector<GoalSpec>& goals,
-                                                      const Eigen::VectorXd& fixed_lux,
-                                                      const std::vector<const Eigen::VectorXd*>& unit_lux) {
-  if (unit_lux.empty() || unit_lux.size() > static_cast<std::size_t>(kMaxSearchedGroups))
-    throw std::invalid_argument("linear_goal_constraints: one or two groups");
+namespace {
+
+// linear_goal_constraints in the constraint type C (coefficients Vec: Vector2d for one or
+// two groups, VectorXd for any number).
+template <class C, class Vec>
+std::vector<C> goal_constraints(const LightingModel& model, const std::vector<GoalSpec>& goals,
+                                const Eigen::VectorXd& fixed_lux, const std::vector<const Eigen::VectorXd*>& unit_lux,
+                                Eigen::Index size) {
   const std::size_t k = unit_lux.size();
   auto coefficients = [&](auto per_group) {
-    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    Vec c = Vec::Zero(size);
     for (std::size_t g = 0; g < k; ++g) c[static_cast<Eigen::Index>(g)] = per_group(*unit_lux[g]);
     return c;
   };
-  std::vector<OutputConstraint> out;
+  std::vector<C> out;
   for (const GoalSpec& goal : goals) {
     const GoalArea& area = area_of(model, goal);
     const double t = goal.target;
@@ -189,25 +246,110 @@ std::vector<OutputConstraint> linear_goal_constraints(const LightingModel& model
           out.push_back({coefficients([&](const Eigen::VectorXd& u) { return -u[r]; }), fixed_lux[r] - t});
         break;
       case GoalMetric::uniformity: {  // E_r >= t x average, for every row
-        const Eigen::Vector2d mean = coefficients([&](const Eigen::VectorXd& u) { return weighted_average(area, u); });
+        const Vec mean = coefficients([&](const Eigen::VectorXd& u) { return weighted_average(area, u); });
         const double fixed_mean = weighted_average(area, fixed_lux);
         for (const Eigen::Index r : area.rows)
-          out.push_back({coefficients([&](const Eigen::VectorXd& u) { return u[r]; }) - t * mean,
+          out.push_back({Vec(coefficients([&](const Eigen::VectorXd& u) { return u[r]; }) - t * mean),
                          t * fixed_mean - fixed_lux[r]});
         break;
       }
-      default:  // not linear in the fluxes: judged at the solution
+      case GoalMetric::ugr:  // not linear in the fluxes: judged at the solution
+      case GoalMetric::cylindrical_uniformity:
+      case GoalMetric::modelling:
         break;
     }
   }
   return out;
 }
 
+}  // namespace
+
+std::vector<OutputConstraint> linear_goal_constraints(const LightingModel& model, const std::vector<GoalSpec>& goals,
+                                                      const Eigen::VectorXd& fixed_lux,
+                                                      const std::vector<const Eigen::VectorXd*>& unit_lux) {
+  if (unit_lux.empty() || unit_lux.size() > 2) throw std::invalid_argument("linear_goal_constraints: one or two groups");
+  return goal_constraints<OutputConstraint, Eigen::Vector2d>(model, goals, fixed_lux, unit_lux, 2);
+}
+
+std::vector<OutputConstraintN> linear_goal_constraints_n(const LightingModel& model, const std::vector<GoalSpec>& goals,
+                                                         const Eigen::VectorXd& fixed_lux,
+                                                         const std::vector<const Eigen::VectorXd*>& unit_lux) {
+  if (unit_lux.empty() || unit_lux.size() > static_cast<std::size_t>(kMaxSearchedGroups))
+    throw std::invalid_argument("linear_goal_constraints_n: 1 to " + std::to_string(kMaxSearchedGroups) + " groups");
+  return goal_constraints<OutputConstraintN, Eigen::VectorXd>(model, goals, fixed_lux, unit_lux,
+                                                              static_cast<Eigen::Index>(unit_lux.size()));
+}
+
+std::optional<Eigen::VectorXd> least_cost_outputs_n(const std::vector<OutputConstraintN>& constraints,
+                                                    const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                                                    const Eigen::VectorXd& cost) {
+  const Eigen::Index k = lo.size();
+  if (k <= 2) {  // the exact vertex enumeration of the plane
+    auto plane = [k](const Eigen::VectorXd& v) {
+      Eigen::Vector2d p = Eigen::Vector2d::Zero();
+      p.head(k) = v;
+      return p;
+    };
+    std::vector<OutputConstraint> flat;
+    for (const OutputConstraintN& c : constraints) flat.push_back({plane(c.coeff), c.rhs});
+    const std::optional<Eigen::Vector2d> s = least_cost_outputs(flat, plane(lo), plane(hi), plane(cost));
+    if (!s) return std::nullopt;
+    return Eigen::VectorXd(s->head(k));
+  }
+  return least_cost_simplex(constraints, lo, hi, cost);
+}
+
+namespace {
+
+// Every combination of arrangements (one per group, indices into each group's options),
+// the first group's index varying slowest, with its lower bound on the power.
+struct Combination {
+  std::vector<int> options;
+  double bound_w = 0.0;
+};
+
+std::vector<Combination> combinations(const std::vector<GroupChoices>& groups,
+                                      const std::vector<std::vector<Eigen::VectorXd>>& gains,
+                                      const Eigen::VectorXd& deficits) {
+  const std::size_t k = groups.size();
+  double count = 1.0;
+  for (const GroupChoices& g : groups) count *= static_cast<double>(g.options.size());
+  if (count > kMaxGroupCombinations)
+    throw std::invalid_argument("search_groups: " + std::to_string(static_cast<long long>(count)) +
+                                " combinations of arrangements (at most " +
+                                std::to_string(static_cast<long long>(kMaxGroupCombinations)) + ")");
+  std::vector<Combination> out;
+  std::vector<int> at(k, 0);
+  while (true) {
+    std::vector<const GroupOption*> members;
+    std::vector<Eigen::VectorXd> g;
+    for (std::size_t i = 0; i < k; ++i) {
+      members.push_back(&groups[i].options[static_cast<std::size_t>(at[i])]);
+      g.push_back(gains[i][static_cast<std::size_t>(at[i])]);
+    }
+    out.push_back({at, least_pair_power_w(members, g, deficits)});
+    std::size_t i = k;  // the last group's index varies fastest
+    while (i > 0 && ++at[i - 1] == static_cast<int>(groups[i - 1].options.size())) at[--i] = 0;
+    if (i == 0) break;
+  }
+  return out;
+}
+
+bool any_collide(const std::vector<const GroupOption*>& members) {
+  for (std::size_t a = 0; a < members.size(); ++a)
+    for (std::size_t b = a + 1; b < members.size(); ++b)
+      if (groups_collide(*members[a], *members[b])) return true;
+  return false;
+}
+
+}  // namespace
+
 GroupSearchResult search_groups(const LightingModel& model, const GroupSearchSpec& spec,
                                 const std::vector<GroupChoices>& groups) {
   const auto start = std::chrono::steady_clock::now();
   if (groups.empty() || groups.size() > static_cast<std::size_t>(kMaxSearchedGroups))
-    throw std::invalid_argument("search_groups: " + std::to_string(groups.size()) + " groups (one or two are searched)");
+    throw std::invalid_argument("search_groups: " + std::to_string(groups.size()) + " groups (1 to " +
+                                std::to_string(kMaxSearchedGroups) + " are searched)");
   for (const GroupChoices& g : groups)
     if (g.options.empty()) throw std::invalid_argument("search_groups: group '" + g.name + "' has no arrangement");
   const std::size_t k = groups.size();
@@ -226,38 +368,23 @@ GroupSearchResult search_groups(const LightingModel& model, const GroupSearchSpe
         v[static_cast<Eigen::Index>(a)] = weighted_average(area_of(model, *averages[a]), o.light->lux_per_lm);
       gains[g].push_back(std::move(v));
     }
-  // Every pair (index i of group 0, j of group 1), with its bound, least bound first.
-  struct Pair {
-    int i = 0, j = 0;
-    double bound_w = 0.0;
-  };
-  std::vector<Pair> pairs;
-  const int second = k == 2 ? static_cast<int>(groups[1].options.size()) : 1;
-  for (int i = 0; i < static_cast<int>(groups[0].options.size()); ++i)
-    for (int j = 0; j < second; ++j) {
-      std::vector<const GroupOption*> pair{&groups[0].options[static_cast<std::size_t>(i)]};
-      std::vector<Eigen::VectorXd> g{gains[0][static_cast<std::size_t>(i)]};
-      if (k == 2) {
-        pair.push_back(&groups[1].options[static_cast<std::size_t>(j)]);
-        g.push_back(gains[1][static_cast<std::size_t>(j)]);
-      }
-      pairs.push_back({i, j, least_pair_power_w(pair, g, deficits)});
-    }
-  std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.bound_w < b.bound_w; });
+  // Every combination with its bound, least bound first.
+  std::vector<Combination> all = combinations(groups, gains, deficits);
+  std::stable_sort(all.begin(), all.end(), [](const Combination& a, const Combination& b) { return a.bound_w < b.bound_w; });
 
   const PairEvaluator evaluator(model, spec);
   GroupSearchResult best;
-  best.pairs = static_cast<long>(pairs.size());
+  best.pairs = static_cast<long>(all.size());
   double best_missed = std::numeric_limits<double>::infinity();
-  auto keep = [&](const std::vector<const GroupOption*>& pair, const Pair& p, const Eigen::Vector2d& s,
+  auto keep = [&](const std::vector<const GroupOption*>& members, const Combination& c, const Eigen::VectorXd& s,
                   PairLight&& light, std::vector<GoalJudgement>&& goals, bool feasible) {
     best.feasible = feasible;
     best.groups.clear();
     best.power_w = 0.0;
     for (std::size_t g = 0; g < k; ++g) {
       const double flux = s[static_cast<Eigen::Index>(g)];
-      const double power_w = flux * pair[g]->count() / pair[g]->efficacy_lm_per_w;
-      best.groups.push_back({g == 0 ? p.i : p.j, flux, power_w});
+      const double power_w = flux * members[g]->count() / members[g]->efficacy_lm_per_w;
+      best.groups.push_back({c.options[g], flux, power_w});
       best.power_w += power_w;
     }
     best.goals = std::move(goals);
@@ -265,47 +392,48 @@ GroupSearchResult search_groups(const LightingModel& model, const GroupSearchSpe
     best.eye_indirect_lux = std::move(light.eye_indirect_lux);
     best.glare = std::move(light.glare);
   };
-  for (std::size_t n = 0; n < pairs.size(); ++n) {
-    const Pair& p = pairs[n];
-    if (best.feasible && p.bound_w >= best.power_w) {
-      best.pruned = static_cast<long>(pairs.size() - n);
+  const auto dims = static_cast<Eigen::Index>(k);
+  for (std::size_t n = 0; n < all.size(); ++n) {
+    const Combination& c = all[n];
+    if (best.feasible && c.bound_w >= best.power_w) {
+      best.pruned = static_cast<long>(all.size() - n);
       break;
     }
-    std::vector<const GroupOption*> pair{&groups[0].options[static_cast<std::size_t>(p.i)]};
-    if (k == 2) pair.push_back(&groups[1].options[static_cast<std::size_t>(p.j)]);
-    if (k == 2 && groups_collide(*pair[0], *pair[1])) {
+    std::vector<const GroupOption*> members;
+    for (std::size_t g = 0; g < k; ++g) members.push_back(&groups[g].options[static_cast<std::size_t>(c.options[g])]);
+    if (any_collide(members)) {
       ++best.colliding;
       continue;
     }
-    Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Zero(), cost = Eigen::Vector2d::Zero();
+    Eigen::VectorXd lo(dims), hi(dims), cost(dims);
     std::vector<const Eigen::VectorXd*> units;
     for (std::size_t g = 0; g < k; ++g) {
       const auto e = static_cast<Eigen::Index>(g);
-      lo[e] = pair[g]->flux_min_lm;
-      hi[e] = pair[g]->flux_max_lm;
-      cost[e] = pair[g]->count() / pair[g]->efficacy_lm_per_w;
-      units.push_back(&pair[g]->light->lux_per_lm);
+      lo[e] = members[g]->flux_min_lm;
+      hi[e] = members[g]->flux_max_lm;
+      cost[e] = members[g]->count() / members[g]->efficacy_lm_per_w;
+      units.push_back(&members[g]->light->lux_per_lm);
     }
-    std::vector<OutputConstraint> constraints = linear_goal_constraints(model, spec.goals, model.fixed_lux, units);
+    std::vector<OutputConstraintN> constraints = linear_goal_constraints_n(model, spec.goals, model.fixed_lux, units);
     if (std::isfinite(spec.max_power_w)) constraints.push_back({-cost, -spec.max_power_w});
     ++best.solved;
-    const std::optional<Eigen::Vector2d> s = least_cost_outputs(constraints, lo, hi, cost);
+    const std::optional<Eigen::VectorXd> s = least_cost_outputs_n(constraints, lo, hi, cost);
     if (s) {
-      PairLight light = evaluator.light(pair, *s);
+      PairLight light = evaluator.light(members, *s);
       std::vector<GoalJudgement> goals = evaluator.judge(light);
       if (PairEvaluator::all_met(goals)) {
-        if (!best.feasible || cost.dot(*s) < best.power_w) keep(pair, p, *s, std::move(light), std::move(goals), true);
+        if (!best.feasible || power_of(cost, *s) < best.power_w) keep(members, c, *s, std::move(light), std::move(goals), true);
         continue;
       }
     }
     if (best.feasible) continue;
-    // No feasible pair yet: keep the pair that misses least at full output, to report.
-    PairLight light = evaluator.light(pair, hi);
+    // No feasible combination yet: keep the one that misses least at full output, to report.
+    PairLight light = evaluator.light(members, hi);
     std::vector<GoalJudgement> goals = evaluator.judge(light);
     const double missed = PairEvaluator::missed(goals);
     if (missed < best_missed) {
       best_missed = missed;
-      keep(pair, p, hi, std::move(light), std::move(goals), false);
+      keep(members, c, hi, std::move(light), std::move(goals), false);
     }
   }
   best.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,16 +1,17 @@
-// Several luminaire groups searched together (issue 19, item 5): each group's regular
-// arrangements with their light at 1 lm per luminaire (optimizer/layout_search.h,
-// regular_arrangement_lights), and for every pair of arrangements (one per group) the
-// groups' outputs set together for the least power.
+// Several luminaire groups searched together (issue 19, item 5; any number since issue
+// 38): each group's regular arrangements with their light at 1 lm per luminaire
+// (optimizer/layout_search.h, regular_arrangement_lights), and for every combination of
+// arrangements (one per group) the groups' outputs set together for the least power.
 //
 // Illuminance is affine in each group's flux per luminaire s_g (all of a group at one
 // output): E = fixed + sum_g s_g u_g. Average, minimum, maximum and U0 goals (and the
 // cylindrical average) are therefore linear constraints on s, and the least power
 // sum_g s_g n_g / efficacy_g within each group's output range is a linear programme in
-// at most two variables, solved exactly (the vertices of the output box cut by the
-// constraints). Goals that are not linear in s (UGR, cylindrical U0, modelling) are
-// judged at that solution, as the single-group search judges them at its closed-form
-// scale: a pair that misses one is infeasible. More than two groups are refused.
+// one variable per group: for one or two groups solved exactly (the vertices of the
+// output box cut by the constraints), for more by GLPK's simplex method. Goals that are
+// not linear in s (UGR, cylindrical U0, modelling) are judged at that solution, as the
+// single-group search judges them at its closed-form scale: a combination that misses
+// one is infeasible.
 #pragma once
 
 #include <Eigen/Core>
@@ -24,7 +25,11 @@
 
 namespace ilp {
 
-inline constexpr int kMaxSearchedGroups = 2;
+// Groups a job may search together (their luminaires are named A1 ... F1), and the
+// combinations of arrangements (one per group) a search may weigh: a product of the
+// groups' arrangement counts above it is refused before any is solved.
+inline constexpr int kMaxSearchedGroups = 6;
+inline constexpr double kMaxGroupCombinations = 2e6;
 
 // coeff . s >= rhs, s = (s_0, s_1) the groups' fluxes per luminaire (lm).
 struct OutputConstraint {
@@ -39,12 +44,28 @@ std::optional<Eigen::Vector2d> least_cost_outputs(const std::vector<OutputConstr
                                                   const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
                                                   const Eigen::Vector2d& cost);
 
+// coeff . s >= rhs for any number of groups.
+struct OutputConstraintN {
+  Eigen::VectorXd coeff;
+  double rhs = 0.0;
+};
+
+// The least cost . s over the box [lo, hi] cut by the constraints, in any dimension: one
+// or two groups through least_cost_outputs (exact), more through GLPK's simplex method
+// (clamped into the box). Nothing when no point of the box meets every constraint.
+std::optional<Eigen::VectorXd> least_cost_outputs_n(const std::vector<OutputConstraintN>& constraints,
+                                                    const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                                                    const Eigen::VectorXd& cost);
+
 // The goals that are linear in the groups' fluxes as constraints on s: every average
 // and cylindrical goal one, every minimum, maximum and U0 goal one per row of its area.
-// unit_lux[g]: group g's goal-row lux at 1 lm per luminaire (at most two groups).
+// unit_lux[g]: group g's goal-row lux at 1 lm per luminaire (one or two groups; _n: any number).
 std::vector<OutputConstraint> linear_goal_constraints(const LightingModel& model, const std::vector<GoalSpec>& goals,
                                                       const Eigen::VectorXd& fixed_lux,
                                                       const std::vector<const Eigen::VectorXd*>& unit_lux);
+std::vector<OutputConstraintN> linear_goal_constraints_n(const LightingModel& model, const std::vector<GoalSpec>& goals,
+                                                         const Eigen::VectorXd& fixed_lux,
+                                                         const std::vector<const Eigen::VectorXd*>& unit_lux);
 
 // One arrangement a group may take, with its luminaire's output range and efficacy.
 struct GroupOption {
@@ -85,16 +106,17 @@ struct GroupSearchResult {
   double power_w = 0.0;
   std::vector<GoalJudgement> goals;
   Eigen::VectorXd lux, eye_indirect_lux, glare;  // at the goal rows and the observers, as predicted
-  long pairs = 0;      // arrangement pairs in all
+  long pairs = 0;      // combinations of arrangements (one per group) in all
   long solved = 0;     // linear programmes solved (the evaluations)
-  long pruned = 0;     // pairs left out: their least power could not beat the best found
-  long colliding = 0;  // pairs left out: a luminaire of one group on another's (groups_collide)
+  long pruned = 0;     // combinations left out: their least power could not beat the best found
+  long colliding = 0;  // combinations left out: a luminaire of one group on another's (groups_collide)
   double seconds = 0.0;
 };
 
-// The least-power pair (min_power). `model` gives the goal areas, the fixed sources'
-// light and the observers (every group's model has the same goal rows). Throws
-// std::invalid_argument for no group, more than kMaxSearchedGroups or a group without options.
+// The least-power combination (min_power). `model` gives the goal areas, the fixed
+// sources' light and the observers (every group's model has the same goal rows). Throws
+// std::invalid_argument for no group, more than kMaxSearchedGroups, a group without
+// options or more than kMaxGroupCombinations combinations.
 GroupSearchResult search_groups(const LightingModel& model, const GroupSearchSpec& spec,
                                 const std::vector<GroupChoices>& groups);
 

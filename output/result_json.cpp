@@ -82,6 +82,12 @@ json to_json(const ResultRecord& r) {
   j["files"] = r.files;
   j["goals"] = lines_json(r.goals);
   j["constraints"] = lines_json(r.constraints);
+  if (!r.scenarios.empty()) {
+    j["scenarios"] = json::array();
+    for (const ScenarioRecord& s : r.scenarios)
+      j["scenarios"].push_back({{"name", s.name}, {"light", s.light}, {"lit", s.lit}, {"luminaires", s.luminaires},
+                                {"power_w", s.power_w}, {"all_met", s.all_met}, {"goals", lines_json(s.goals)}});
+  }
   j["margin_floor"] = r.margin_floor;
   j["power_w"] = r.power_w;
   j["mounting_area_m2"] = r.mounting_area_m2;
@@ -280,6 +286,11 @@ ResultRecord from_json(const json& j) {
   (void)j.at("goals");  // a result has goals (the error names the key)
   r.goals = lines_from_json(j, "goals");
   r.constraints = lines_from_json(j, "constraints");
+  if (j.contains("scenarios"))
+    for (const json& s : j.at("scenarios"))
+      r.scenarios.push_back({s.at("name").get<std::string>(), s.at("light").get<std::string>(), s.at("lit").get<int>(),
+                             s.at("luminaires").get<int>(), s.at("power_w").get<double>(), s.at("all_met").get<bool>(),
+                             lines_from_json(s, "goals")});
   r.margin_floor = j.value("margin_floor", 0.0);
   r.power_w = j.at("power_w").get<double>();
   r.mounting_area_m2 = j.at("mounting_area_m2").get<double>();
@@ -653,6 +664,11 @@ void print_result_text(std::ostream& os, const ResultRecord& r) {
   print_lines(os, r.goals, true);
   if (!r.constraints.empty()) os << "\n";
   print_lines(os, r.constraints, false);
+  for (const ScenarioRecord& s : r.scenarios) {
+    os << "\nScenario '" << s.name << "' (" << s.light << " light, " << s.lit << " of " << s.luminaires
+       << " luminaires lit, " << fixed(s.power_w, 1) << " W): " << (s.all_met ? "met" : "NOT MET") << "\n";
+    print_lines(os, s.goals, true);
+  }
   if (!r.grids.empty()) os << "\n";
   print_grid_table(os, r.grids);
   os << "\nverification: ";

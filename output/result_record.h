@@ -149,6 +149,18 @@ struct VariantRecord {
   std::vector<VerdictLine> goals, constraints;
 };
 
+// A scenario of the job judged on the layout (job/scenario.h): another lighting state of
+// the same luminaires, its goal lines as every goal's (maintained values).
+struct ScenarioRecord {
+  std::string name;
+  std::string light;     // "total" (every reflection) or "direct" (straight from the luminaires)
+  int lit = 0;           // luminaires of the layout lit (fraction above 0)
+  int luminaires = 0;    // of the layout
+  double power_w = 0.0;  // at those fractions
+  bool all_met = false;
+  std::vector<VerdictLine> goals;
+};
+
 struct ResultRecord {
   std::string program_version;
   std::string config;
@@ -208,6 +220,7 @@ struct ResultRecord {
   std::vector<AttemptRecord> attempts;
   std::vector<BillLine> bill_of_materials;
   std::vector<VerdictLine> constraints;     // every constraint the job states, judged on the layout
+  std::vector<ScenarioRecord> scenarios;    // the job's other lighting states (result.json's key only when any)
   double margin_floor = 0.0;                // verification.margin: the least margin kept above a scaled goal
   std::vector<VariantRecord> variants;      // each product and rotation tried, with its outcome and lines
   std::vector<std::string> files;           // the files the run writes into its output folder (names), result.json included

@@ -10,6 +10,7 @@ packages=(g++ cmake make pkg-config
           libtbb-dev libcli11-dev nlohmann-json3-dev libxxhash-dev libgtest-dev libbenchmark-dev
           librsvg2-dev fonts-dejavu-core libassimp-dev
           poppler-utils)  # pdftotext, pdffonts, pdftoppm: the report tests read report.pdf back
+packages+=(libglpk-dev)  # GLPK: the output programme of three or more luminaire groups (optimizer/group_search.cpp)
 packages+=(libdxflib-dev)  # tests: dxflib reads the DXF plan back (tests/data/import/README.md: assimp-utils remakes the converted office)
 packages+=(libopenmpi-dev openmpi-bin)  # MPI: mpirun -np N ilp run (docs/cluster.md)
 packages+=(clang)  # the libFuzzer harnesses (scripts/fuzz_photometry.sh)

@@ -231,6 +231,13 @@ void ProgressiveExactSolve::solve() {
   account_flux(scene_, rows, solution_.radiosity, s);
 }
 
+RadiositySolution ProgressiveExactSolve::solve_lit(const Scene& lit) const {
+  if (lit.patches.size() != scene_.patches.size())
+    throw std::invalid_argument("ProgressiveExactSolve::solve_lit: not a scene of the same patches");
+  const SparseRows F = with_emitter_columns(scene_, emitter_, raw_, options_.form_factors.threads);
+  return solve_radiosity(lit, F, options_.radiosity);
+}
+
 ExactSolution solve_exact(const Scene& scene, const ExactSolveOptions& options, const ProgressCallback& progress) {
   // Every row at its final ray count at once: nothing to refine.
   ProgressiveExactSolve solve(scene, options, options.other_rays_per_patch, progress);

@@ -97,6 +97,10 @@ class ProgressiveExactSolve {
   // Solves again from the last solution when its residual is above the tolerance now
   // set (a step solved loosely turned out to be the last); returns whether it did.
   bool tighten();
+  // The radiosity of `lit`, a scene of the same patches with other exitances (another
+  // lighting state: some luminaires dimmed or off), on the rows solved so far: the same
+  // form factors and luminaire columns (per unit exitance), solved from E.
+  RadiositySolution solve_lit(const Scene& lit) const;
 
  private:
   void solve();

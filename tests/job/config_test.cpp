@@ -249,9 +249,10 @@ TEST(JobConfigErrors, BadGroupsNameTheLineAndKey) {
                       {"luminaires.groups[0].products", "required key is missing"});
   const std::size_t first = shipped.find("    - name: general"), second = shipped.find("    - name: wall wash");
   const std::string group = shipped.substr(first, second - first);
-  std::string three = shipped;
-  three.insert(second, group + group);
-  expect_config_error(three, 48, {"luminaires.groups[2]", "at most two groups"});
+  // Any number of groups up to kMaxSearchedGroups (6): a seventh is refused at its line.
+  std::string seven = shipped;
+  for (int g = 0; g < 6; ++g) seven.insert(second, group);
+  expect_config_error(seven, 80, {"luminaires.groups[6]", "at most 6 groups"});
 }
 
 // ---------------------------------------------------------------------------------

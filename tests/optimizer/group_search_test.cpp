@@ -180,3 +180,68 @@ TEST(GroupSearch, MoreThanTwoGroupsAreRefused) {
 
 }  // namespace
 }  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// Three groups: the joint solve (GLPK's simplex beyond two) against a brute-force grid
+// over all three fluxes, judged by the test's own arithmetic.
+TEST(GroupSearch, ThreeGroupOutputsMatchABruteForceGridOverEveryFlux) {
+  const LightingModel m = synthetic_model();
+  std::mt19937 rng(23);
+  int compared = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const ArrangementLight la = random_light(rng, 4, 0.06), lb = random_light(rng, 3, 0.06), lc = random_light(rng, 2, 0.06);
+    const GroupOption a{0, &la, 300.0, 3000.0, 100.0}, b{0, &lb, 600.0, 2000.0, 120.0}, c{0, &lc, 200.0, 2500.0, 90.0};
+    const GroupSearchResult joint = search_groups(m, {kGoals}, {{"A", {a}}, {"B", {b}}, {"C", {c}}});
+    constexpr int kCells = 80;
+    bool found = false;
+    double best_w = 0.0;
+    for (int i = 0; i <= kCells; ++i)
+      for (int j = 0; j <= kCells; ++j)
+        for (int l = 0; l <= kCells; ++l) {
+          const double s0 = 300.0 + 2700.0 * i / kCells, s1 = 600.0 + 1400.0 * j / kCells, s2 = 200.0 + 2300.0 * l / kCells;
+          const Eigen::VectorXd e = m.fixed_lux + s0 * la.lux_per_lm + s1 * lb.lux_per_lm + s2 * lc.lux_per_lm;
+          const Eigen::VectorXd task = e.head(6);
+          const double mean = task.mean();
+          if (!(mean >= 500.0 * (1 - 1e-9) && task.minCoeff() >= 0.6 * mean * (1 - 1e-9) &&
+                task.maxCoeff() <= 1400.0 * (1 + 1e-9) && e.tail(2).minCoeff() >= 150.0 * (1 - 1e-9)))
+            continue;
+          const double p = s0 * 4 / 100.0 + s1 * 3 / 120.0 + s2 * 2 / 90.0;
+          if (!found || p < best_w) best_w = p, found = true;
+        }
+    if (!found) continue;
+    ++compared;
+    ASSERT_TRUE(joint.feasible) << "trial " << trial;
+    ASSERT_EQ(joint.groups.size(), 3u);
+    const double s0 = joint.groups[0].flux_lm, s1 = joint.groups[1].flux_lm, s2 = joint.groups[2].flux_lm;
+    const Eigen::VectorXd e = m.fixed_lux + s0 * la.lux_per_lm + s1 * lb.lux_per_lm + s2 * lc.lux_per_lm;
+    EXPECT_GE(e.head(6).mean(), 500.0 * (1 - 1e-6)) << "trial " << trial;
+    EXPECT_GE(e.tail(2).minCoeff(), 150.0 * (1 - 1e-6)) << "trial " << trial;
+    const double cell_w = (2700.0 / kCells) * 4 / 100.0 + (1400.0 / kCells) * 3 / 120.0 + (2300.0 / kCells) * 2 / 90.0;
+    EXPECT_LE(joint.power_w, best_w + 1e-6) << "trial " << trial;
+    EXPECT_GE(joint.power_w, best_w - cell_w) << "trial " << trial;
+  }
+  EXPECT_GE(compared, 4);
+}
+
+TEST(GroupSearch, TheSimplexIsExactOnAKnownCornerAndRefusesAnEmptyBox) {
+  // s0 + s1 + s2 >= 10, s0 >= 2, cost (1, 3, 2) in [0, 20]^3: the optimum is (10, 0, 0).
+  const std::vector<OutputConstraintN> c{{Eigen::Vector3d(1.0, 1.0, 1.0), 10.0}, {Eigen::Vector3d(1.0, 0.0, 0.0), 2.0}};
+  const auto s = least_cost_outputs_n(c, Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(20.0), Eigen::Vector3d(1.0, 3.0, 2.0));
+  ASSERT_TRUE(s);
+  EXPECT_NEAR((*s)[0], 10.0, 1e-9);
+  EXPECT_NEAR((*s)[1], 0.0, 1e-9);
+  EXPECT_NEAR((*s)[2], 0.0, 1e-9);
+  // At most 20 each: s0 + s1 + s2 >= 61 cannot be met.
+  const std::vector<OutputConstraintN> none{{Eigen::Vector3d(1.0, 1.0, 1.0), 61.0}};
+  EXPECT_FALSE(least_cost_outputs_n(none, Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(20.0), Eigen::Vector3d::Ones()));
+  // Two groups through the same entry point: the plane's exact enumeration.
+  const std::vector<OutputConstraintN> two{{Eigen::Vector2d(1.0, 1.0), 10.0}, {Eigen::Vector2d(1.0, -1.0), -4.0}};
+  const auto p = least_cost_outputs_n(two, Eigen::Vector2d::Zero(), Eigen::Vector2d::Constant(20.0), Eigen::Vector2d(1.0, 3.0));
+  ASSERT_TRUE(p);
+  EXPECT_NEAR((*p)[0], 10.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace ilp
