@@ -139,81 +139,95 @@ void require_search_surfaces(const JobConfig& job, const Scene& scene) {
     require(job.search->floor_surface, job.search->floor_loc, "luminaires.floor_surface");
 }
 
-JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
-  JobScene out;
-  TriangleMesh mesh;
+namespace {
+
+// The mesh's surfaces by name, for the keys that name them (an unknown name: the error
+// lists the surfaces there are).
+struct MeshSurfaces {
+  std::map<std::string, int> index;
+  std::string mesh_path;
+  int require(const std::string& name, const FileLoc& loc, const std::string& key) const {
+    auto it = index.find(name);
+    if (it == index.end()) {
+      std::vector<std::string> names;
+      for (const auto& [n, _] : index) names.push_back(n);
+      throw unknown_surface(loc, key, name, mesh_path, names);
+    }
+    return it->second;
+  }
+};
+
+// scene.mesh read (within the machine's memory), its notes logged.
+TriangleMesh read_job_mesh(const JobConfig& job, std::vector<std::string>& log) {
   // A model read through assimp never takes more than the machine (or its cgroup) has
   // available: a malformed file can make assimp allocate without bound. A caller with a
   // smaller budget (--max-memory) sets the limit itself.
   MeshReadOptions read = job.mesh_read;
   if (!read.import_limits.max_memory_bytes) read.import_limits.max_memory_bytes = memory_budget_bytes(std::nullopt);
+  TriangleMesh mesh;
   try {
     mesh = load_mesh(job.mesh_path, read);
   } catch (const SceneError& e) {
     throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
   }
-  out.log.insert(out.log.end(), mesh.notes.begin(), mesh.notes.end());
-  const SceneOptions frame = scene_frame(job, mesh, out.log);
-  out.frame = frame;
-  const SurfaceSplitReport split = split_surfaces(mesh, frame, job.surface_split);
+  log.insert(log.end(), mesh.notes.begin(), mesh.notes.end());
+  return mesh;
+}
 
-  std::map<std::string, int> surface_of;
-  for (std::size_t s = 0; s < mesh.surface_names.size(); ++s) surface_of[mesh.surface_names[s]] = static_cast<int>(s);
-  auto require_surface = [&](const std::string& name, const FileLoc& loc, const std::string& key) {
-    auto it = surface_of.find(name);
-    if (it == surface_of.end()) {
-      std::vector<std::string> names;
-      for (const auto& [n, _] : surface_of) names.push_back(n);
-      throw unknown_surface(loc, key, name, job.mesh_path, names);
-    }
-    return it->second;
-  };
+struct TriangleEdits {
+  std::size_t excluded = 0, doubled = 0;
+};
 
-  // Excluded surfaces lose their triangles (the surface stays, empty); two-sided ones
-  // get a reversed copy of each triangle, back to back with it.
+// Excluded surfaces lose their triangles (the surface stays, empty); two-sided ones get a
+// reversed copy of each triangle, back to back with it.
+TriangleEdits exclude_and_double(const JobConfig& job, const MeshSurfaces& surfaces, TriangleMesh& mesh) {
   std::vector<bool> excluded(mesh.surface_names.size(), false), two_sided(mesh.surface_names.size(), job.two_sided_all);
   for (std::size_t k = 0; k < job.exclude_surfaces.size(); ++k)
-    excluded[require_surface(job.exclude_surfaces[k], job.exclude_surface_locs[k], "scene.exclude_surfaces")] = true;
+    excluded[surfaces.require(job.exclude_surfaces[k], job.exclude_surface_locs[k], "scene.exclude_surfaces")] = true;
   keep_only(mesh.surface_names, job.keep_surfaces, excluded);
   for (std::size_t k = 0; k < job.two_sided_surfaces.size(); ++k)
-    two_sided[require_surface(job.two_sided_surfaces[k], job.two_sided_locs[k], "scene.two_sided")] = true;
-  std::size_t excluded_triangles = 0, doubled_triangles = 0;
-  {
-    const std::size_t n = mesh.triangles.size();
-    std::size_t kept = 0;
-    for (std::size_t t = 0; t < n; ++t) {
-      const int s = mesh.triangle_surface[t];
-      if (excluded[s]) {
-        ++excluded_triangles;
-        continue;
-      }
-      mesh.triangles[kept] = mesh.triangles[t];
-      mesh.triangle_surface[kept] = s;
-      mesh.triangle_material[kept] = mesh.triangle_material[t];
-      ++kept;
+    two_sided[surfaces.require(job.two_sided_surfaces[k], job.two_sided_locs[k], "scene.two_sided")] = true;
+  TriangleEdits edits;
+  const std::size_t n = mesh.triangles.size();
+  std::size_t kept = 0;
+  for (std::size_t t = 0; t < n; ++t) {
+    const int s = mesh.triangle_surface[t];
+    if (excluded[s]) {
+      ++edits.excluded;
+      continue;
     }
-    mesh.triangles.resize(kept);
-    mesh.triangle_surface.resize(kept);
-    mesh.triangle_material.resize(kept);
-    for (std::size_t t = 0; t < kept; ++t) {
-      const int s = mesh.triangle_surface[t];
-      if (!two_sided[s]) continue;
-      const Eigen::Vector3i tri = mesh.triangles[t];
-      mesh.triangles.push_back(Eigen::Vector3i(tri[0], tri[2], tri[1]));
-      mesh.triangle_surface.push_back(s);
-      mesh.triangle_material.push_back(mesh.triangle_material[t]);
-      ++doubled_triangles;
-    }
+    mesh.triangles[kept] = mesh.triangles[t];
+    mesh.triangle_surface[kept] = s;
+    mesh.triangle_material[kept] = mesh.triangle_material[t];
+    ++kept;
   }
+  mesh.triangles.resize(kept);
+  mesh.triangle_surface.resize(kept);
+  mesh.triangle_material.resize(kept);
+  for (std::size_t t = 0; t < kept; ++t) {
+    const int s = mesh.triangle_surface[t];
+    if (!two_sided[s]) continue;
+    const Eigen::Vector3i tri = mesh.triangles[t];
+    mesh.triangles.push_back(Eigen::Vector3i(tri[0], tri[2], tri[1]));
+    mesh.triangle_surface.push_back(s);
+    mesh.triangle_material.push_back(mesh.triangle_material[t]);
+    ++edits.doubled;
+  }
+  return edits;
+}
 
-  // Added floors: a rectangle each, in the file's frame and units (make_scene turns it back).
+// Added floors: a rectangle each, in the file's frame and units (make_scene turns it
+// back); returns each one's surface and reflectance.
+std::vector<std::pair<int, Eigen::Vector3d>> add_floors(const JobConfig& job, const SceneOptions& frame,
+                                                        MeshSurfaces& surfaces, TriangleMesh& mesh,
+                                                        std::vector<std::string>& log) {
   std::vector<std::pair<int, Eigen::Vector3d>> added_rho;
   for (const FloorSetting& f : job.add_floors) {
-    if (surface_of.count(f.name))
+    if (surfaces.index.count(f.name))
       throw ConfigError(located(f.loc, "scene.add_floor: name '" + f.name + "' is already a surface of the mesh"));
     const int s = static_cast<int>(mesh.surface_names.size());
     mesh.surface_names.push_back(f.name);
-    surface_of[f.name] = s;
+    surfaces.index[f.name] = s;
     added_rho.emplace_back(s, f.rgb);
     auto to_file = [&](double x, double y) {
       const Eigen::Vector3d p = Eigen::Vector3d(x, y, f.z_m) / frame.scale_to_m;
@@ -228,14 +242,18 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
       mesh.triangle_surface.push_back(s);
       mesh.triangle_material.push_back(-1);
     }
-    out.log.push_back("scene.add_floor: '" + f.name + "' added, a rectangle facing up");
+    log.push_back("scene.add_floor: '" + f.name + "' added, a rectangle facing up");
   }
+  return added_rho;
+}
 
-  // Reflectance per surface from the config, then per triangle.
+// Reflectance per surface from the config, then per triangle (config > MTL Kd > default).
+TriangleReflectance triangle_reflectance(const JobConfig& job, const MeshSurfaces& surfaces, const TriangleMesh& mesh,
+                                         const std::vector<std::pair<int, Eigen::Vector3d>>& added_rho) {
   std::vector<std::optional<Eigen::Vector3d>> surface_rho(mesh.surface_names.size());
   for (const auto& [s, rgb] : added_rho) surface_rho[static_cast<std::size_t>(s)] = rgb;
   for (const ReflectanceSetting& r : job.reflectance)
-    surface_rho[require_surface(r.surface, r.loc, "scene.reflectance." + r.surface)] = r.rgb;
+    surface_rho[surfaces.require(r.surface, r.loc, "scene.reflectance." + r.surface)] = r.rgb;
   TriangleReflectance rho(mesh.triangles.size());
   std::vector<int> bad_kd_surface(mesh.materials.size(), -1);  // per material: a surface that uses it
   std::vector<int> bad_kd_order;                               // materials in the order found
@@ -272,34 +290,29 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
                              "Kd outside [0, 1) for " + std::to_string(bad_kd_order.size()) + " material(s): " + list +
                                  ": set their surfaces' reflectance in scene.reflectance of " + job.path));
   }
+  return rho;
+}
 
+// The patches, meshed from the edited mesh (errors located at the keys that cause them).
+Scene mesh_scene(const JobConfig& job, const TriangleMesh& mesh, const TriangleReflectance& rho,
+                 const SceneOptions& frame) {
   try {
-    out.scene = make_scene(mesh, rho, frame);
+    return make_scene(mesh, rho, frame);
   } catch (const PatchLimitError& e) {
     const FileLoc& loc = job.max_patch_edge_loc.file.empty() ? job.mesh_loc : job.max_patch_edge_loc;
     throw ConfigError(located(loc, std::string("scene.max_patch_edge_m: ") + e.what()));
   } catch (const SceneError& e) {
     throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
   }
-  Scene& scene = out.scene;
-  {
-    std::ostringstream os;
-    os << "mesh " << job.mesh_path << ": " << scene.stats << " (" << mesh.polygons_split
-       << " polygons fan-triangulated), " << mesh.surface_names.size() << " surfaces";
-    out.log.push_back(os.str());
-  }
-  out.log.insert(out.log.end(), split.log.begin(), split.log.end());
-  if (excluded_triangles > 0 || !job.exclude_surfaces.empty())
-    out.log.push_back(std::string(job.keep_surfaces.empty() ? "" : "the room's surfaces and ") + "scene.exclude_surfaces: " + std::to_string(excluded_triangles) + " triangles of " +
-                      std::to_string(job.exclude_surfaces.size()) + " surfaces left out");
-  if (doubled_triangles > 0)
-    out.log.push_back("scene.two_sided: " + std::to_string(doubled_triangles) +
-                      " triangles doubled back to back (both sides reflect; counted in the triangles above)");
+}
 
+// The job's own sources: emitting surfaces and placed luminaires (inside the model).
+void place_job_sources(const JobConfig& job, const MeshSurfaces& surfaces, JobScene& out) {
+  Scene& scene = out.scene;
   for (std::size_t k = 0; k < job.emitting_surfaces.size(); ++k) {
     const EmitterSetting& e = job.emitting_surfaces[k];
     const std::string key = "scene.emitting_surfaces[" + std::to_string(k) + "].surface";
-    set_surface_exitance(scene, require_surface(e.surface, e.loc, key), e.exitance_lm_per_m2);
+    set_surface_exitance(scene, surfaces.require(e.surface, e.loc, key), e.exitance_lm_per_m2);
   }
   const Eigen::AlignedBox3d mesh_bounds = scene.bounds_m;
   for (const LuminaireSetting& l : job.luminaires) {
@@ -316,7 +329,11 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
     add_luminaire(scene, l.name, l.type, {l.position_m, l.rotation_deg}, l.flux_lm);
     if (!l.product.empty()) out.log.push_back(placed_product_line(l));
   }
-  // A surface to report or light must keep a patch (not all excluded or degenerate).
+}
+
+// Every surface the job reports or lights keeps a patch (not all excluded or degenerate),
+// and the search's surfaces are the mesh's.
+void check_job_surfaces(const JobConfig& job, const MeshSurfaces& surfaces, const Scene& scene) {
   std::vector<std::size_t> patches_of(scene.surfaces.size(), 0);
   for (const Patch& p : scene.patches) ++patches_of[static_cast<std::size_t>(p.surface)];
   auto require_patches = [&](int surface, const FileLoc& loc, const std::string& key) {
@@ -335,20 +352,39 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
   // The inverse problem's surfaces: those of the mesh (a placed luminaire is no goal).
   for (const GoalSetting& g : job.goals)
     for (const std::string& s : g.surfaces)
-      require_patches(require_surface(s, g.surfaces_loc, "goals." + g.name + ".surface"), g.surfaces_loc,
+      require_patches(surfaces.require(s, g.surfaces_loc, "goals." + g.name + ".surface"), g.surfaces_loc,
                       "goals." + g.name + ".surface");
   if (job.search && !job.search->suspended_height_m)
-    require_surface(job.search->mounting_surface, job.search->mounting_loc, "luminaires.mounting_surface");
+    surfaces.require(job.search->mounting_surface, job.search->mounting_loc, "luminaires.mounting_surface");
   if (job.search && !job.search->floor_surface.empty())
-    require_surface(job.search->floor_surface, job.search->floor_loc, "luminaires.floor_surface");
+    surfaces.require(job.search->floor_surface, job.search->floor_loc, "luminaires.floor_surface");
+}
 
+// The scene's lines after it is meshed: the mesh, the split, what was left out or doubled.
+void log_meshed(const JobConfig& job, const TriangleMesh& mesh, const SurfaceSplitReport& split,
+                const TriangleEdits& edits, JobScene& out) {
+  std::ostringstream os;
+  os << "mesh " << job.mesh_path << ": " << out.scene.stats << " (" << mesh.polygons_split
+     << " polygons fan-triangulated), " << mesh.surface_names.size() << " surfaces";
+  out.log.push_back(os.str());
+  out.log.insert(out.log.end(), split.log.begin(), split.log.end());
+  if (edits.excluded > 0 || !job.exclude_surfaces.empty())
+    out.log.push_back(std::string(job.keep_surfaces.empty() ? "" : "the room's surfaces and ") + "scene.exclude_surfaces: " + std::to_string(edits.excluded) + " triangles of " +
+                      std::to_string(job.exclude_surfaces.size()) + " surfaces left out");
+  if (edits.doubled > 0)
+    out.log.push_back("scene.two_sided: " + std::to_string(edits.doubled) +
+                      " triangles doubled back to back (both sides reflect; counted in the triangles above)");
+}
+
+// The scene's last line: patches, area, bounds, channels and what emits.
+void log_sources(const JobConfig& job, JobScene& out) {
+  const Scene& scene = out.scene;
   double luminaire_flux_lm = 0.0, surface_flux_lm = 0.0;
   for (const Patch& p : scene.patches)
     (scene.surfaces[p.surface].is_luminaire() ? luminaire_flux_lm : surface_flux_lm) += p.area_m2 * p.exitance_lm_per_m2;
   if (luminaire_flux_lm + surface_flux_lm == 0.0 && !job.search)  // an inverse job places its own
     out.log.push_back("warning: nothing emits light, so every illuminance will be 0 lx "
                       "(add luminaires.placed or scene.emitting_surfaces)");
-
   std::ostringstream os;
   os.precision(3);
   os << std::fixed << "scene: " << scene.patches.size() << " patches, " << scene.total_area_m2() << " m2, bounds ["
@@ -358,6 +394,28 @@ JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
      << luminaire_flux_lm << " lm from luminaires, "
      << surface_flux_lm << " lm from emitting surfaces";
   out.log.push_back(os.str());
+}
+
+}  // namespace
+
+// By stage: the mesh read and its frame, surfaces split, left out and doubled, floors
+// added, reflectances, meshing, the job's own sources, the surfaces checked, the log.
+JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
+  JobScene out;
+  TriangleMesh mesh = read_job_mesh(job, out.log);
+  const SceneOptions frame = scene_frame(job, mesh, out.log);
+  out.frame = frame;
+  const SurfaceSplitReport split = split_surfaces(mesh, frame, job.surface_split);
+  MeshSurfaces surfaces{{}, job.mesh_path};
+  for (std::size_t s = 0; s < mesh.surface_names.size(); ++s) surfaces.index[mesh.surface_names[s]] = static_cast<int>(s);
+  const TriangleEdits edits = exclude_and_double(job, surfaces, mesh);
+  const std::vector<std::pair<int, Eigen::Vector3d>> added_rho = add_floors(job, frame, surfaces, mesh, out.log);
+  const TriangleReflectance rho = triangle_reflectance(job, surfaces, mesh, added_rho);
+  out.scene = mesh_scene(job, mesh, rho, frame);
+  log_meshed(job, mesh, split, edits, out);
+  place_job_sources(job, surfaces, out);
+  check_job_surfaces(job, surfaces, out.scene);
+  log_sources(job, out);
   if (mesh_out) *mesh_out = std::move(mesh);
   return out;
 }

@@ -245,6 +245,8 @@ TEST(CacheKey, SceneInputsCoverEveryJobConfigField) {
       not_scene("output", [](JobConfig& j) { j.output.directory = "elsewhere"; }),
       not_scene("energy", [](JobConfig& j) { j.energy.occupancy_factor = 0.5; }),
       not_scene("sweep", [](JobConfig& j) { j.sweep = SweepSetting{"goals.mat.average_lux", {300, 500}, {}}; }),
+      // Other lighting states are judged on the layout found, after the operator.
+      not_scene("scenarios", [](JobConfig& j) { j.scenarios.push_back(ScenarioSpec{}); }),
       // products reach the scene only through the placed luminaires' resolved types.
       not_scene("products", [](JobConfig& j) { j.products.push_back(ProductSetting{}); }),
       {"ignore_material_kd", [](JobConfig& j) { j.ignore_material_kd = true; }},

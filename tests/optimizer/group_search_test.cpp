@@ -170,12 +170,17 @@ TEST(GroupSearch, PairsWhoseLuminairesShareAPlaceAreLeftOut) {
   EXPECT_FALSE(r.feasible);
 }
 
-TEST(GroupSearch, MoreThanTwoGroupsAreRefused) {
+// Up to kMaxSearchedGroups groups are searched (issue 38); one more is refused, as is a
+// product of arrangement counts over kMaxGroupCombinations.
+TEST(GroupSearch, MoreThanTheMostGroupsAreRefused) {
   const LightingModel m = synthetic_model();
   std::mt19937 rng(3);
   const ArrangementLight l = random_light(rng, 2, 0.1);
   const GroupChoices g{"A", {{0, &l, 100.0, 1000.0, 100.0}}};
-  EXPECT_THROW(search_groups(m, {kGoals}, {g, g, g}), std::invalid_argument);
+  EXPECT_NO_THROW(search_groups(m, {kGoals}, {g, g, g}));
+  EXPECT_THROW(search_groups(m, {kGoals}, std::vector<GroupChoices>(kMaxSearchedGroups + 1, g)), std::invalid_argument);
+  GroupChoices many{"B", std::vector<GroupOption>(2000, {0, &l, 100.0, 1000.0, 100.0})};
+  EXPECT_THROW(search_groups(m, {kGoals}, {many, many}), std::invalid_argument);  // 4,000,000 combinations
 }
 
 }  // namespace
