@@ -130,7 +130,7 @@ std::vector<CostEstimate> print_cost_estimates(const JobConfig& job, const RunOp
               << " rays per row; memory available "
               << (budget ? format_bytes(budget->bytes) + " (" + budget->source + ")" : std::string("unknown")) << "):\n";
     for (const std::string& line : format_estimate(costed.estimate)) std::cout << "  " << line << "\n";
-    const VerificationPlan verification = plan_verification(job, scene.patches.size(), counts.population,
+    const VerificationPlan verification = plan_verification(job.verification, scene.patches.size(), counts.population,
                                                             counts.goal_patches, counts.luminaires, bytes);
     if (!verification.reason.empty()) std::cout << "  verification: " << verification.reason << "\n";
     if (!costed.refusal.empty()) std::cout << "  would be refused: " << costed.refusal << "\n";

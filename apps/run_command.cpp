@@ -431,7 +431,7 @@ RoomRun run_room(const JobConfig& job, const RunOptions& run, const ProgressCall
   else if (job.groups.empty()) out.groups.prepared = prepare_all(job, run, progress, cache);
   else out.groups = prepare_groups(job, run, progress, cache, log_line, log_build);
   const std::vector<PreparedJob>& all = out.groups.prepared;
-  out.chosen = job.groups.empty() ? solve_variants(all, job, progress, log_line)
+  out.chosen = job.groups.empty() ? solve_variants(all, job_goals(job), progress, log_line)
                                   : solve_groups(out.groups, job, progress, log_line);
   const PreparedJob& prepared = all[out.chosen.variant];
   const JobOutcome& outcome = out.chosen.outcome;
@@ -615,8 +615,8 @@ int run_sweep(const SweepArgs& args) {
   SweepSetting sweep;
   if (!args.set.empty()) {
     sweep = parse_set(args.set);
-    JobConfig probe = job;
-    for (double v : sweep.values) set_goal_parameter(probe, sweep.key, v);  // bad keys and values fail before any work
+    JobGoals probe = job_goals(job);
+    for (double v : sweep.values) set_goal_target(probe, sweep.key, v);  // bad keys and values fail before any work
   } else if (job.sweep) {
     sweep = *job.sweep;
   } else {
@@ -645,8 +645,8 @@ int run_sweep(const SweepArgs& args) {
   for (std::size_t i = 0; i < sweep.values.size(); ++i) {
     std::cerr << "sweep point " << i + 1 << " of " << sweep.values.size() << ": " << sweep.key << " = "
               << sweep.values[i] << "\n";
-    JobConfig point = job;
-    set_goal_parameter(point, sweep.key, sweep.values[i]);
+    JobGoals point = job_goals(job);  // the plan's goals, this point's target set
+    set_goal_target(point, sweep.key, sweep.values[i]);
     const JobOutcome outcome = solve_variants(prepared, point, progress, log_line).outcome;
     csv << sweep.values[i] << ',' << outcome.luminaires.size() << ',' << outcome.power_w << ','
         << outcome.power_density_w_per_m2 << ',' << outcome.feasible << ',' << outcome.all_met << ','
@@ -655,7 +655,7 @@ int run_sweep(const SweepArgs& args) {
     for (std::size_t k = 0; k < outcome.goals.size(); ++k) {
       const GoalOutcome& g = outcome.goals[k];
       const double mf = metric_rule(g.predicted.metric).lux ? outcome.maintenance_factor : 1.0;
-      csv << ',' << point.goals[k].target << ',' << g.predicted.value << ',' << g.predicted.value * mf << ',';
+      csv << ',' << point.lines[k].target << ',' << g.predicted.value << ',' << g.predicted.value * mf << ',';
       if (g.verified) csv << g.verified->value << ',' << g.verified->value * mf;
       else csv << ',';
       csv << ',' << g.met;

@@ -18,6 +18,7 @@
 
 #include "core/energy/leni.h"
 #include "job/config_yaml.h"
+#include "job/goal_rules.h"
 #include "job/products.h"
 
 namespace ilp {
@@ -147,29 +148,7 @@ void read_scene(const Map& scene, JobConfig& job) {
   }
 }
 
-std::string format_number(double v) {
-  std::ostringstream os;
-  os << std::setprecision(12) << v;
-  return os.str();
-}
-
-// The rule `metric` = v breaks against the other targets of goal `name` in `others`
-// ("" when none): min_lux and average_lux may not exceed max_lux. `skip` is left out
-// (the setting being replaced).
-std::string goal_bound_rule(const std::vector<GoalSetting>& others, const std::string& name, GoalMetric metric,
-                            double v, const GoalSetting* skip = nullptr) {
-  for (const GoalSetting& g : others) {
-    if (&g == skip || g.name != name) continue;
-    const bool lower = metric == GoalMetric::minimum || metric == GoalMetric::average;
-    const bool other_lower = g.metric == GoalMetric::minimum || g.metric == GoalMetric::average;
-    if (lower && g.metric == GoalMetric::maximum && v > g.target)
-      return "must be <= max_lux (" + format_number(g.target) + ") of goal '" + name + "'";
-    if (metric == GoalMetric::maximum && other_lower && v < g.target)
-      return std::string("must be >= ") + std::string(goal_key(g.metric)) + " (" + format_number(g.target) + ") of goal '" + name +
-             "'";
-  }
-  return "";
-}
+using goal_rules::format_number;
 
 // EN 12464-1:2021 rows. Sources (docs/config.md, "Presets"): ../shared/LIGHTING.md (the
 // offices' writing row with Ez, walls and ceiling; Em, modified Em, UGR_L, U0, Ra of the
@@ -600,8 +579,8 @@ void read_goals(const Value& section, JobConfig& job) {
     for (const auto& [goal, v] : metrics) here.push_back(goal);
     for (const auto& [goal, v] : metrics) {
       std::string rule;
-      if (goal.metric == GoalMetric::maximum) rule = goal_bound_rule(here, goal.name, goal.metric, goal.target);
-      if (rule.empty()) rule = goal_bound_rule(job.goals, goal.name, goal.metric, goal.target);
+      if (goal.metric == GoalMetric::maximum) rule = goal_rules::bound_rule(here, goal.name, goal.metric, goal.target);
+      if (rule.empty()) rule = goal_rules::bound_rule(job.goals, goal.name, goal.metric, goal.target);
       if (!rule.empty()) v.fail(rule);
     }
     job.goals.insert(job.goals.end(), here.begin(), here.end());
@@ -613,39 +592,6 @@ void read_goals(const Value& section, JobConfig& job) {
     }
     add_surrounding(entry, base, preset, preset_value, here, job);
   }
-}
-
-// Every goal parameter of the job, "goals.desks.average_lux, goals.floor.min_lux".
-std::string goal_parameters(const JobConfig& job) {
-  std::string out;
-  for (const GoalSetting& g : job.goals)
-    out += (out.empty() ? "goals." : ", goals.") + g.name + "." + std::string(goal_key(g.metric));
-  return out;
-}
-
-// set_goal_parameter with the error reporting left to the caller: bad_key(rule) or
-// bad_value(rule) is called (and must throw) when the key or the value is wrong.
-template <class BadKey, class BadValue>
-void apply_goal_parameter(JobConfig& job, const std::string& key, double value, BadKey bad_key, BadValue bad_value) {
-  GoalSetting* found = nullptr;
-  const std::size_t dot = key.rfind('.');
-  if (key.rfind("goals.", 0) == 0 && dot != std::string::npos && dot > 6) {
-    const std::string name = key.substr(6, dot - 6), metric = key.substr(dot + 1);
-    for (GoalSetting& g : job.goals)
-      if (g.name == name && metric == std::string(goal_key(g.metric))) found = &g;
-  }
-  if (!found) {
-    bad_key("no goal parameter " + key + "; " +
-            (job.goals.empty() ? std::string("the job has no goals") : "the job has " + goal_parameters(job)));
-    return;
-  }
-  std::string rule = std::isfinite(value) ? target_rule(found->metric, value) : "must be a finite number";
-  if (rule.empty()) rule = goal_bound_rule(job.goals, found->name, found->metric, value, found);
-  if (!rule.empty()) {
-    bad_value(rule);
-    return;
-  }
-  found->target = value;
 }
 
 void read_constraints(const Map& constraints, JobConfig& job) {
@@ -826,7 +772,7 @@ void read_sweep(const Value& section, const FileLoc& at, JobConfig& job) {
   JobConfig trial = job;  // each value is tried as `ilp sweep` will set it
   for (const Value& item : list) {
     const double v = item.number();
-    apply_goal_parameter(trial, setting.key, v, [&](const std::string& rule) { key.fail(rule); },
+    goal_rules::apply(trial.goals, setting.key, v, [&](const std::string& rule) { key.fail(rule); },
                          [&](const std::string& rule) { item.fail(rule); });
     setting.values.push_back(v);
   }
@@ -951,9 +897,6 @@ double surrounding_average_lux(double task_average_lux) {
   return task_average_lux;
 }
 
-double initial_target(const JobConfig& job, const GoalSetting& goal) {
-  return metric_rule(goal.metric).lux ? goal.target / job.maintenance_factor : goal.target;
-}
 
 int find_grid(const JobConfig& job, const std::string& name) {
   for (std::size_t g = 0; g < job.grids.size(); ++g)
@@ -962,8 +905,8 @@ int find_grid(const JobConfig& job, const std::string& name) {
 }
 
 void set_goal_parameter(JobConfig& job, const std::string& key, double value) {
-  apply_goal_parameter(
-      job, key, value, [&](const std::string& rule) -> void { throw ConfigError("--set " + key + ": " + rule); },
+  goal_rules::apply(
+      job.goals, key, value, [&](const std::string& rule) -> void { throw ConfigError("--set " + key + ": " + rule); },
       [&](const std::string& rule) -> void {
         throw ConfigError("--set " + key + " = " + format_number(value) + ": " + rule);
       });

@@ -31,11 +31,11 @@ constexpr double kServesShare = 0.01;
 // light some row of a lux goal's area (average, minimum, cylindrical) directly with at
 // least kServesShare of the goal's target? Light that reaches the goals only after
 // reflection, or a trace of stray light, is not service.
-bool serves_a_goal(const GroupLights& lights, const JobConfig& job) {
+bool serves_a_goal(const GroupLights& lights) {
   for (const PreparedJob* p : lights.variants) {
     const LightingModel& model = p->model;
     if (model.candidate_direct_lux_per_lm.size() == 0) continue;
-    for (const GoalSpec& goal : goal_specs(job, p->plan.maintenance_factor)) {
+    for (const GoalSpec& goal : p->plan.search.goals) {
       const MetricRule& rule = metric_rule(goal.metric);
       if (!rule.lux || !rule.lower_bound || !(goal.target > 0.0)) continue;
       const int a = find_goal_area(model, goal.name, rule.area);
@@ -55,12 +55,10 @@ std::vector<GroupLights> arrangement_lights(const PreparedGroups& groups, const 
     const PreparedJob& p = groups.prepared[k];
     GroupLights& g = out[groups.group[k]];
     g.variants.push_back(&p);
-    SearchSpec spec = p.plan.search;
-    spec.goals = goal_specs(job, p.plan.maintenance_factor);
-    g.per_variant.push_back(regular_arrangement_lights(p.model, spec));
+    g.per_variant.push_back(regular_arrangement_lights(p.model, p.plan.search));
   }
   for (std::size_t g = 0; g < out.size(); ++g) {
-    if (!serves_a_goal(out[g], job))
+    if (!serves_a_goal(out[g]))
       throw ConfigError(located_group(job, g, "serves no goal: none of its candidates, at full output, lights any point of a "
                                               "goal's area directly with 1 % of its target (move its zone or mounting toward "
                                               "the goals, or leave it out)"));
@@ -236,11 +234,10 @@ VariantChoice solve_groups(const PreparedGroups& groups, const JobConfig& job, c
   }
   const std::vector<GroupLights> lights = arrangement_lights(groups, job);
   const std::vector<GroupChoices> choices = group_choices(job, lights);
-  SearchSpec spec = primary.plan.search;
-  spec.goals = goal_specs(job, mf);
+  const SearchSpec& spec = primary.plan.search;  // the goals at initial targets
   PowerDensityCap cap;
   std::tie(cap.area_m2, cap.area_source) = power_density_area(primary);
-  cap.max_w_per_m2 = job.constraints.max_power_density_w_per_m2;
+  cap.max_w_per_m2 = primary.plan.goals.max_power_density_w_per_m2;
   const GroupSearchResult found = search_groups(primary.model, {spec.goals, cap.max_power_w()}, choices);
   if (log) log(search_line(found, choices));
   if (found.groups.empty())

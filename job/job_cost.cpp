@@ -11,9 +11,8 @@
 
 namespace ilp {
 
-VerificationPlan plan_verification(const JobConfig& job, std::size_t patches, std::size_t population,
+VerificationPlan plan_verification(const VerificationSettings& s, std::size_t patches, std::size_t population,
                                    std::size_t goal_patches, int luminaires, std::optional<double> budget) {
-  const VerificationSettings& s = job.verification;
   VerificationPlan plan;
   plan.method = s.method;
   const int configured_k =
@@ -120,7 +119,7 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
     c.search_max_seconds = job.optimizer.max_seconds;
   }
   const VerificationPlan plan =
-      plan_verification(job, c.patches + 2 * static_cast<std::size_t>(c.luminaires), c.population, c.goal_patches,
+      plan_verification(job.verification, c.patches + 2 * static_cast<std::size_t>(c.luminaires), c.population, c.goal_patches,
                         c.luminaires, budget);
   c.verify = plan.method == VerificationMethod::exact    ? CostCounts::Verify::exact
              : plan.method == VerificationMethod::sample ? CostCounts::Verify::sample

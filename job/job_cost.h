@@ -26,7 +26,7 @@ inline constexpr int kAutoVerificationMaxSample = 4000;
 
 // What verify_layout does for `job` on a scene of `patches` patches (`population` of
 // them reflecting) with `luminaires` placed, within `budget_bytes` (none: no limit).
-VerificationPlan plan_verification(const JobConfig& job, std::size_t patches, std::size_t population,
+VerificationPlan plan_verification(const VerificationSettings& settings, std::size_t patches, std::size_t population,
                                    std::size_t goal_patches, int luminaires, std::optional<double> budget_bytes);
 
 // Counts for the cost model. `sample_size`: k of the operator (0 when not known: the

@@ -63,7 +63,7 @@ PointIlluminance gather_decisive(const PreparedJob& prepared, const Scene& scene
   std::vector<ReceiverPoint> points;
   for (int q : decisive) points.push_back(prepared.model.goal_points.at(static_cast<std::size_t>(q)));
   FormFactorOptions rows = options.form_factors;
-  rows.rays_per_patch = decisive_rays(prepared.job.verification);
+  rows.rays_per_patch = decisive_rays(prepared.plan.verification.settings);
   rows.seed ^= kDecisiveSeedSalt;
   const auto start = Clock::now();
   PointIlluminance again = exact_point_illuminance(scene, solve.caster(), solve.solution().radiosity, points, rows,
@@ -138,7 +138,7 @@ void verify_states_exactly(const PreparedJob& prepared, const Scene& scene, cons
 void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene, const ExactSolveOptions& options,
                                 const std::vector<LitState>& states, const ProgressCallback& progress,
                                 Verification& out) {
-  const JobConfig& job = prepared.job;
+  const VerificationSettings& settings = prepared.plan.verification.settings;
   const LightingModel& model = prepared.model;
   // The steps before the last solve only to kStepResidual: their values decide whether to
   // refine and which points are decisive, against changes of a percent; the last solve
@@ -146,7 +146,7 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
   const double tight = options.radiosity.relative_residual;
   ExactSolveOptions steps = options;
   steps.radiosity.relative_residual = std::max(tight, kStepResidual);
-  ProgressiveExactSolve solve(scene, steps, job.verification.first_indirect_rays, progress);
+  ProgressiveExactSolve solve(scene, steps, settings.first_indirect_rays, progress);
   take_exact_solution(prepared, scene, solve, options, progress, {}, out);
   out.first_indirect_rays = solve.other_rays();
   Eigen::VectorXd change = Eigen::VectorXd::Zero(model.goal_rows());
@@ -158,14 +158,14 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
     change = after - before;
     out.refinement_change = largest_goal_change(model, prepared.plan.search.goals, before, after);
     if (refinement_settled(model, prepared.plan.search.goals, before, after, out.point_error_lux,
-                           job.verification.margin))
+                           settings.margin))
       break;
   }
   // The points deciding a minimum, uniformity or maximum: their gathers with more rays,
   // and the patches they gather most from made precise, then every point again.
   const auto decisive_start = Clock::now();
   std::vector<int> decisive;
-  if (job.verification.decisive_rays > 0)
+  if (settings.decisive_rays > 0)
     decisive = decisive_points(model, prepared.plan.search.goals, verified_goal_lux(model, out), out.point_error_lux,
                                kDecisiveBand, kDecisiveStandardErrors);
   if (!decisive.empty()) {
@@ -174,7 +174,7 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
     const PointIlluminance again = gather_decisive(prepared, scene, solve, options, progress, decisive, out);
     const std::vector<int> patches = dominant_patches(scene, again.rows, solve.solution().radiosity, rows, kDominantShare);
     solve.set_relative_residual(tight);
-    out.precise_patches = solve.make_precise(patches, dominant_rays(job.verification));
+    out.precise_patches = solve.make_precise(patches, dominant_rays(settings));
     if (out.precise_patches == 0) solve.tighten();
     take_exact_solution(prepared, scene, solve, options, progress, decisive, out);
   } else {
@@ -184,8 +184,8 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
   out.decisive_points = decisive.size();
   out.decisive_seconds = seconds_since(decisive_start);
   if (!decisive.empty()) {
-    out.decisive_rays = decisive_rays(job.verification);
-    out.precise_rays = dominant_rays(job.verification);
+    out.decisive_rays = decisive_rays(settings);
+    out.precise_rays = dominant_rays(settings);
   }
   out.bvh_reused = solve.caster().reuses_base();
   verify_states_exactly(prepared, scene, solve, options, states, progress, out);
@@ -204,10 +204,7 @@ void verify_exact_progressively(const PreparedJob& prepared, const Scene& scene,
 
 Verification verify_layout(const PreparedJob& prepared, const std::vector<PlacedLuminaire>& layout,
                            const ProgressCallback& progress) {
-  const JobConfig& job = prepared.job;
-  Verification out;
-  const VerificationSettings& settings = job.verification;
-  if (settings.method == VerificationMethod::none) return out;
+  if (prepared.plan.verification.settings.method == VerificationMethod::none) return {};
   JobOutcome placed;
   placed.luminaires = layout;
   return verify_scene(prepared, scene_with_layout(prepared, placed), static_cast<int>(layout.size()), progress);
@@ -215,22 +212,21 @@ Verification verify_layout(const PreparedJob& prepared, const std::vector<Placed
 
 Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int luminaires,
                           const ProgressCallback& progress, const std::vector<LitState>& states) {
-  const JobConfig& job = prepared.job;
-  const RunOptions& run = prepared.run;
+  const VerificationSpec& spec = prepared.plan.verification;
+  const VerificationSettings& settings = spec.settings;
   Verification out;
-  const VerificationSettings& settings = job.verification;
   if (settings.method == VerificationMethod::none) return out;
   const auto start = Clock::now();
   // auto resolves by the cost model: exact while its sparse rows fit, else a sample that fits.
   const VerificationPlan plan =
-      plan_verification(job, scene.patches.size(), reflecting_patches(scene).size(), prepared.model.goal_patches.size(),
-                        luminaires, memory_budget_bytes(run.max_memory_bytes));
+      plan_verification(settings, scene.patches.size(), reflecting_patches(scene).size(), prepared.model.goal_patches.size(),
+                        luminaires, memory_budget_bytes(prepared.run.max_memory_bytes));
   const bool exact = plan.method == VerificationMethod::exact;
   out.rays_per_patch = settings.rays_per_patch;
   if (exact) {
-    ExactSolveOptions options = exact_options(job, run);
+    ExactSolveOptions options = spec.exact;
     options.form_factors.rays_per_patch = settings.rays_per_patch;
-    options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
+    options.form_factors.seed = spec.exact.form_factors.seed ^ kVerificationSeedSalt;
     options.direct_light.seed = options.form_factors.seed;
     // Elsewhere direct light and each row's rays are only reflected (grid points gather
     // their own rays); with no goal patches, no patch is precise.
@@ -239,14 +235,14 @@ Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int l
     options.base_caster = prepared.caster;
     verify_exact_progressively(prepared, scene, options, states, progress, out);
   } else {
-    const RayCaster caster(prepared.caster, scene, worker_threads(job, run));
+    const RayCaster caster(prepared.caster, scene, spec.threads);
     out.bvh_reused = caster.reuses_base();
     const std::vector<LightSource> sources = scene_light_sources(scene);
-    SampleOperatorOptions options = operator_options(job, run);
+    SampleOperatorOptions options = spec.sample;
     options.form_factors.rays_per_patch = settings.rays_per_patch;
-    options.form_factors.seed = job.form_factors.seed ^ kVerificationSeedSalt;
+    options.form_factors.seed = spec.sample.form_factors.seed ^ kVerificationSeedSalt;
     options.direct_light.seed = options.form_factors.seed;
-    options.sample_seed = job.sample.seed ^ kVerificationSeedSalt;
+    options.sample_seed = spec.sample.sample_seed ^ kVerificationSeedSalt;
     options.sample_size = std::max(1, plan.sample_size);
     const GoalRows rows = compute_goal_rows(scene, caster, prepared.model.goal_patches, prepared.model.goal_points,
                                             sources, options, progress);
@@ -580,8 +576,8 @@ Eigen::VectorXd predicted_direct_lux(const LightingModel& model, const LayoutEva
 // luminaires do not shade one another, as the candidates do not).
 PointDirectLight point_direct_light(const PreparedJob& prepared, const SearchLuminaire& s) {
   if (prepared.model.goal_points.empty() || !prepared.caster) return {};
-  DirectLightOptions options = exact_options(prepared.job, prepared.run).direct_light;
-  options.seed = prepared.job.form_factors.seed;
+  DirectLightOptions options = prepared.plan.verification.exact.direct_light;
+  options.seed = prepared.plan.verification.exact.form_factors.seed;
   return [&prepared, s, options](const std::vector<PlacedLuminaire>& luminaires) {
     Scene alone;
     alone.channels = prepared.loaded.scene.channels;
@@ -699,7 +695,7 @@ JobOutcome verify_found(const PreparedJob& primary, const SearchSpec& real, Foun
   out.verify_seconds = out.verification.seconds;
   std::optional<std::vector<GoalJudgement>> verified;
   std::vector<GoalMargin> margins(real.goals.size());
-  out.margin_floor = primary.job.verification.margin;
+  out.margin_floor = primary.plan.verification.settings.margin;
   if (out.verification.method != "none") {
     const LayoutLight light = verified_light(primary, out);
     verified = judge_goals(model, real, light.goal_light());
@@ -783,25 +779,27 @@ bool better_outcome(const JobOutcome& a, const JobOutcome& b, Objective objectiv
 
 }  // namespace
 
-JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress,
+JobOutcome solve_prepared(const PreparedJob& prepared, const JobGoals& goals, const ProgressCallback& progress,
                           double power_to_beat_w) {
-  JobConfig search_job = job;
+  JobGoals search_goals = goals;  // the rounds' targets (maintained)
   std::optional<JobOutcome> best;
-  const int rounds = job.verification.method == VerificationMethod::none ? 1 : job.verification.rounds;
+  const VerificationSettings& verification = prepared.plan.verification.settings;
+  const int rounds = verification.method == VerificationMethod::none ? 1 : verification.rounds;
   int searches = 0, evaluations = 0;
   SearchBounds bounds;
   bounds.power_to_beat_w = power_to_beat_w;
   double search_seconds = 0.0, verify_seconds = 0.0;
   const double mf = prepared.plan.maintenance_factor;
   SearchSpec real = prepared.plan.search;
-  real.goals = goal_specs(job, mf);
+  real.goals = initial_goals(goals, mf);
+  real.objective = goals.objective;
   PowerDensityCap power_cap;
   std::tie(power_cap.area_m2, power_cap.area_source) = power_density_area(prepared);
-  power_cap.max_w_per_m2 = job.constraints.max_power_density_w_per_m2;
+  power_cap.max_w_per_m2 = goals.max_power_density_w_per_m2;
   real.layout.max_power_w = power_cap.max_power_w();
   for (int round = 0; round < rounds; ++round) {
     SearchSpec searched = real;
-    searched.goals = goal_specs(search_job, mf);
+    searched.goals = initial_goals(search_goals, mf);
     JobOutcome outcome = search_and_verify(prepared, real, searched, power_cap, progress, bounds);
     if (outcome.search.beaten) {
       if (!best) return outcome;  // nothing could beat the power given: nothing searched
@@ -828,25 +826,25 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, con
       const GoalOutcome& o = outcome.goals[g];
       if (round + 1 == rounds) break;  // no search follows
       if (!o.fails_only_on_verification) continue;
-      if (is_target_goal(job.objective, o.predicted.metric)) continue;
-      GoalSetting& goal = search_job.goals[g];
+      if (is_target_goal(goals.objective, o.predicted.metric)) continue;
+      GoalLine& goal = search_goals.lines[g];
       // A lower bound's prediction and verification share the flux correction, so their
       // ratio is the operator's error; an upper bound (UGR, maximum) may be missed by the
       // correction itself (raising every flux raises the UGR), so its next target comes
       // from the value as searched.
       const double predicted_value = metric_rule(goal.metric).lower_bound ? o.predicted.value : o.searched_value;
       const std::optional<double> next =
-          next_search_target(goal.metric, job.goals[g].target, goal.target, predicted_value, o.verified->value);
+          next_search_target(goal.metric, goals.lines[g].target, goal.target, predicted_value, o.verified->value);
       if (!next) continue;
       goal.target = *next;
       outcome.calibration.push_back(
-          calibration_line(round, mf, job.goals[g], o.predicted.value, o.verified->value, goal.target));
+          calibration_line(round, mf, goals.lines[g], o.predicted.value, o.verified->value, goal.target));
       recalibrated = true;
     }
     std::vector<std::string> calibration = best ? best->calibration : std::vector<std::string>{};
     calibration.insert(calibration.end(), outcome.calibration.begin(), outcome.calibration.end());
     const bool done = outcome.all_met || !recalibrated;
-    if (!best || better_outcome(outcome, *best, job.objective)) best = std::move(outcome);
+    if (!best || better_outcome(outcome, *best, goals.objective)) best = std::move(outcome);
     best->calibration = std::move(calibration);
     if (done) break;
   }

@@ -273,17 +273,17 @@ double verified_flux_scale(const SearchSpec& spec, const std::vector<GoalJudgeme
                            const std::vector<double>& flux_min_lm, const std::vector<double>& flux_max_lm,
                            bool& limited);
 
-// Searches and verifies with `job`'s goals. When a goal fails only on verification
-// (met as predicted, missed as verified), searches again, up to
-// job.verification.rounds searches in all, with that goal's search target scaled by
-// predicted / verified; returns the best round (every goal met and least power
-// first). search.evaluations, search.seconds and verify_seconds add up all rounds;
-// search.attempts are the returned round's. `job`'s goals may differ from
-// prepared.job's in targets, as in a sweep; the goal surfaces must be the same.
+// Searches and verifies with `goals` (the plan's own, prepared.plan.goals, or a sweep
+// point's). When a goal fails only on verification (met as predicted, missed as
+// verified), searches again, up to verification.rounds searches in all, with that goal's
+// search target scaled by predicted / verified (a copy of `goals` edited); returns the
+// best round (every goal met and least power first). search.evaluations, search.seconds
+// and verify_seconds add up all rounds; search.attempts are the returned round's.
+// `goals` may differ from the plan's in targets only; the goal areas must be the same.
 // power_to_beat_w (min_power): the power of a layout already found with every goal
 // met (another product's); counts that cannot draw less are not searched, and when
 // none can, the outcome's search.beaten is set and nothing is searched or verified.
-JobOutcome solve_prepared(const PreparedJob& prepared, const JobConfig& job, const ProgressCallback& progress = {},
+JobOutcome solve_prepared(const PreparedJob& prepared, const JobGoals& goals, const ProgressCallback& progress = {},
                           double power_to_beat_w = kNoPowerToBeat);
 
 }  // namespace ilp

@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "job/goal_rules.h"
 #include "job/products.h"
 
 namespace ilp {
@@ -109,7 +110,7 @@ SearchSpec search_spec(const JobConfig& job, const VariantPlan& plan, const RunO
   layout.min_distance_m = job.constraints.min_distance_m;
   layout.mounting_surface = s.suspended_height_m ? "the suspension plane" : s.mounting_surface;
   layout.loc = s.layout_loc;
-  spec.goals = goal_specs(job, plan.maintenance_factor);
+  spec.goals = initial_goals(plan.goals, plan.maintenance_factor);
   spec.objective = job.objective;
   spec.options = job.optimizer;
   spec.options.threads = worker_threads(job, run);
@@ -141,11 +142,30 @@ ExactSolveOptions exact_options(const JobConfig& job, const RunOptions& run) {
   return options;
 }
 
-std::vector<GoalSpec> goal_specs(const JobConfig& job, double maintenance_factor) {
-  std::vector<GoalSpec> out;
-  for (const GoalSetting& g : job.goals)
-    out.push_back({g.name, g.metric, metric_rule(g.metric).lux ? g.target / maintenance_factor : g.target});
+JobGoals job_goals(const JobConfig& job) {
+  JobGoals out;
+  for (const GoalSetting& g : job.goals) out.lines.push_back({g.name, g.metric, g.target, g.surfaces, g.grid});
+  out.objective = job.objective;
+  out.max_power_density_w_per_m2 = job.constraints.max_power_density_w_per_m2;
   return out;
+}
+
+double initial_target(GoalMetric metric, double maintained, double maintenance_factor) {
+  return metric_rule(metric).lux ? maintained / maintenance_factor : maintained;
+}
+
+std::vector<GoalSpec> initial_goals(const JobGoals& goals, double maintenance_factor) {
+  std::vector<GoalSpec> out;
+  for (const GoalLine& g : goals.lines) out.push_back({g.name, g.metric, initial_target(g.metric, g.target, maintenance_factor)});
+  return out;
+}
+
+void set_goal_target(JobGoals& goals, const std::string& key, double value) {
+  goal_rules::apply(
+      goals.lines, key, value, [&](const std::string& rule) -> void { throw ConfigError("--set " + key + ": " + rule); },
+      [&](const std::string& rule) -> void {
+        throw ConfigError("--set " + key + " = " + goal_rules::format_number(value) + ": " + rule);
+      });
 }
 
 std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
@@ -176,12 +196,14 @@ std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
     }
     plan.listed = listed;
     plan.maintenance_factor = product.maintenance_factor.value_or(job.maintenance_factor);
+    plan.goals = job_goals(job);
+    plan.verification = {job.verification, exact_options(job, run), operator_options(job, run), worker_threads(job, run)};
     plan.model = model_spec(job, plan.product, run);
     plan.search = search_spec(job, plan, run);
     plan.scenarios = job.scenarios;
     for (ScenarioSpec& s : plan.scenarios)
       for (GoalSpec& g : s.goals)
-        if (metric_rule(g.metric).lux) g.target /= plan.maintenance_factor;
+        g.target = initial_target(g.metric, g.target, plan.maintenance_factor);
     out.push_back(std::move(plan));
   }
   return out;

@@ -13,6 +13,7 @@
 #include "core/cost/machine_speed.h"
 #include "core/operator/sample_operator.h"
 #include "job/config.h"
+#include "job/verification_spec.h"
 #include "optimizer/lighting_model.h"
 #include "optimizer/scenario_spec.h"
 #include "optimizer/search_spec.h"
@@ -37,12 +38,44 @@ int worker_threads(const JobConfig& job, const RunOptions& run);
 SampleOperatorOptions operator_options(const JobConfig& job, const RunOptions& run);
 ExactSolveOptions exact_options(const JobConfig& job, const RunOptions& run);
 
+// One goal line as the job states it: a metric over a named area at its maintained
+// target (lux metrics; U0 as given), and where the area is (for the records).
+struct GoalLine {
+  std::string name;
+  GoalMetric metric = GoalMetric::average;
+  double target = 0.0;                // maintained, as the job states it
+  std::vector<std::string> surfaces;  // empty for a grid goal
+  std::string grid;                   // the calculation grid, or "" for surfaces
+};
+
+// What a solve is judged against: the job's goal lines, its objective and its power
+// density cap. A sweep point and each verification round edit a copy of this, never the
+// config.
+struct JobGoals {
+  std::vector<GoalLine> lines;
+  Objective objective = Objective::min_power;
+  std::optional<double> max_power_density_w_per_m2;
+};
+JobGoals job_goals(const JobConfig& job);
+
+// The target a goal is searched and verified at: initial = maintained / maintenance
+// factor for lux metrics, the target itself for ratios (U0) and UGR.
+double initial_target(GoalMetric metric, double maintained, double maintenance_factor);
+// Every line at its initial target (GoalSpec, as the search and the verification judge).
+std::vector<GoalSpec> initial_goals(const JobGoals& goals, double maintenance_factor);
+// Sets the target of the line `key` names ("goals.NAME.average_lux", ".min_lux",
+// ".max_lux", ".uniformity", ...) to `value`, checked as the job file is; throws
+// ConfigError "--set KEY ..." naming the key or the rule broken.
+void set_goal_target(JobGoals& goals, const std::string& key, double value);
+
 struct VariantPlan {
   ProductVariant product;        // what the search places; the plain panel as a product
   bool listed = false;           // one of luminaires.products (else the plain panel)
   double maintenance_factor = 1.0;  // the product's own, else the job's
   ModelSpec model;
-  SearchSpec search;
+  SearchSpec search;             // its goals: `goals` at initial targets for maintenance_factor
+  JobGoals goals;                // the job's goal lines, maintained
+  VerificationSpec verification;  // how the layout found is verified
   std::vector<ScenarioSpec> scenarios;  // the job's other lighting states, goals at initial targets
 };
 
@@ -51,8 +84,5 @@ struct VariantPlan {
 // goals), or a product whose photometric file cannot be used.
 std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run = {});
 
-// The goal lines at initial targets for a maintenance factor (a sweep point's job
-// after set_goal_parameter gives new targets for the same plan).
-std::vector<GoalSpec> goal_specs(const JobConfig& job, double maintenance_factor);
 
 }  // namespace ilp

@@ -115,26 +115,26 @@ bool VerdictLines::all_met() const {
   return std::all_of(goals.begin(), goals.end(), met) && std::all_of(constraints.begin(), constraints.end(), met);
 }
 
-VerdictLines verdict_lines(const JobConfig& job, const JobOutcome& outcome) {
+VerdictLines verdict_lines(const JobGoals& goals, const JobOutcome& outcome) {
   VerdictLines out;
   for (std::size_t g = 0; g < outcome.goals.size(); ++g) {
     const GoalOutcome& o = outcome.goals[g];
     const MetricRule& rule = metric_rule(o.predicted.metric);
     VerdictLine rec;
     rec.name = o.predicted.name;
-    rec.surfaces = job.goals[g].surfaces;
-    rec.grid = job.goals[g].grid;
+    rec.surfaces = goals.lines[g].surfaces;
+    rec.grid = goals.lines[g].grid;
     rec.metric = std::string(rule.name);
     rec.unit = std::string(rule.unit);
     // The report shows maintained values, as the job states its targets.
     const double mf = rule.lux ? outcome.maintenance_factor : 1.0;
-    rec.target = job.goals[g].target;
+    rec.target = goals.lines[g].target;
     rec.predicted = o.predicted.value * mf;
     if (o.verified) rec.verified = o.verified->value * mf;
     rec.met = o.met;
     rec.fails_only_on_verification = o.fails_only_on_verification;
     rec.tolerance = o.tolerance;
-    rec.rule = is_target_goal(job.objective, o.predicted.metric) ? "=" : rule.lower_bound ? ">=" : "<=";
+    rec.rule = is_target_goal(goals.objective, o.predicted.metric) ? "=" : rule.lower_bound ? ">=" : "<=";
     rec.relative_error = o.relative_error;
     rec.margin = o.margin;
     out.goals.push_back(rec);
@@ -190,7 +190,7 @@ std::vector<ScenarioRecord> scenario_records(const JobConfig& job, const JobOutc
   return out;
 }
 
-VariantRecord variant_record(const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
+VariantRecord variant_record(const PreparedJob& prepared, const JobGoals& goals, const JobOutcome& outcome,
                              const std::string& summary, bool chosen) {
   VariantRecord v;
   v.product = prepared.plan.product.product;
@@ -201,7 +201,7 @@ VariantRecord variant_record(const PreparedJob& prepared, const JobConfig& job, 
   if (!v.searched) return v;
   v.luminaires = static_cast<int>(outcome.luminaires.size());
   v.power_w = outcome.power_w;
-  const VerdictLines lines = verdict_lines(job, outcome);
+  const VerdictLines lines = verdict_lines(goals, outcome);
   v.all_met = lines.all_met();
   v.goals = lines.goals;
   v.constraints = lines.constraints;
@@ -240,7 +240,7 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
                             floor_z ? std::optional<double>(l.position_m.z() - *floor_z) : std::nullopt,
                             luminaire.tilt_deg, group ? group->name : std::string()});
   }
-  const VerdictLines lines = verdict_lines(job, outcome);
+  const VerdictLines lines = verdict_lines(job_goals(job), outcome);
   r.goals = lines.goals;
   r.constraints = lines.constraints;
   r.scenarios = scenario_records(job, outcome);

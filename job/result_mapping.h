@@ -26,15 +26,15 @@ RoomRecord room_record(const Scene& scene, std::optional<double> floor_z_m, cons
 std::optional<EnergyRecord> energy_record(const EnergySettings& settings, double power_w, double area_m2,
                                           double maintenance_factor);
 // The verdict's lines of an outcome: each goal (maintained values, judged against
-// `job`'s targets) and each constraint.
+// `goals`' targets) and each constraint.
 struct VerdictLines {
   std::vector<VerdictLine> goals, constraints;
   bool all_met() const;  // every line met
 };
-VerdictLines verdict_lines(const JobConfig& job, const JobOutcome& outcome);
+VerdictLines verdict_lines(const JobGoals& goals, const JobOutcome& outcome);
 
 // A variant's record: its summary line, and its lines when it was searched.
-VariantRecord variant_record(const PreparedJob& prepared, const JobConfig& job, const JobOutcome& outcome,
+VariantRecord variant_record(const PreparedJob& prepared, const JobGoals& goals, const JobOutcome& outcome,
                              const std::string& summary, bool chosen);
 
 // The record of the chosen variant's outcome, goals judged against `job`'s targets,

@@ -20,7 +20,7 @@ std::optional<double> next_search_target(GoalMetric metric, double real_target, 
   return next;
 }
 
-std::string calibration_line(int round, double maintenance_factor, const GoalSetting& goal, double predicted,
+std::string calibration_line(int round, double maintenance_factor, const GoalLine& goal, double predicted,
                              double verified, double next_target) {
   const MetricRule& rule = metric_rule(goal.metric);
   std::string unit;  // " lx", or none for U0 (appended: GCC 12 warns falsely on " " + string)
@@ -28,7 +28,7 @@ std::string calibration_line(int round, double maintenance_factor, const GoalSet
   std::ostringstream line;
   line << std::setprecision(4) << "round " << round + 1 << ": " << goal.name << " " << to_string(goal.metric)
        << " predicted " << predicted << unit << ", verified " << verified << unit;
-  const double initial = rule.lux ? goal.target / maintenance_factor : goal.target;
+  const double initial = initial_target(goal.metric, goal.target, maintenance_factor);
   if (rule.lux && initial != goal.target) line << " (initial, for " << initial << unit << ")";
   line << "; the next search aims at " << next_target << unit << " for " << goal.target << unit;
   return line.str();

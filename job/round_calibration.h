@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "job/config.h"
+#include "job/plan.h"
 
 namespace ilp {
 
@@ -23,7 +23,7 @@ std::optional<double> next_search_target(GoalMetric metric, double real_target, 
 // 106.3 lx (initial, for 125 lx); the next search aims at 129.4 lx for 100 lx": lux
 // values are initial and targets maintained, so the initial target is given where a
 // maintenance factor makes them differ. `round` counts from 0.
-std::string calibration_line(int round, double maintenance_factor, const GoalSetting& goal, double predicted,
+std::string calibration_line(int round, double maintenance_factor, const GoalLine& goal, double predicted,
                              double verified, double next_target);
 
 }  // namespace ilp

@@ -13,10 +13,10 @@
 namespace ilp {
 namespace {
 
-// The search luminaire's least power for every count, at the targets of `goals_job`.
-double least_power_w(const PreparedJob& prepared, const JobConfig& goals_job) {
+// The search luminaire's least power for every count, at the targets of `goals`.
+double least_power_w(const PreparedJob& prepared, const JobGoals& goals) {
   SearchSpec spec = prepared.plan.search;
-  spec.goals = goal_specs(goals_job, prepared.plan.maintenance_factor);
+  spec.goals = initial_goals(goals, prepared.plan.maintenance_factor);
   return least_layout_power_w(prepared.model, spec);
 }
 
@@ -119,13 +119,13 @@ std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vecto
   return prepare_costed(shared, true, std::move(costed), job, plans, run, progress, cache_dir, log, prepared_log);
 }
 
-VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const JobConfig& goals_job,
+VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const JobGoals& goals,
                              const ProgressCallback& progress, const LogSink& log) {
   std::vector<double> least_w;
-  for (const PreparedJob& p : prepared) least_w.push_back(least_power_w(p, goals_job));
+  for (const PreparedJob& p : prepared) least_w.push_back(least_power_w(p, goals));
   std::vector<std::size_t> order(prepared.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  const bool bounded = prepared.size() > 1 && objective_rule(goals_job.objective).minimises_power;
+  const bool bounded = prepared.size() > 1 && objective_rule(goals.objective).minimises_power;
   if (bounded) std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return least_w[a] < least_w[b]; });
   VariantChoice best;
   bool have = false;
@@ -134,10 +134,10 @@ VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const Job
   best.records.resize(prepared.size());
   for (const std::size_t v : order) {
     const double to_beat = bounded && have && best.outcome.all_met ? best.outcome.power_w : kNoPowerToBeat;
-    JobOutcome outcome = solve_prepared(prepared[v], goals_job, progress, to_beat);
+    JobOutcome outcome = solve_prepared(prepared[v], goals, progress, to_beat);
     if (prepared[v].plan.listed) {
       best.tried[v] = tried_line(prepared[v].plan, outcome, least_w[v], to_beat);
-      best.records[v] = variant_record(prepared[v], goals_job, outcome, best.tried[v], false);
+      best.records[v] = variant_record(prepared[v], goals, outcome, best.tried[v], false);
       if (log) log("variant " + std::to_string(v + 1) + ": " + best.tried[v] + timing_note(outcome));
     }
     best.search_seconds += outcome.search.seconds;

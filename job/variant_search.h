@@ -41,12 +41,12 @@ struct VariantChoice {
   double verify_seconds = 0.0;      // every variant's verification, all rounds
 };
 
-// Solves each variant with the goal targets of `goals_job` (the job, or a sweep point's)
+// Solves each variant with the goal targets of `goals` (the plan's, or a sweep point's)
 // and keeps the best outcome. min_power: the variants are tried in the order of the
 // least power they could draw, and each is searched only for the counts that could draw
 // less than the best layout found so far with every goal met (optimizer/layout_search.h),
 // so a product that cannot win costs nothing.
-VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const JobConfig& goals_job,
+VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const JobGoals& goals,
                              const ProgressCallback& progress, const LogSink& log);
 
 }  // namespace ilp

@@ -13,6 +13,7 @@
 
 #include "job/config.h"
 #include "job/job_scene.h"
+#include "job/plan.h"
 #include "tests/test_support.h"
 
 namespace fs = std::filesystem;
@@ -1754,8 +1755,15 @@ TEST(JobConfigGrids, GridGoalsPresetsAndMaintenanceFactor) {
   EXPECT_EQ(job.goals[3].metric, ilp::GoalMetric::minimum);
   EXPECT_DOUBLE_EQ(job.goals[4].target, 0.70);
   // Initial = maintained / MF for lux, the ratio unchanged.
-  EXPECT_DOUBLE_EQ(ilp::initial_target(job, job.goals[0]), 625.0);
-  EXPECT_DOUBLE_EQ(ilp::initial_target(job, job.goals[1]), 0.7);
+  EXPECT_DOUBLE_EQ(ilp::initial_target(job.goals[0].metric, job.goals[0].target, job.maintenance_factor), 625.0);
+  EXPECT_DOUBLE_EQ(ilp::initial_target(job.goals[1].metric, job.goals[1].target, job.maintenance_factor), 0.7);
+  // A sweep point edits the plan's goal lines, checked as the file is.
+  ilp::JobGoals point = ilp::job_goals(job);
+  ilp::set_goal_target(point, "goals.work.average_lux", 750);
+  EXPECT_DOUBLE_EQ(point.lines[0].target, 750.0);
+  EXPECT_DOUBLE_EQ(ilp::initial_goals(point, job.maintenance_factor)[0].target, 937.5);
+  EXPECT_THROW(ilp::set_goal_target(point, "goals.nowhere.average_lux", 750), ilp::ConfigError);
+  EXPECT_THROW(ilp::set_goal_target(point, "goals.work.uniformity", 1.5), ilp::ConfigError);
   ilp::JobConfig sweep = job;
   ilp::set_goal_parameter(sweep, "goals.work.average_lux", 750);
   EXPECT_DOUBLE_EQ(sweep.goals[0].target, 750.0);

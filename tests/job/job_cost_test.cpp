@@ -12,12 +12,12 @@ TEST(JobCost, AutomaticVerificationNeverChoosesADenseSystemThatDoesNotFit) {
   JobConfig job;  // verification.method auto, 1024 rays, sample_fraction 0.25
   const std::size_t n = 398000;
   const double budget = 4e9;
-  const VerificationPlan plan = plan_verification(job, n, n, 60000, 8, budget);
+  const VerificationPlan plan = plan_verification(job.verification, n, n, 60000, 8, budget);
   ASSERT_EQ(plan.method, VerificationMethod::sample);  // exact rows: 398K x 1024 rays, about 8 GB
   EXPECT_LE(plan.sample_size, kAutoVerificationMaxSample);
   EXPECT_LE(sample_verification_bytes(static_cast<std::size_t>(plan.sample_size), 60000, 9, 1024), 0.5 * budget);
   // With a tiny budget the sample shrinks further instead of failing later.
-  const VerificationPlan small = plan_verification(job, n, n, 100, 8, 5e7);
+  const VerificationPlan small = plan_verification(job.verification, n, n, 100, 8, 5e7);
   EXPECT_LT(small.sample_size, plan.sample_size);
   EXPECT_LE(sample_verification_bytes(static_cast<std::size_t>(small.sample_size), 100, 9, 1024), 2.5e7);
 }
@@ -25,21 +25,21 @@ TEST(JobCost, AutomaticVerificationNeverChoosesADenseSystemThatDoesNotFit) {
 TEST(JobCost, AutomaticVerificationIsExactWhenItsRowsFit) {
   JobConfig job;
   job.verification.rays_per_patch = 128;
-  EXPECT_EQ(plan_verification(job, 20000, 20000, 100, 8, 1e9).method, VerificationMethod::exact);  // <= max_exact_patches
+  EXPECT_EQ(plan_verification(job.verification, 20000, 20000, 100, 8, 1e9).method, VerificationMethod::exact);  // <= max_exact_patches
   // 398K rows at 128 rays: about 1.3 GB, within half of 24 GB.
-  EXPECT_EQ(plan_verification(job, 398000, 398000, 100, 8, 24e9).method, VerificationMethod::exact);
-  EXPECT_EQ(plan_verification(job, 398000, 398000, 100, 8, 2e9).method, VerificationMethod::sample);
+  EXPECT_EQ(plan_verification(job.verification, 398000, 398000, 100, 8, 24e9).method, VerificationMethod::exact);
+  EXPECT_EQ(plan_verification(job.verification, 398000, 398000, 100, 8, 2e9).method, VerificationMethod::sample);
 }
 
 TEST(JobCost, ExplicitMethodsAreKept) {
   JobConfig job;
   job.verification.method = VerificationMethod::sample;
   job.verification.sample_fraction = 0.25;
-  const VerificationPlan plan = plan_verification(job, 398000, 398000, 100, 8, 1e9);
+  const VerificationPlan plan = plan_verification(job.verification, 398000, 398000, 100, 8, 1e9);
   EXPECT_EQ(plan.method, VerificationMethod::sample);
   EXPECT_EQ(plan.sample_size, 99500);  // as asked: the job's estimate refuses it (verification.sample_fraction)
   job.verification.method = VerificationMethod::exact;
-  EXPECT_EQ(plan_verification(job, 398000, 398000, 100, 8, 1e9).method, VerificationMethod::exact);
+  EXPECT_EQ(plan_verification(job.verification, 398000, 398000, 100, 8, 1e9).method, VerificationMethod::exact);
 }
 
 // The whole run's estimate from its variants' own: the model is read and its BVH built

@@ -445,7 +445,7 @@ TEST(ModelCache, UnwritableCacheFolderStillCompletesTheJob) {
   EXPECT_TRUE(StartsWith(prepared.cache_status, "operator built; cache not used: ")) << prepared.cache_status;
   EXPECT_TRUE(Contains(prepared.cache_status, cache));
   expect_same_operator(prepare(job).model, prepared.model, false);
-  const JobOutcome outcome = solve_prepared(prepared, job);
+  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
   EXPECT_EQ(outcome.luminaires.size(), 1u);
   EXPECT_TRUE(outcome.feasible);
 }

@@ -36,7 +36,7 @@ TEST(RoundCalibration, UniformityStopsAtOneAndZeroValuesGiveNoRatio) {
 
 TEST(RoundCalibration, TheLineSaysLuxAreInitialWhereAMaintenanceFactorApplies) {
   JobConfig job;
-  GoalSetting floor;
+  GoalLine floor;
   floor.name = "floor";
   floor.metric = GoalMetric::minimum;
   floor.target = 100.0;
@@ -47,7 +47,7 @@ TEST(RoundCalibration, TheLineSaysLuxAreInitialWhereAMaintenanceFactorApplies) {
   job.maintenance_factor = 1.0;
   EXPECT_EQ(calibration_line(0, job.maintenance_factor, floor, 137.2, 106.3, 129.4),
             "round 1: floor minimum predicted 137.2 lx, verified 106.3 lx; the next search aims at 129.4 lx for 100 lx");
-  GoalSetting u0;
+  GoalLine u0;
   u0.name = "work_plane";
   u0.metric = GoalMetric::uniformity;
   u0.target = 0.6;

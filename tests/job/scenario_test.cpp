@@ -46,7 +46,7 @@ TEST(Scenarios, HalfTheOfficesLuminairesAt30PercentDirectLightOnlyAreVerifiedOnT
   ASSERT_EQ(plan.scenarios.size(), 4u);
   EXPECT_NEAR(plan.scenarios[2].goals[0].target, 100.0 / 0.8, 1e-12);  // initial = maintained / MF
   const PreparedJob prepared = prepare_job(job, plan);
-  const JobOutcome outcome = solve_prepared(prepared, job);
+  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
   ASSERT_EQ(outcome.verification.method, "exact");
   ASSERT_EQ(outcome.scenarios.size(), 4u);
   ASSERT_EQ(outcome.verification.state_lux.size(), 4u);
@@ -95,7 +95,7 @@ TEST(Scenarios, HalfTheOfficesLuminairesAt30PercentDirectLightOnlyAreVerifiedOnT
 TEST(Scenarios, AScenarioTheLayoutMissesIsAGoalNotMetOfTheWholeJob) {
   JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office.yaml");
   job.scenarios = {scenario("dimmed to nothing", LightCounted::total, 0.0, {}, {{"work_plane", GoalMetric::average, 50.0}})};
-  const JobOutcome outcome = solve_prepared(prepare_job(job, plan_job(job).front()), job);
+  const JobOutcome outcome = solve_prepared(prepare_job(job, plan_job(job).front()), job_goals(job));
   ASSERT_EQ(outcome.scenarios.size(), 1u);
   EXPECT_FALSE(outcome.scenarios[0].all_met);
   EXPECT_EQ(outcome.scenarios[0].lit, 0u);

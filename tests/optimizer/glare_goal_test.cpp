@@ -111,7 +111,7 @@ TEST(GlareGoal, ATighterUgrLimitFindsAnotherLayoutThatMeetsIt) {
   const JobConfig loose = glare_job(dir, "    ugr_max: 30\n");
   const PreparedJob prepared = test::prepare(loose);
   ASSERT_EQ(prepared.model.observers.size(), 4u) << "the standard's four observers";
-  const JobOutcome first = solve_prepared(prepared, loose);
+  const JobOutcome first = solve_prepared(prepared, job_goals(loose));
   ASSERT_TRUE(first.all_met);
   const GoalOutcome& ugr_first = goal_of(first, GoalMetric::ugr);
   ASSERT_TRUE(ugr_first.verified);
@@ -127,7 +127,7 @@ TEST(GlareGoal, ATighterUgrLimitFindsAnotherLayoutThatMeetsIt) {
   const double limit = std::floor(unconstrained) - 1.0;
   for (GoalSetting& g : tight.goals)
     if (g.metric == GoalMetric::ugr) g.target = limit;
-  const JobOutcome second = solve_prepared(prepared, tight);
+  const JobOutcome second = solve_prepared(prepared, job_goals(tight));
   const GoalOutcome& ugr_second = goal_of(second, GoalMetric::ugr);
   std::cout << "ugr_max " << limit << ": " << second.luminaires.size() << " luminaires, UGR "
             << ugr_second.verified->value << "\n";
