@@ -119,7 +119,7 @@ std::vector<CostEstimate> print_cost_estimates(const JobConfig& job, const RunOp
   const std::vector<VariantPlan> plans = plan_job(job, run);
   std::vector<CostEstimate> estimates;
   for (const VariantPlan& plan : plans) {
-    const CostedGeometry costed = costed_geometry(job, scene, plan.model, budget, job_machine_costs(job, run));
+    const CostedGeometry costed = costed_geometry(plan, scene, budget, job_machine_costs(job, run));
     estimates.push_back(costed.estimate);
     const CostCounts& counts = costed.counts;
     std::cout << "cost estimate of `ilp run`" << label;
@@ -153,7 +153,7 @@ double print_room_estimates(const JobConfig& job, const RunOptions& run, const S
     return whole_s;
   }
   const std::vector<CostEstimate> estimates = print_cost_estimates(job, run, scene);
-  const double whole_run_s = whole_run_seconds(job, estimates);
+  const double whole_run_s = whole_run_seconds(job.objective, estimates);
   if (estimates.size() > 1)
     std::cout << "cost estimate of the whole run: about " << fixed(whole_run_s, 1) << " s for its " << estimates.size()
               << " variants, one after another\n";

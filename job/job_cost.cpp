@@ -54,8 +54,38 @@ VerificationPlan plan_verification(const VerificationSettings& s, std::size_t pa
   return plan;
 }
 
-CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const LightingModel& geometry,
+namespace {
+
+// The search's evaluations and the luminaires of its largest layout (the verification's
+// scene), from the plan's layout (counts already capped by constraints.max_luminaires).
+void count_search(const SearchSpec& search, CostCounts& c) {
+  const LayoutSpec& s = search.layout;
+  const int most = s.count_max;
+  if (s.family == LayoutFamily::free || s.family == LayoutFamily::array) {
+    const int counts = s.family == LayoutFamily::array ? 1 : std::max(1, most - s.count_min + 1);
+    c.luminaires = s.family == LayoutFamily::array ? s.array_rows * s.array_columns : most;
+    c.evaluations = static_cast<long long>(counts) * (search.options.max_evaluations + search.options.local_max_evaluations);
+  } else {  // one evaluation per arrangement; the bays in the zone are not known before the scene
+    const RegularLayoutParams& r = s.regular;
+    const bool bays = s.family == LayoutFamily::bays;
+    constexpr int kBaysAssumed = 256;
+    c.luminaires = std::min(most, bays ? kBaysAssumed * r.per_bay.max : r.rows.max * r.columns.max);
+    // Each edge ratio tried (every 0.05 of the range) on each axis.
+    const long long ratios = 1 + static_cast<long long>(std::ceil((r.edge_ratio_max - r.edge_ratio_min) / 0.05 - 1e-9));
+    c.evaluations = bays ? r.per_bay.max - r.per_bay.min + 1
+                         : static_cast<long long>(r.rows.max - r.rows.min + 1) * (r.columns.max - r.columns.min + 1) *
+                               ratios * ratios;
+  }
+  c.search_max_seconds = search.options.max_seconds;
+}
+
+}  // namespace
+
+CostCounts job_cost_counts(const VariantPlan& plan, const Scene& job_scene, const LightingModel& geometry,
                            std::optional<double> budget, const std::vector<CalcGridSize>* grids) {
+  const ModelSpec& model = plan.model;
+  const SampleOperatorOptions& op = model.operator_options;
+  const SampleSizeRule& sample = model.sample_size;
   CostCounts c;
   c.patches = job_scene.patches.size();
   const std::vector<int> population = reflecting_patches(job_scene);
@@ -76,63 +106,43 @@ CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const L
   c.sources = scene_light_sources(geometry.scene).size();
   // The candidates' reflected light at every n-th node (compute_lighting_operator's blend).
   if (geometry.grid.size() > 0 && geometry.grid.size() <= c.sources)
-    c.reflected_sources = candidate_reflected_blend(geometry.grid, c.sources - geometry.grid.size(),
-                                                    job.sample.reflected_stride).computed.size();
+    c.reflected_sources =
+        candidate_reflected_blend(geometry.grid, c.sources - geometry.grid.size(), model.reflected_stride).computed.size();
   c.channels = job_scene.channels;
-  c.rays_per_patch = job.form_factors.rays_per_patch;
-  c.exact_second_bounce = job.sample.indirect == IndirectMethod::exact_second_bounce;
-  c.direct_rays = job.direct_light.receiver_points * job.direct_light.shadow_rays;
-  c.direct_points = job.direct_light.receiver_points;
+  c.rays_per_patch = op.form_factors.rays_per_patch;
+  c.exact_second_bounce = op.indirect == IndirectMethod::exact_second_bounce;
+  c.direct_rays = op.direct_light.receiver_points * op.direct_light.shadow_rays;
+  c.direct_points = op.direct_light.receiver_points;
   c.point_sources = mean_point_sources(geometry.scene, population, luminaire_surfaces(geometry.scene));
-  c.point_direct_rays = job.direct_light.shadow_rays;
+  c.point_direct_rays = op.direct_light.shadow_rays;
   if (c.population > 0) {
-    if (job.sample.target_error) {
-      c.pilot_builds = job.sample.error_samples;
+    if (sample.target_error) {
+      c.pilot_builds = sample.error_samples;
       c.pilot_size = static_cast<std::size_t>(std::min<double>(
-          static_cast<double>(c.population), std::max(2.0, std::round(job.sample.pilot_fraction * c.population))));
-      c.sample_size = static_cast<std::size_t>(std::min<double>(static_cast<double>(c.population),
-                                                                job.sample.max_size_for_target));
+          static_cast<double>(c.population), std::max(2.0, std::round(sample.pilot_fraction * c.population))));
+      c.sample_size = static_cast<std::size_t>(std::min<double>(static_cast<double>(c.population), sample.max_size));
     } else {
-      c.sample_size = static_cast<std::size_t>(std::min<double>(static_cast<double>(c.population),
-                                                                job.sample.size_for(c.population)));
+      c.sample_size =
+          static_cast<std::size_t>(std::min<double>(static_cast<double>(c.population), sample.size_for(c.population)));
     }
   }
-  if (job.search) {
-    const LuminaireSearch& s = *job.search;
-    const int most = job.constraints.max_luminaires ? std::min(s.count_max, *job.constraints.max_luminaires) : s.count_max;
-    if (s.layout == LayoutFamily::free || s.layout == LayoutFamily::array) {
-      const int counts = s.layout == LayoutFamily::array ? 1 : std::max(1, most - s.count_min + 1);
-      c.luminaires = s.layout == LayoutFamily::array ? s.array_rows * s.array_columns : most;
-      c.evaluations = static_cast<long long>(counts) *
-                      (job.optimizer.max_evaluations + job.optimizer.local_max_evaluations);
-    } else {  // one evaluation per arrangement; the bays in the zone are not known before the scene
-      const RegularLayoutParams& r = s.regular;
-      const bool bays = s.layout == LayoutFamily::bays;
-      constexpr int kBaysAssumed = 256;
-      c.luminaires = std::min(most, bays ? kBaysAssumed * r.per_bay.max : r.rows.max * r.columns.max);
-      // Each edge ratio tried (every 0.05 of the range) on each axis.
-      const long long ratios = 1 + static_cast<long long>(std::ceil((r.edge_ratio_max - r.edge_ratio_min) / 0.05 - 1e-9));
-      c.evaluations = bays ? r.per_bay.max - r.per_bay.min + 1
-                           : static_cast<long long>(r.rows.max - r.rows.min + 1) * (r.columns.max - r.columns.min + 1) *
-                                 ratios * ratios;
-    }
-    c.search_max_seconds = job.optimizer.max_seconds;
-  }
-  const VerificationPlan plan =
-      plan_verification(job.verification, c.patches + 2 * static_cast<std::size_t>(c.luminaires), c.population, c.goal_patches,
-                        c.luminaires, budget);
-  c.verify = plan.method == VerificationMethod::exact    ? CostCounts::Verify::exact
-             : plan.method == VerificationMethod::sample ? CostCounts::Verify::sample
-                                                         : CostCounts::Verify::none;
-  c.verify_rays = job.verification.rays_per_patch;
-  c.verify_indirect_rays = job.verification.indirect_rays_per_patch;
-  c.verify_first_indirect_rays = job.verification.first_indirect_rays;
-  c.verify_decisive_rays = job.verification.decisive_rays;
-  c.verify_sample_size = static_cast<std::size_t>(plan.sample_size);
-  c.verify_rounds = plan.method == VerificationMethod::none ? 1 : job.verification.rounds;
-  c.output_patches = job.output.ply || job.output.csv ? c.patches : 0;
-  c.output_renders = job.output.plan_png || job.output.isolux_png || job.output.pdf;
-  if (job.output.plan_png || job.output.pdf)  // the plan's outline: the mounting surface, else every patch (plan_svg.h)
+  count_search(plan.search, c);
+  const VerificationSettings& verification = plan.verification.settings;
+  const VerificationPlan verify =
+      plan_verification(verification, c.patches + 2 * static_cast<std::size_t>(c.luminaires), c.population,
+                        c.goal_patches, c.luminaires, budget);
+  c.verify = verify.method == VerificationMethod::exact    ? CostCounts::Verify::exact
+             : verify.method == VerificationMethod::sample ? CostCounts::Verify::sample
+                                                           : CostCounts::Verify::none;
+  c.verify_rays = verification.rays_per_patch;
+  c.verify_indirect_rays = verification.indirect_rays_per_patch;
+  c.verify_first_indirect_rays = verification.first_indirect_rays;
+  c.verify_decisive_rays = verification.decisive_rays;
+  c.verify_sample_size = static_cast<std::size_t>(verify.sample_size);
+  c.verify_rounds = verify.method == VerificationMethod::none ? 1 : verification.rounds;
+  c.output_patches = plan.outputs.patch_files ? c.patches : 0;
+  c.output_renders = plan.outputs.renders;
+  if (plan.outputs.plan_render)  // the plan's outline: the mounting surface, else every patch (plan_svg.h)
     c.plan_patches = geometry.grid.mounting_patches().empty() ? c.patches : geometry.grid.mounting_patches().size();
   return c;
 }
@@ -160,19 +170,20 @@ MachineCosts job_machine_costs(const JobConfig& job, const RunOptions& run) {
   return machine_costs(run.machine.speed, usable_threads(worker_threads(job, run)));
 }
 
-CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, const ModelSpec& spec,
+CostedGeometry costed_geometry(const VariantPlan& plan, const Scene& job_scene,
                                const std::optional<MemoryBudget>& budget, const MachineCosts& costs,
                                const RayCaster* caster) {
+  const ModelSpec& spec = plan.model;
   const std::optional<double> bytes = budget ? std::optional<double>(budget->bytes) : std::nullopt;
   auto before_grids = [&](const LightingModel& partial, const std::vector<CalcGridSize>& grids) {
     if (grids.empty()) return;
     CostedGeometry c;
-    c.counts = job_cost_counts(job, job_scene, partial, bytes, &grids);
+    c.counts = job_cost_counts(plan, job_scene, partial, bytes, &grids);
     c.counts.photometric = !spec.candidates.type.lambertian();
     c.counts.shares = spec.operator_options.share.count;
     c.counts.hit_block_patches = static_cast<std::size_t>(spec.operator_options.hit_block_patches);
     c.estimate = estimate_job_cost(c.counts, costs);
-    c.refusal = refusal_of(c.estimate, budget, job.path);
+    c.refusal = refusal_of(c.estimate, budget, plan.source);
     if (!c.refusal.empty()) {
       c.model = partial;
       throw RefusedBeforeGrids{std::move(c)};
@@ -184,22 +195,22 @@ CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, con
   } catch (RefusedBeforeGrids& refused) {
     return std::move(refused.costed);
   }
-  out.counts = job_cost_counts(job, job_scene, out.model, bytes);
+  out.counts = job_cost_counts(plan, job_scene, out.model, bytes);
   out.counts.photometric = !spec.candidates.type.lambertian();
   out.counts.shares = spec.operator_options.share.count;
   out.counts.hit_block_patches = static_cast<std::size_t>(spec.operator_options.hit_block_patches);
   out.estimate = estimate_job_cost(out.counts, costs);
-  out.refusal = refusal_of(out.estimate, budget, job.path);
+  out.refusal = refusal_of(out.estimate, budget, plan.source);
   return out;
 }
 
-double whole_run_seconds(const JobConfig& job, const std::vector<CostEstimate>& variants) {
+double whole_run_seconds(Objective objective, const std::vector<CostEstimate>& variants) {
   double seconds = 0.0;
   for (std::size_t v = 0; v < variants.size(); ++v)
     for (const PhaseEstimate& p : variants[v].phases) {
       if (v > 0 && (p.name == kOutputPhase || p.name == kScenePhase)) continue;
       const bool later_verification = v > 0 && p.name.starts_with("verification");
-      seconds += later_verification && objective_rule(job.objective).minimises_power ? 0.5 * p.seconds : p.seconds;
+      seconds += later_verification && objective_rule(objective).minimises_power ? 0.5 * p.seconds : p.seconds;
     }
   return seconds;
 }

@@ -33,7 +33,7 @@ VerificationPlan plan_verification(const VerificationSettings& settings, std::si
 // configured size, or with solver.target_error the largest k it may choose). The
 // grids' points are geometry's (goal_points) unless `grids` gives their sizes (before
 // they are laid: the cells, the most points they can have).
-CostCounts job_cost_counts(const JobConfig& job, const Scene& job_scene, const LightingModel& geometry,
+CostCounts job_cost_counts(const VariantPlan& plan, const Scene& job_scene, const LightingModel& geometry,
                            std::optional<double> budget_bytes, const std::vector<CalcGridSize>* grids = nullptr);
 
 // One variant's model geometry with what `ilp run` costs: the estimate is made before
@@ -47,7 +47,7 @@ struct CostedGeometry {
   CostCounts counts;
   std::string refusal;   // require_fits's message; empty when the job fits
 };
-CostedGeometry costed_geometry(const JobConfig& job, const Scene& job_scene, const ModelSpec& spec,
+CostedGeometry costed_geometry(const VariantPlan& plan, const Scene& job_scene,
                                const std::optional<MemoryBudget>& budget, const MachineCosts& costs,
                                const RayCaster* caster = nullptr);
 
@@ -60,7 +60,7 @@ MachineCosts job_machine_costs(const JobConfig& job, const RunOptions& run);
 // half of it on average, as min_power skips a variant predicted to lose; the scene and
 // its BVH are read, and the outputs written, once), from each variant's estimate in
 // plan order. What `ilp inspect` and `ilp run` print for a job of several variants.
-double whole_run_seconds(const JobConfig& job, const std::vector<CostEstimate>& variants);
+double whole_run_seconds(Objective objective, const std::vector<CostEstimate>& variants);
 // A job of luminaire groups (job.groups), each group's variants' estimates: every
 // group's variants are built and searched, but the run reads the model and writes its
 // outputs once and verifies the groups' layouts together once (the largest verification

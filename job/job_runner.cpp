@@ -414,7 +414,7 @@ PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const Run
   SharedScene shared = load_shared_scene(job, run);
   log_shared_scene(shared, run, log);
   CostedGeometry costed =
-      costed_geometry(job, shared.loaded->scene, plan.model, memory_budget(run.max_memory_bytes),
+      costed_geometry(plan, shared.loaded->scene, memory_budget(run.max_memory_bytes),
                       job_machine_costs(job, run), shared.caster.get());
   return prepare_variant(shared, true, std::move(costed), job, plan, run, progress, cache_dir, log);
 }

@@ -68,6 +68,13 @@ std::vector<GoalSpec> initial_goals(const JobGoals& goals, double maintenance_fa
 // ConfigError "--set KEY ..." naming the key or the rule broken.
 void set_goal_target(JobGoals& goals, const std::string& key, double value);
 
+// What the run's outputs cost (the cost model's output phase), from output.formats.
+struct OutputWork {
+  bool patch_files = false;  // per-patch files (scene.ply, illuminance.csv)
+  bool renders = false;      // PNG or PDF renders (plan.png, isolux_*.png, report.pdf)
+  bool plan_render = false;  // the plan rendered (plan.png, report.pdf): its outline's triangles
+};
+
 struct VariantPlan {
   ProductVariant product;        // what the search places; the plain panel as a product
   bool listed = false;           // one of luminaires.products (else the plain panel)
@@ -76,6 +83,8 @@ struct VariantPlan {
   SearchSpec search;             // its goals: `goals` at initial targets for maintenance_factor
   JobGoals goals;                // the job's goal lines, maintained
   VerificationSpec verification;  // how the layout found is verified
+  OutputWork outputs;            // what its outputs cost
+  std::string source;            // the job file, for messages
   std::vector<ScenarioSpec> scenarios;  // the job's other lighting states, goals at initial targets
 };
 

@@ -67,7 +67,7 @@ std::vector<CostedGeometry> cost_variants(const SharedScene& shared, const JobCo
   const MachineCosts costs = job_machine_costs(job, run);
   std::vector<CostedGeometry> costed;
   for (const VariantPlan& plan : plans)
-    costed.push_back(costed_geometry(job, shared.loaded->scene, plan.model, memory, costs, shared.caster.get()));
+    costed.push_back(costed_geometry(plan, shared.loaded->scene, memory, costs, shared.caster.get()));
   return costed;
 }
 
@@ -112,7 +112,7 @@ std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vecto
     // The whole run's estimate before the first variant: what a user plans with.
     std::ostringstream line;
     line << "estimate: the whole run, building every variant's operator and verifying its layout: about "
-         << std::fixed << std::setprecision(1) << whole_run_seconds(job, estimates_of(costed)) << " s for its "
+         << std::fixed << std::setprecision(1) << whole_run_seconds(job.objective, estimates_of(costed)) << " s for its "
          << plans.size() << " variants, one after another";
     log(line.str());
   }

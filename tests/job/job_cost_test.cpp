@@ -52,12 +52,12 @@ TEST(JobCost, TheWholeRunCountsTheSceneAndTheOutputsOnceAndLaterVerificationsAtH
                     {kOutputPhase, 0.5}};
   JobConfig job;
   job.objective = Objective::min_power;
-  EXPECT_DOUBLE_EQ(whole_run_seconds(job, {variant}), 7.5);
-  EXPECT_DOUBLE_EQ(whole_run_seconds(job, {variant, variant}), 7.5 + 2.0 + 2.0);
-  EXPECT_DOUBLE_EQ(whole_run_seconds(job, {variant, variant, variant}), 7.5 + 2 * (2.0 + 2.0));
+  EXPECT_DOUBLE_EQ(whole_run_seconds(job.objective, {variant}), 7.5);
+  EXPECT_DOUBLE_EQ(whole_run_seconds(job.objective, {variant, variant}), 7.5 + 2.0 + 2.0);
+  EXPECT_DOUBLE_EQ(whole_run_seconds(job.objective, {variant, variant, variant}), 7.5 + 2 * (2.0 + 2.0));
   job.objective = Objective::closest_to_target;  // every variant verified
-  EXPECT_DOUBLE_EQ(whole_run_seconds(job, {variant, variant}), 7.5 + 2.0 + 4.0);
-  EXPECT_DOUBLE_EQ(whole_run_seconds(job, {}), 0.0);
+  EXPECT_DOUBLE_EQ(whole_run_seconds(job.objective, {variant, variant}), 7.5 + 2.0 + 4.0);
+  EXPECT_DOUBLE_EQ(whole_run_seconds(job.objective, {}), 0.0);
 }
 
 // A job of luminaire groups: every group's variants built and searched, the model read and
