@@ -169,8 +169,10 @@ PlanView plan_view(const RunProducts& p) {
   std::vector<std::string> names, grid_files;
   for (const GridResult& g : p.grids) names.push_back(g.grid->name);
   for (const std::string& stem : isolux_file_stems(names)) {
-    grid_files.push_back(p.job.output.isolux_png ? stem + ".png" : p.job.output.isolux_svg ? stem + ".svg"
-                         : p.job.output.grid_csv ? std::string(kGridCsvName) : std::string());
+    grid_files.push_back(p.job.output.wants("isolux_png")   ? stem + ".png"
+                         : p.job.output.wants("isolux_svg") ? stem + ".svg"
+                         : p.job.output.wants("grid_csv")   ? std::string(kGridCsvName)
+                                                            : std::string());
   }
   return run_plan_view(
       {p.prepared, p.job, p.outcome, p.record, p.grids, picture_goal_lux(p.prepared, p.outcome), grid_files});
@@ -301,32 +303,44 @@ void stage_run_schedule(OutputSet& set, const RunProducts& p) { stage_schedule(s
 
 std::vector<std::string> named(const char* name) { return {name}; }
 
-// One output format of `ilp run`: its flag in output.formats, every file it may write
-// for the job (the set owns them all, so a format left out removes the previous run's
-// file) and its writer.
+// One output format of `ilp run`: its key in output.formats (output/output_formats.h),
+// every file it may write for the job (the set owns them all, so a format left out
+// removes the previous run's file) and its writer.
 struct RunOutput {
-  bool OutputSettings::*flag;
+  std::string_view key;
   std::function<std::vector<std::string>(const JobConfig&)> names;
   void (*write)(OutputSet&, const RunProducts&);
 };
 
+// Every format's writer, in the registry's order; a format of the registry without a
+// writer here is a programming error, caught on the first run (and by the tests).
 const std::vector<RunOutput>& run_outputs() {
-  static const std::vector<RunOutput> outputs{
-      {&OutputSettings::json, [](const JobConfig&) { return std::vector<std::string>{"result.json", "timings.json"}; },
-       stage_result_json},
-      {&OutputSettings::csv, [](const JobConfig&) { return named("illuminance.csv"); }, stage_illuminance_csv},
-      {&OutputSettings::svg, [](const JobConfig&) { return named("plan.svg"); }, stage_plan_svg},
-      {&OutputSettings::ply, [](const JobConfig&) { return named("scene.ply"); }, stage_scene_ply},
-      {&OutputSettings::grid_csv, grid_csv_names, stage_run_grid_csv},
-      {&OutputSettings::isolux_svg, [](const JobConfig& j) { return isolux_names(j, ".svg"); }, stage_isolux_svg},
-      {&OutputSettings::isolux_png, [](const JobConfig& j) { return isolux_names(j, ".png"); }, stage_isolux_png},
-      {&OutputSettings::plan_png, [](const JobConfig&) { return named("plan.png"); }, stage_plan_png},
-      {&OutputSettings::pdf, [](const JobConfig&) { return named("report.pdf"); }, stage_report_pdf},
-      {&OutputSettings::radiance, radiance_output_names, stage_run_radiance},
-      {&OutputSettings::gltf, [](const JobConfig&) { return named(kGltfName); }, stage_run_gltf},
-      {&OutputSettings::dxf, [](const JobConfig&) { return named(kDxfName); }, stage_run_dxf},
-      {&OutputSettings::schedule, [](const JobConfig&) { return named(kScheduleName); }, stage_run_schedule},
-  };
+  static const std::vector<RunOutput> outputs = [] {
+    const std::vector<RunOutput> writers{
+        {"json", [](const JobConfig&) { return std::vector<std::string>{"result.json", "timings.json"}; },
+         stage_result_json},
+        {"csv", [](const JobConfig&) { return named("illuminance.csv"); }, stage_illuminance_csv},
+        {"svg", [](const JobConfig&) { return named("plan.svg"); }, stage_plan_svg},
+        {"ply", [](const JobConfig&) { return named("scene.ply"); }, stage_scene_ply},
+        {"grid_csv", grid_csv_names, stage_run_grid_csv},
+        {"isolux_svg", [](const JobConfig& j) { return isolux_names(j, ".svg"); }, stage_isolux_svg},
+        {"isolux_png", [](const JobConfig& j) { return isolux_names(j, ".png"); }, stage_isolux_png},
+        {"plan_png", [](const JobConfig&) { return named("plan.png"); }, stage_plan_png},
+        {"pdf", [](const JobConfig&) { return named("report.pdf"); }, stage_report_pdf},
+        {"radiance", radiance_output_names, stage_run_radiance},
+        {"gltf", [](const JobConfig&) { return named(kGltfName); }, stage_run_gltf},
+        {"dxf", [](const JobConfig&) { return named(kDxfName); }, stage_run_dxf},
+        {"schedule", [](const JobConfig&) { return named(kScheduleName); }, stage_run_schedule},
+    };
+    std::vector<RunOutput> ordered;
+    for (const OutputFormat& f : output_formats()) {
+      const auto w = std::find_if(writers.begin(), writers.end(), [&](const RunOutput& o) { return o.key == f.key; });
+      if (w == writers.end()) throw std::logic_error("ilp run: output format '" + std::string(f.key) + "' has no writer");
+      ordered.push_back(*w);
+    }
+    if (ordered.size() != writers.size()) throw std::logic_error("ilp run: a writer of no output format");
+    return ordered;
+  }();
   return outputs;
 }
 
@@ -336,7 +350,7 @@ const std::vector<RunOutput>& run_outputs() {
 std::vector<std::string> run_output_names(const JobConfig& job, bool selected_only) {
   std::vector<std::string> out;
   for (const RunOutput& o : run_outputs())
-    if (!selected_only || job.output.*o.flag)
+    if (!selected_only || job.output.wants(o.key))
       for (const std::string& name : o.names(job)) out.push_back(name);
   return out;
 }
@@ -348,7 +362,7 @@ namespace {
 void stage_outputs(OutputSet& set, const RunProducts& products) {
   std::vector<const RunOutput*> chosen;
   for (const RunOutput& o : run_outputs()) {
-    if (!(products.job.output.*o.flag)) continue;
+    if (!products.job.output.wants(o.key)) continue;
     // Without a layout there is no light: result.json and the plan say why.
     const bool light_needed = o.write != stage_result_json && o.write != stage_plan_svg && o.write != stage_plan_png;
     if (!products.record.no_layout.empty() && light_needed) continue;

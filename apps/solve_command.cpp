@@ -92,9 +92,9 @@ void report_grids(const JobConfig& job, const std::string& out_dir, const Scene&
   for (const char* ext : {".svg", ".png"})
     for (const std::string& name : isolux_names(job, ext)) owned.push_back(name);
   OutputSet set(out_dir, owned);
-  if (job.output.grid_csv) stage_grid_csv(set, results);
-  if (job.output.isolux_svg) stage_isolux(set, results, scene_luminaires(scene), ".svg");
-  if (job.output.isolux_png) stage_isolux(set, results, scene_luminaires(scene), ".png");
+  if (job.output.wants("grid_csv")) stage_grid_csv(set, results);
+  if (job.output.wants("isolux_svg")) stage_isolux(set, results, scene_luminaires(scene), ".svg");
+  if (job.output.wants("isolux_png")) stage_isolux(set, results, scene_luminaires(scene), ".png");
   for (const std::string& file : set.commit()) std::cout << "wrote " << file << "\n";
 }
 

@@ -689,34 +689,21 @@ void read_output(const Map& output, JobConfig& job, bool building) {
     if (o.directory.empty()) v->fail("must not be empty");
   }
   if (auto v = output.get("formats")) {
-    // One row per format: its name in the file and its flag.
-    struct Format {
-      const char* name;
-      bool OutputSettings::*flag;
-      bool needs_grids;
-    };
-    static constexpr Format kFormats[] = {
-        {"json", &OutputSettings::json, false},          {"csv", &OutputSettings::csv, false},
-        {"svg", &OutputSettings::svg, false},            {"ply", &OutputSettings::ply, false},
-        {"grid_csv", &OutputSettings::grid_csv, true},   {"isolux_svg", &OutputSettings::isolux_svg, true},
-        {"isolux_png", &OutputSettings::isolux_png, true}, {"plan_png", &OutputSettings::plan_png, false},
-        {"pdf", &OutputSettings::pdf, false},            {"radiance", &OutputSettings::radiance, false},
-        {"gltf", &OutputSettings::gltf, false},          {"dxf", &OutputSettings::dxf, false},
-        {"schedule", &OutputSettings::schedule, false}};
-    std::string names;
-    for (const Format& f : kFormats) names += (names.empty() ? "" : ", ") + std::string(f.name);
+    const std::string names = output_format_keys();
     const std::vector<Value> formats = v->list();
     if (formats.empty()) v->fail("must list at least one of " + names);
-    for (const Format& f : kFormats) o.*f.flag = false;
+    std::vector<std::string> listed;
     for (const Value& item : formats) {
       const std::string name = item.text();
-      const Format* f = std::find_if(std::begin(kFormats), std::end(kFormats),
-                                     [&](const Format& x) { return name == x.name; });
-      if (f == std::end(kFormats)) item.fail("must be one of " + names);
+      const OutputFormat* f = find_output_format(name);
+      if (!f) item.fail("must be one of " + names);
       if (f->needs_grids && job.grids.empty() && !building) item.fail("needs calculation grids (the job has no grids section)");
-      if (o.*f->flag) item.fail("is listed twice");
-      o.*f->flag = true;
+      if (std::find(listed.begin(), listed.end(), name) != listed.end()) item.fail("is listed twice");
+      listed.push_back(name);
     }
+    o.formats.clear();  // in registry order, the order they are written
+    for (const OutputFormat& f : output_formats())
+      if (std::find(listed.begin(), listed.end(), f.key) != listed.end()) o.formats.emplace_back(f.key);
   }
   if (auto v = output.get("plan_cut_height_m")) o.plan_cut_height_m = v->bounded(0.001, 1000.0, " m");
 }
@@ -769,10 +756,10 @@ void read_sweep(const Value& section, const FileLoc& at, JobConfig& job) {
   setting.loc = key.loc();
   const std::vector<Value> list = values.list();
   if (list.empty()) values.fail("must list at least one number");
-  JobConfig trial = job;  // each value is tried as `ilp sweep` will set it
+  std::vector<GoalSetting> trial = job.goals;  // each value is tried as `ilp sweep` will set it
   for (const Value& item : list) {
     const double v = item.number();
-    goal_rules::apply(trial.goals, setting.key, v, [&](const std::string& rule) { key.fail(rule); },
+    goal_rules::apply(trial, setting.key, v, [&](const std::string& rule) { key.fail(rule); },
                          [&](const std::string& rule) { item.fail(rule); });
     setting.values.push_back(v);
   }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -26,6 +27,7 @@
 #include "optimizer/goal_spec.h"
 #include "optimizer/lighting_model.h"
 #include "optimizer/scenario_spec.h"
+#include "output/output_formats.h"
 #include "optimizer/search_spec.h"
 #include "job/verification_spec.h"
 
@@ -248,18 +250,12 @@ struct SearchConstraints {
 
 struct OutputSettings {
   std::string directory;  // as written in the file (relative to the working directory); empty: "results/<config stem>"
-  // formats: [json, csv, svg, ply, grid_csv, isolux_svg, isolux_png, plan_png, pdf]; the
-  // grid formats write one file per job (grid.csv) or per grid (isolux_<grid>.svg, .png)
-  // and nothing for a job without grids (listing one there is an error); plan_png is
-  // plan.svg rendered (plan.png); pdf: report.pdf (not by default).
-  bool json = true, csv = true, svg = true, ply = true;
-  bool grid_csv = true, isolux_svg = true, isolux_png = true;
-  bool plan_png = true;
-  bool pdf = false;
-  // The exports other tools read, written only when listed: radiance (a Radiance scene:
-  // radiance_scene.rad, a .dat per photometric product, a .pts per grid), gltf
-  // (scene.glb), dxf (plan.dxf), schedule (schedule.csv).
-  bool radiance = false, gltf = false, dxf = false, schedule = false;
+  // formats: the keys of output/output_formats.h listed (default: those written by
+  // default); the grid formats write one file per job (grid.csv) or per grid
+  // (isolux_<grid>.svg, .png) and nothing for a job without grids (listing one there is
+  // an error).
+  std::vector<std::string> formats = default_output_formats();
+  bool wants(std::string_view key) const { return std::find(formats.begin(), formats.end(), key) != formats.end(); }
   // plan_cut_height_m: the plan's section plane over the floor (> 0); 0: the first
   // horizontal grid's height, else 0.8 m (EN 12464-1's work plane).
   double plan_cut_height_m = 0.0;

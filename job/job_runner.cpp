@@ -351,6 +351,24 @@ const VariantPlan& outcome_plan(const PreparedJob& prepared, const JobOutcome& o
   return g ? g->plan : prepared.plan;
 }
 
+GoalOutcome judged_line(const GoalJudgement& predicted, const GoalJudgement& as_searched,
+                        const std::optional<GoalJudgement>& verified, double tolerance) {
+  GoalOutcome o;
+  o.predicted = predicted;
+  o.searched_value = as_searched.value;
+  o.tolerance = tolerance;
+  // The closed-form scale meets goals to round-off; allow for it.
+  const bool predicted_met = as_searched.violation <= tolerance + 1e-9;
+  if (verified) {
+    o.verified = verified;
+    o.met = verified->violation <= tolerance + 1e-9;
+    o.fails_only_on_verification = predicted_met && !o.met;
+  } else {
+    o.met = predicted_met;
+  }
+  return o;
+}
+
 Scene scene_with_layout(const PreparedJob& primary, const JobOutcome& outcome) {
   Scene scene = primary.loaded.scene;
   for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
@@ -633,23 +651,13 @@ void judge_goal_lines(JobOutcome& out, const SearchSpec& real, const std::vector
                       const std::vector<GoalJudgement>& as_searched,
                       const std::optional<std::vector<GoalJudgement>>& verified, const std::vector<GoalMargin>& margins) {
   for (std::size_t g = 0; g < predicted.size(); ++g) {
-    GoalOutcome o;
-    o.predicted = predicted[g];
-    o.searched_value = as_searched[g].value;
-    o.tolerance = goal_tolerance(real.objective, predicted[g].metric);
+    GoalOutcome o = judged_line(predicted[g], as_searched[g], verified ? std::optional((*verified)[g]) : std::nullopt,
+                                goal_tolerance(real.objective, predicted[g].metric));
     o.relative_error = margins[g].relative_error;
     o.margin = margins[g].margin;
-    // The closed-form scale meets goals to round-off; allow for it.
-    const bool predicted_met = as_searched[g].violation <= o.tolerance + 1e-9;
-    if (!is_target_goal(real.objective, predicted[g].metric)) out.feasible = out.feasible && predicted_met;
-    if (verified) {
-      o.verified = (*verified)[g];
-      if (margins[g].applies) o.margin = kept_margin(o.margin, o.verified->value, o.verified->target);
-      o.met = o.verified->violation <= o.tolerance + 1e-9;
-      o.fails_only_on_verification = predicted_met && !o.met;
-    } else {
-      o.met = predicted_met;
-    }
+    if (verified && margins[g].applies) o.margin = kept_margin(o.margin, o.verified->value, o.verified->target);
+    if (!is_target_goal(real.objective, predicted[g].metric))
+      out.feasible = out.feasible && as_searched[g].violation <= o.tolerance + 1e-9;
     out.all_met = out.all_met && o.met;
     out.goals.push_back(o);
   }
@@ -657,8 +665,7 @@ void judge_goal_lines(JobOutcome& out, const SearchSpec& real, const std::vector
 
 // One search (at the targets of `searched`), as FoundLayout for verify_found.
 FoundLayout search_one(const PreparedJob& prepared, const SearchSpec& real, const SearchSpec& searched,
-                       const PowerDensityCap& power_cap, const ProgressCallback& progress, const SearchBounds& bounds,
-                       SearchResult& result) {
+                       const ProgressCallback& progress, const SearchBounds& bounds, SearchResult& result) {
   const LightingModel& model = prepared.model;
   result = search_layout(model, searched, progress, bounds, point_direct_light(prepared, searched.luminaire));
   FoundLayout found;
@@ -747,7 +754,7 @@ JobOutcome search_and_verify(const PreparedJob& prepared, const SearchSpec& real
                              const PowerDensityCap& power_cap, const ProgressCallback& progress,
                              const SearchBounds& bounds) {
   SearchResult result;
-  FoundLayout found = search_one(prepared, real, searched, power_cap, progress, bounds, result);
+  FoundLayout found = search_one(prepared, real, searched, progress, bounds, result);
   if (result.beaten) {  // nothing to verify
     JobOutcome out;
     out.search = std::move(result);

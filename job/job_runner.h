@@ -233,6 +233,11 @@ JobOutcome verify_found(const PreparedJob& primary, const SearchSpec& real, Foun
                         const PowerDensityCap& power_cap, const ConstraintLines& constraints,
                         const ProgressCallback& progress = {});
 
+// One goal line judged: as predicted, as searched (met as predicted is judged there), as
+// verified when there is a verification (then met is judged on it), within `tolerance`.
+GoalOutcome judged_line(const GoalJudgement& predicted, const GoalJudgement& as_searched,
+                        const std::optional<GoalJudgement>& verified, double tolerance);
+
 // The job's scene with the outcome's luminaires placed as real ones: each of its own
 // variant (outcome_plan), named as the outcome names it (L1, ... or A1, B1, ...).
 Scene scene_with_layout(const PreparedJob& primary, const JobOutcome& outcome);

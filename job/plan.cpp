@@ -198,8 +198,12 @@ std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
     plan.maintenance_factor = product.maintenance_factor.value_or(job.maintenance_factor);
     plan.goals = job_goals(job);
     plan.verification = {job.verification, exact_options(job, run), operator_options(job, run), worker_threads(job, run)};
-    plan.outputs = {job.output.ply || job.output.csv, job.output.plan_png || job.output.isolux_png || job.output.pdf,
-                    job.output.plan_png || job.output.pdf};
+    for (const std::string& key : job.output.formats) {
+      const OutputFormat& f = *find_output_format(key);
+      plan.outputs.patch_files = plan.outputs.patch_files || f.per_patch;
+      plan.outputs.renders = plan.outputs.renders || f.rendered;
+      plan.outputs.plan_render = plan.outputs.plan_render || f.renders_plan;
+    }
     plan.source = job.path;
     plan.model = model_spec(job, plan.product, run);
     plan.search = search_spec(job, plan, run);

@@ -83,20 +83,9 @@ std::vector<ScenarioOutcome> judge_scenarios(const std::vector<ScenarioSpec>& sc
     }
     o.all_met = true;
     for (std::size_t g = 0; g < predicted.size(); ++g) {
-      GoalOutcome line;
-      line.predicted = predicted[g];
-      line.searched_value = predicted[g].value;
-      line.tolerance = goal_tolerance(objective, predicted[g].metric);
-      const bool predicted_met = predicted[g].violation <= line.tolerance + 1e-9;
-      if (verified) {
-        line.verified = (*verified)[g];
-        line.met = line.verified->violation <= line.tolerance + 1e-9;
-        line.fails_only_on_verification = predicted_met && !line.met;
-      } else {
-        line.met = predicted_met;
-      }
-      o.all_met = o.all_met && line.met;
-      o.goals.push_back(line);
+      o.goals.push_back(judged_line(predicted[g], predicted[g], verified ? std::optional((*verified)[g]) : std::nullopt,
+                                    goal_tolerance(objective, predicted[g].metric)));
+      o.all_met = o.all_met && o.goals.back().met;
     }
     out.push_back(std::move(o));
   }

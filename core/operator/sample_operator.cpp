@@ -194,7 +194,9 @@ std::vector<LightSource> scene_light_sources(const Scene& scene) {
   for (const Patch& p : scene.patches)
     if (p.exitance_lm_per_m2 > 0.0) emits[p.surface] = true;
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s)
-    if (scene.surfaces[s].is_luminaire() || emits[s]) out.push_back({scene.surfaces[s].name, static_cast<int>(s)});
+    if (scene.surfaces[s].is_luminaire() || emits[s])
+      out.push_back({scene.surfaces[s].name, static_cast<int>(s),
+                     scene.surfaces[s].is_luminaire() ? SourceKind::luminaire : SourceKind::emitting_surface});
   return out;
 }
 

@@ -48,9 +48,16 @@ class KeyWriter;  // core/base/key_hash.h
 
 // A column of T: a luminaire surface (direct light in closed form with shadow rays)
 // or a surface given an exitance (direct light gathered by the rows' rays).
+// What a source of light is: a luminaire (its photometry gives its direct light), an
+// emitting surface (Lambertian exitance), and room for what a daylight job adds: a patch of
+// sky or the sun, whose light enters through the rays that leave the scene
+// (core/transport/form_factors.h, EscapeBins), not through a surface of the scene.
+enum class SourceKind { luminaire, emitting_surface, sky_patch, sun };
+
 struct LightSource {
   std::string name;
-  int surface = -1;
+  int surface = -1;  // its surface (-1 for a sky patch or the sun)
+  SourceKind kind = SourceKind::luminaire;
 };
 
 // Every luminaire and every emitting surface of the scene, in surface order.

@@ -40,17 +40,19 @@ void cast_row(const Scene& scene, const RayCaster& caster, int patch, const std:
     const auto u = sequence.rotate(halton[static_cast<std::size_t>(r)]);
     const Eigen::Vector3d origin = sample_triangle(p.vertices_m[0], p.vertices_m[1], p.vertices_m[2], u[0], u[1]);
     const Eigen::Vector3d direction = sample_cosine_hemisphere(p.normal, t, s, u[2], u[3]);
-    on_hit(caster.first_hit(origin + offset, direction));
+    on_hit(caster.first_hit(origin + offset, direction), direction);
   }
 }
 
 RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch,
                     const std::vector<std::array<double, 4>>& halton, const FormFactorOptions& options, int rays,
-                    RowScratch& scratch) {
+                    RowScratch& scratch, const EscapeBins* escapes) {
   RowResult row;
-  cast_row(scene, caster, patch, halton, options, rays, [&](const RayHit& hit) {
+  cast_row(scene, caster, patch, halton, options, rays, [&](const RayHit& hit, const Eigen::Vector3d& direction) {
     if (hit.patch < 0) {
       ++row.escaped;
+      if (escapes)
+        if (const int b = escapes->bin(direction); b >= 0 && b < escapes->count) row.escaped_bins.emplace_back(b, 1);
     } else if (!hit.front) {
       ++row.back_hits;
     } else if (scratch.count[hit.patch]++ == 0) {
@@ -64,6 +66,13 @@ RowResult trace_row(const Scene& scene, const RayCaster& caster, int patch,
     scratch.count[j] = 0;
   }
   scratch.touched.clear();
+  // One (bin, rays) per bin, ascending.
+  std::sort(row.escaped_bins.begin(), row.escaped_bins.end());
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < row.escaped_bins.size(); ++k)
+    if (kept > 0 && row.escaped_bins[kept - 1].first == row.escaped_bins[k].first) ++row.escaped_bins[kept - 1].second;
+    else row.escaped_bins[kept++] = row.escaped_bins[k];
+  row.escaped_bins.resize(kept);
   return row;
 }
 
@@ -126,7 +135,7 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
 
 FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
                                         std::span<const int> rays_per_row, const FormFactorOptions& options,
-                                        const ProgressCallback& progress) {
+                                        const ProgressCallback& progress, const EscapeBins* escapes) {
   check_request(scene, patches, options, "compute_form_factor_rows");
   if (rays_per_row.size() != patches.size())
     throw std::invalid_argument("compute_form_factor_rows: " + std::to_string(rays_per_row.size()) + " ray counts for " +
@@ -152,7 +161,7 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
       RowScratch& scratch = scratches.local();
       if (scratch.count.empty()) scratch.count.assign(scene.patches.size(), 0);
       for (std::size_t r = range.begin(); r != range.end(); ++r)
-        results[r] = trace_row(scene, caster, out.row_patches[r], halton, options, rays_per_row[r], scratch);
+        results[r] = trace_row(scene, caster, out.row_patches[r], halton, options, rays_per_row[r], scratch, escapes);
       const std::size_t now = done.fetch_add(range.size()) + range.size();
       if (progress) progress("form factors", now, rows);
     });
@@ -160,6 +169,15 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
 
   // Assemble in row order, so the result is the same whatever ran where.
   assemble_rows(results, scene.patches.size(), rays_per_row, out);
+  if (escapes) {
+    out.escaped_by_bin.resize(static_cast<Eigen::Index>(rows), escapes->count);
+    for (std::size_t r = 0; r < rows; ++r) {
+      out.escaped_by_bin.startVec(static_cast<Eigen::Index>(r));
+      for (const auto& [bin, count] : results[r].escaped_bins)
+        out.escaped_by_bin.insertBack(static_cast<Eigen::Index>(r), bin) = static_cast<double>(count) / rays_per_row[r];
+    }
+    out.escaped_by_bin.finalize();
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
@@ -185,7 +203,7 @@ Eigen::MatrixXd compute_row_bin_fractions(const Scene& scene, const RayCaster& c
       std::vector<int> count(static_cast<std::size_t>(bins) + 2);
       for (std::size_t r = range.begin(); r != range.end(); ++r) {
         std::fill(count.begin(), count.end(), 0);
-        cast_row(scene, caster, patches[r], halton, options, options.rays_per_patch, [&](const RayHit& hit) {
+        cast_row(scene, caster, patches[r], halton, options, options.rays_per_patch, [&](const RayHit& hit, const Eigen::Vector3d&) {
           if (hit.patch < 0) ++count[static_cast<std::size_t>(bins)];
           else if (!hit.front) ++count[static_cast<std::size_t>(bins) + 1];
           else if (const int b = bin_of_patch[static_cast<std::size_t>(hit.patch)]; b >= 0) ++count[static_cast<std::size_t>(b)];

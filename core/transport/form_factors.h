@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <utility>
@@ -42,6 +43,10 @@ struct FormFactorRows {
   Eigen::VectorXd back_hit_fraction;   // per row: rays that struck a patch's back side (absorbed)
   std::uint64_t rays_cast = 0;
   double seconds = 0.0;
+  // Per row and escape bin (EscapeBins): the fraction of its rays that left the scene in
+  // that bin's directions; #rows by bins, empty when no bins were asked for. A row's sum
+  // is at most its escaped_fraction (rays of no bin are escaped all the same).
+  SparseRows escaped_by_bin = {};
 };
 
 // One row's rays, counted: (patch, hits) sorted by patch, and the rays that left the
@@ -50,6 +55,16 @@ struct RayCounts {
   std::vector<std::pair<int, int>> hits;
   int escaped = 0;
   int back_hits = 0;
+  std::vector<std::pair<int, int>> escaped_bins = {};  // (bin, rays) sorted by bin, when bins are asked for
+};
+
+// Where the rays that leave the scene go, for whoever gathers them (a sky patch, the
+// sun's disc: daylight coefficients, issue 39): the bin of an escaping ray's direction
+// (unit, scene frame, z up), in [0, count), or -1 for none. Called from the worker
+// threads: `bin` must be safe to call concurrently (a pure function of the direction).
+struct EscapeBins {
+  int count = 0;
+  std::function<int(const Eigen::Vector3d& direction)> bin;
 };
 
 // Sets out's F (rows in `counts` order, `patches` columns), escaped and back-hit
@@ -68,9 +83,10 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& cas
                                         const ProgressCallback& progress = {});
 // The same with each row's own ray count, in [1, options.rays_per_patch]: the first
 // rays of the row's sequence (a row of n rays is the n-ray row of the overload above).
+// `escapes`: where the escaping rays go (FormFactorRows::escaped_by_bin); none: not asked.
 FormFactorRows compute_form_factor_rows(const Scene& scene, const RayCaster& caster, std::span<const int> patches,
                                         std::span<const int> rays_per_row, const FormFactorOptions& options,
-                                        const ProgressCallback& progress = {});
+                                        const ProgressCallback& progress = {}, const EscapeBins* escapes = nullptr);
 
 // The same rays as compute_form_factor_rows, counted instead of stored: for each
 // row, the fraction of its rays that struck the front of a patch j in bin

@@ -239,3 +239,51 @@ TEST(BuildRows, GivesTheMatrixOfItsEntriesOnAnyThreadCount) {
 
 }  // namespace
 }  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// Where the escaping rays go (EscapeBins, the room left for a sky's patches): a patch
+// under an open sky sends its cosine-weighted rays within theta of the zenith with
+// probability sin^2 theta (a closed form), every escaping ray lands in some bin when the
+// bins cover the hemisphere, and a bin of -1 drops a ray from the bins, not from the row.
+TEST(FormFactor, EscapingRaysAreBinnedByDirectionAsTheCosineLawSays) {
+  const Scene sky = reference::make_quad_scene({{"roof", V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)}}, 0.0);
+  const RayCaster caster(sky, 1);
+  FormFactorOptions options;
+  options.rays_per_patch = 4096;
+  options.threads = 1;
+  const double cos45 = std::sqrt(0.5);
+  const EscapeBins halves{2, [&](const V& d) { return d.z() > cos45 ? 0 : 1; }};
+  const std::vector<int> patches = sky.all_patches();
+  const FormFactorRows rows = compute_form_factor_rows(sky, caster, patches, std::vector<int>(patches.size(), 4096),
+                                                       options, {}, &halves);
+  ASSERT_EQ(rows.escaped_by_bin.rows(), static_cast<Eigen::Index>(patches.size()));
+  ASSERT_EQ(rows.escaped_by_bin.cols(), 2);
+  for (Eigen::Index r = 0; r < rows.escaped_by_bin.rows(); ++r) {
+    EXPECT_DOUBLE_EQ(rows.escaped_fraction[r], 1.0);  // nothing above a lone patch
+    EXPECT_NEAR(rows.escaped_by_bin.coeff(r, 0) + rows.escaped_by_bin.coeff(r, 1), 1.0, 1e-12);
+    EXPECT_NEAR(rows.escaped_by_bin.coeff(r, 0), 0.5, 0.01);  // sin^2(45 deg)
+  }
+  // A closed box lets nothing out: no bin gets a ray.
+  const Scene box = reference::make_closed_box(V::Zero(), V(2, 2, 2), 0.5, 1.0);
+  const RayCaster box_caster(box, 1);
+  const std::vector<int> all = box.all_patches();
+  const FormFactorRows closed = compute_form_factor_rows(box, box_caster, all, std::vector<int>(all.size(), 256),
+                                                         options, {}, &halves);
+  EXPECT_EQ(closed.escaped_by_bin.nonZeros(), 0);
+  // Only the zenith bin kept: the rest escape still, outside every bin; the rows are the
+  // same rays with or without bins.
+  const EscapeBins zenith{1, [&](const V& d) { return d.z() > cos45 ? 0 : -1; }};
+  const FormFactorRows some = compute_form_factor_rows(sky, caster, patches, std::vector<int>(patches.size(), 4096),
+                                                       options, {}, &zenith);
+  const FormFactorRows none = compute_form_factor_rows(sky, caster, patches, options);
+  EXPECT_EQ(none.escaped_by_bin.size(), 0);
+  for (Eigen::Index r = 0; r < some.escaped_by_bin.rows(); ++r) {
+    EXPECT_DOUBLE_EQ(some.escaped_by_bin.coeff(r, 0), rows.escaped_by_bin.coeff(r, 0));
+    EXPECT_DOUBLE_EQ(some.escaped_fraction[r], none.escaped_fraction[r]);
+  }
+}
+
+}  // namespace
+}  // namespace ilp

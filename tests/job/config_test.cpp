@@ -794,10 +794,10 @@ TEST(ConfigInverse, ReadsAFullInverseJob) {
   EXPECT_EQ(job.verification.max_exact_patches, 1000u);
   EXPECT_DOUBLE_EQ(job.verification.sample_fraction, 0.5);
   EXPECT_EQ(job.output.directory, "results/office");
-  EXPECT_FALSE(job.output.json);
-  EXPECT_TRUE(job.output.csv);
-  EXPECT_FALSE(job.output.svg);
-  EXPECT_TRUE(job.output.ply);
+  EXPECT_FALSE(job.output.wants("json"));
+  EXPECT_TRUE(job.output.wants("csv"));
+  EXPECT_FALSE(job.output.wants("svg"));
+  EXPECT_TRUE(job.output.wants("ply"));
   ASSERT_TRUE(job.sweep.has_value());
   EXPECT_EQ(job.sweep->key, "goals.desks.average_lux");
   EXPECT_EQ(job.sweep->values, (std::vector<double>{300, 500, 750, 1000}));
@@ -825,7 +825,7 @@ TEST(ConfigInverse, DefaultsWithoutTheInverseSections) {
   EXPECT_EQ(job.verification.max_exact_patches, 30000u);
   EXPECT_DOUBLE_EQ(job.verification.sample_fraction, 0.25);
   EXPECT_TRUE(job.output.directory.empty());
-  EXPECT_TRUE(job.output.json && job.output.csv && job.output.svg && job.output.ply);
+  EXPECT_TRUE(job.output.wants("json") && job.output.wants("csv") && job.output.wants("svg") && job.output.wants("ply"));
   EXPECT_FALSE(job.sweep.has_value());
 }
 
@@ -975,10 +975,10 @@ TEST(ConfigInverse, EveryOutputFormatAndOptimizerNone) {
   EXPECT_EQ(job.optimizer.global_algorithm, "none");
   EXPECT_EQ(job.optimizer.local_algorithm, "LN_BOBYQA");
   EXPECT_EQ(job.verification.method, ilp::VerificationMethod::none);
-  EXPECT_FALSE(job.output.json);
-  EXPECT_FALSE(job.output.csv);
-  EXPECT_TRUE(job.output.svg);
-  EXPECT_FALSE(job.output.ply);
+  EXPECT_FALSE(job.output.wants("json"));
+  EXPECT_FALSE(job.output.wants("csv"));
+  EXPECT_TRUE(job.output.wants("svg"));
+  EXPECT_FALSE(job.output.wants("ply"));
   const std::string exact = dir.write("exact.yaml",
                                       "scene:\n  mesh: room.obj\n"
                                       "optimizer:\n  local_algorithm: none\n"

@@ -164,7 +164,8 @@ TEST(VerificationMargin, TheBindingGoalIsKeptAboveItsTargetAndStaysMetWithOtherR
   EXPECT_FALSE(outcome.goals[2].relative_error);
   EXPECT_EQ(outcome.goals[2].margin, 0.01) << "no estimate: the floor";
   // Independent check: the layout solved again with other rays still meets every goal.
-  prepared.job.form_factors.seed += 1009;
+  prepared.plan.verification.exact.form_factors.seed += 1009;  // the verification's rays
+  prepared.plan.verification.sample.form_factors.seed += 1009;
   const Verification other = verify_layout(prepared, outcome.luminaires);
   SearchSpec real = prepared.plan.search;
   real.goals = initial_goals(job_goals(job), prepared.plan.maintenance_factor);

@@ -131,7 +131,7 @@ TEST(Verification, TheDecisivePointsKeepEveryMinimumWithinHalfAPercentOfAFineRef
   EXPECT_GT(with.precise_patches, 0u);
   EXPECT_EQ(with.decisive_rays, 16384);
   EXPECT_EQ(with.precise_rays, 1024);
-  prepared.job.verification.decisive_rays = 0;
+  prepared.plan.verification.settings.decisive_rays = 0;
   const Verification without = verify_layout(prepared, layout);
   EXPECT_EQ(without.decisive_points, 0u);
 
