@@ -169,8 +169,9 @@ std::string search_line(const GroupSearchResult& r, const std::vector<GroupChoic
     line << (g ? " x " : "") << choices[g].options.size() << " arrangements of '" << choices[g].name << "'";
   std::size_t arrangements = 0;
   for (const GroupChoices& c : choices) arrangements += c.options.size();
-  line << " = " << r.pairs << " pairs; " << arrangements << " arrangement lights, " << r.solved
-       << " output solves (evaluations), " << r.pruned << " pairs pruned by their least power, " << r.colliding
+  const char* what = choices.size() == 2 ? " pairs" : " combinations";
+  line << " = " << r.pairs << what << "; " << arrangements << " arrangement lights, " << r.solved
+       << " output solves (evaluations), " << r.pruned << what << " pruned by their least power, " << r.colliding
        << " colliding (a luminaire of one group on another's); " << r.seconds << " s";
   return line.str();
 }

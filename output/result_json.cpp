@@ -440,6 +440,9 @@ std::string failing_lines_text(const ResultRecord& r) {
   for (const std::vector<VerdictLine>* lines : {&r.goals, &r.constraints})
     for (const VerdictLine& l : *lines)
       if (!l.met) out += (out.empty() ? "" : "; ") + failing_line_text(l);
+  for (const ScenarioRecord& s : r.scenarios)  // named by their scenario
+    for (const VerdictLine& l : s.goals)
+      if (!l.met) out += (out.empty() ? "" : "; ") + ("scenario '" + s.name + "': ") + failing_line_text(l);
   return out;
 }
 
@@ -540,14 +543,18 @@ void print_arrangements(std::ostream& os, const std::vector<AttemptRecord>& atte
 // Met exactly when every line is (result_mapping), so a "NOT MET" always names a line.
 void print_verdict(std::ostream& os, const ResultRecord& r) {
   if (r.all_met) return;
-  bool missed_as_predicted = false;
+  bool missed_as_predicted = false, scenario_missed = false;
   for (const std::vector<VerdictLine>* lines : {&r.goals, &r.constraints})
     for (const VerdictLine& l : *lines) missed_as_predicted = missed_as_predicted || (!l.met && !l.fails_only_on_verification);
+  for (const ScenarioRecord& s : r.scenarios) scenario_missed = scenario_missed || !s.all_met;
   const std::string failing = failing_lines_text(r);
   os << "NOT MET: "
      << (failing.empty() ? "the result says not met, but every line is met (a result written by an older ilp?)" : failing)
      << "\n";
-  if (!missed_as_predicted)
+  if (!missed_as_predicted && scenario_missed)
+    os << "NOT MET in a scenario: the layout meets its goals, but not every scenario's (the search places the layout "
+          "for the goals; the scenarios are judged on it)\n";
+  else if (!missed_as_predicted)
     os << "NOT MET on verification: the layout meets every goal as predicted, but not every goal as verified\n";
   else if (r.objective == "min_power")
     os << "INFEASIBLE: no layout found meets every goal and constraint; the closest found is shown\n";

@@ -375,3 +375,40 @@ TEST(ResultJson, NotAResultIsAClearError) {
 
 }  // namespace
 }  // namespace ilp
+
+namespace ilp {
+namespace {
+
+// Scenarios (issue 38) round-trip, print under their name, and a missed scenario line is
+// named in the verdict (NOT MET names every failing line, a scenario's too).
+TEST(ResultJson, ScenariosRoundTripAndAMissedScenarioLineIsNamed) {
+  test::TempDir dir;
+  ResultRecord r = sample_record();
+  r.goals[1].met = true;  // every goal met: only the scenario misses
+  r.goals[1].fails_only_on_verification = false;
+  GoalRecord emergency{"floor", {"floor"}, "minimum", "lx", 1.0, 0.6, 0.55, false, false, 1e-4, ""};
+  r.scenarios = {{"emergency", "direct", 1, 2, 2.72, false, {emergency}}};
+  write_result_json(dir.file("result.json"), r);
+  const ResultRecord back = read_result_json(dir.file("result.json"));
+  ASSERT_EQ(back.scenarios.size(), 1u);
+  EXPECT_EQ(back.scenarios[0].name, "emergency");
+  EXPECT_EQ(back.scenarios[0].light, "direct");
+  EXPECT_EQ(back.scenarios[0].lit, 1);
+  EXPECT_EQ(back.scenarios[0].luminaires, 2);
+  EXPECT_EQ(back.scenarios[0].power_w, 2.72);
+  ASSERT_EQ(back.scenarios[0].goals.size(), 1u);
+  EXPECT_EQ(back.scenarios[0].goals[0].verified, 0.55);
+  std::ostringstream text;
+  print_result(text, back);
+  EXPECT_TRUE(test::Contains(text.str(), "Scenario 'emergency' (direct light, 1 of 2 luminaires lit, 2.7 W): NOT MET", "heading"));
+  EXPECT_TRUE(test::Contains(text.str(), "scenario 'emergency': floor minimum", "verdict"));
+  EXPECT_TRUE(test::Contains(text.str(), "NOT MET in a scenario", "kind of miss"));
+  EXPECT_FALSE(test::Contains(text.str(), "older ilp", "no false alarm"));
+  // Without scenarios result.json has no key for them (the shipped jobs' files unchanged).
+  ResultRecord none = sample_record();
+  write_result_json(dir.file("none.json"), none);
+  EXPECT_FALSE(test::Contains(test::read_file(dir.file("none.json")), "\"scenarios\"", "no key"));
+}
+
+}  // namespace
+}  // namespace ilp
