@@ -20,6 +20,7 @@
 #include "job/building.h"
 #include "job/room_exchange.h"
 #include "output/building_record.h"
+#include "job/config.h"
 
 namespace ilp::cli {
 namespace {

@@ -3,6 +3,7 @@
 #include "apps/commands.h"
 #include "core/cost/cost_model.h"
 #include "core/cost/machine_speed.h"
+#include "job/config.h"
 
 #include <sys/resource.h>
 

@@ -1,5 +1,6 @@
 // The export formats of `ilp run`, each staged into the run's OutputSet.
 #include "apps/export_outputs.h"
+#include "job/config.h"
 
 namespace ilp::cli {
 namespace {

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "optimizer/goal_metrics.h"
+#include "job/config.h"
 
 namespace ilp::cli {
 namespace {

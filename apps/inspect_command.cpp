@@ -119,7 +119,7 @@ std::vector<CostEstimate> print_cost_estimates(const JobConfig& job, const RunOp
   const std::vector<VariantPlan> plans = plan_job(job, run);
   std::vector<CostEstimate> estimates;
   for (const VariantPlan& plan : plans) {
-    const CostedGeometry costed = costed_geometry(plan, scene, budget, job_machine_costs(job, run));
+    const CostedGeometry costed = costed_geometry(plan, scene, budget, job_machine_costs(plan.model.threads, run));
     estimates.push_back(costed.estimate);
     const CostCounts& counts = costed.counts;
     std::cout << "cost estimate of `ilp run`" << label;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "output/png_render.h"
+#include "job/config.h"
 
 namespace ilp::cli {
 namespace {

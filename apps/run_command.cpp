@@ -371,7 +371,7 @@ void stage_outputs(OutputSet& set, const RunProducts& products) {
   // The files are independent (the pictures take most of the time): written at once on
   // the job's threads; the first failure in the list's order is the one reported.
   std::vector<std::exception_ptr> failed(chosen.size());
-  const int threads = worker_threads(products.prepared.job, products.prepared.run);
+  const int threads = products.prepared.plan.model.threads;
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   set.begin_batch();
   arena.execute([&] {

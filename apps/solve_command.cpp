@@ -222,7 +222,7 @@ int run_solve(const SolveArgs& args) {
     }
     add_grid_points(c, scene, job);
     const std::optional<MemoryBudget> budget = memory_budget(run.max_memory_bytes);
-    const CostEstimate estimate = estimate_job_cost(c, job_machine_costs(job, run));
+    const CostEstimate estimate = estimate_job_cost(c, job_machine_costs(worker_threads(job, run), run));
     for (const std::string& line : format_estimate(estimate)) std::cerr << line << "\n";
     require_fits(estimate, budget, job.path);
   }

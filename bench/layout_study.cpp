@@ -32,17 +32,17 @@ double median(std::vector<double> v) {
 }
 
 void prediction_study(const ilp::PreparedJob& prepared, int layouts) {
-  const ilp::JobConfig& job = prepared.job;
+  const ilp::VariantPlan& plan = prepared.plan;
   const ilp::LightingModel& model = prepared.model;
-  const int n = std::min(4, job.search->count_max);
+  const int n = std::min(4, plan.search.layout.count_max);
   std::mt19937_64 rng(12345);
   const Eigen::Vector2d lo = model.grid.lower_m(), hi = model.grid.upper_m();
-  const double w_lo = job.search->flux_min_lm / job.search->flux_max_lm;
+  const double w_lo = plan.search.luminaire.flux_min_lm / plan.search.luminaire.flux_max_lm;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<std::vector<double>> errors(job.goals.size());
+  std::vector<std::vector<double>> errors(plan.search.goals.size());
   std::vector<double> patch_rms, seconds;
   std::printf("## Prediction against verification (%d random layouts of %d luminaires, exact solve %d rays per patch)\n\n",
-              layouts, n, job.verification.rays_per_patch);
+              layouts, n, plan.verification.settings.rays_per_patch);
   for (int l = 0; l < layouts; ++l) {
     std::vector<Eigen::Vector2d> xy;
     std::vector<double> w;
@@ -68,11 +68,11 @@ void prediction_study(const ilp::PreparedJob& prepared, int layouts) {
     patch_rms.push_back(std::sqrt(sum / area));
   }
   std::printf("| goal | metric | median error | median abs. error | largest abs. error |\n|---|---|---|---|---|\n");
-  for (std::size_t g = 0; g < job.goals.size(); ++g) {
+  for (std::size_t g = 0; g < plan.search.goals.size(); ++g) {
     std::vector<double> abs_err;
     for (double e : errors[g]) abs_err.push_back(std::abs(e));
-    std::printf("| %s | %s | %+.2f %% | %.2f %% | %.2f %% |\n", job.goals[g].name.c_str(),
-                std::string(ilp::to_string(job.goals[g].metric)).c_str(), 100.0 * median(errors[g]),
+    std::printf("| %s | %s | %+.2f %% | %.2f %% | %.2f %% |\n", plan.search.goals[g].name.c_str(),
+                std::string(ilp::to_string(plan.search.goals[g].metric)).c_str(), 100.0 * median(errors[g]),
                 100.0 * median(abs_err), 100.0 * *std::max_element(abs_err.begin(), abs_err.end()));
   }
   std::printf("\nper-patch RMS relative error of total illuminance at the goal patches: median %.2f %%, largest %.2f %%\n",

@@ -41,7 +41,7 @@ void run(const std::string& path) {
   for (const ilp::VariantPlan& plan : plans) {
     if (!job.search || job.goals.empty()) break;
     const ilp::CostedGeometry costed =
-        ilp::costed_geometry(plan, loaded.scene, budget, ilp::job_machine_costs(job, options));
+        ilp::costed_geometry(plan, loaded.scene, budget, ilp::job_machine_costs(plan.model.threads, options));
     (void)costed;
   }
 }

@@ -1,5 +1,7 @@
 #include "job/building.h"
 
+#include "job/config.h"
+
 #include <algorithm>
 #include <stdexcept>
 

@@ -1,5 +1,7 @@
 #include "job/group_runner.h"
 
+#include "job/config.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>

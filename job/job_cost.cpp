@@ -166,8 +166,8 @@ struct RefusedBeforeGrids {
 
 }  // namespace
 
-MachineCosts job_machine_costs(const JobConfig& job, const RunOptions& run) {
-  return machine_costs(run.machine.speed, usable_threads(worker_threads(job, run)));
+MachineCosts job_machine_costs(int worker_threads, const RunOptions& run) {
+  return machine_costs(run.machine.speed, usable_threads(worker_threads));
 }
 
 CostedGeometry costed_geometry(const VariantPlan& plan, const Scene& job_scene,

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "job/config.h"
+#include "job/verification_spec.h"
 #include "job/plan.h"
 #include "core/cost/cost_model.h"
 #include "core/scene/scene.h"
@@ -53,7 +53,7 @@ CostedGeometry costed_geometry(const VariantPlan& plan, const Scene& job_scene,
 
 // The cost model's constants for this job on this machine: run.machine's speed at the
 // job's worker threads.
-MachineCosts job_machine_costs(const JobConfig& job, const RunOptions& run);
+MachineCosts job_machine_costs(int worker_threads, const RunOptions& run);
 
 // The whole run's time before any work: the sum of its variants' estimates (each
 // variant builds its own operator; the first verifies its layout in full, each later one

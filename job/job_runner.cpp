@@ -1,5 +1,7 @@
 #include "job/job_runner.h"
 
+#include "job/config.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -433,7 +435,7 @@ PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const Run
   log_shared_scene(shared, run, log);
   CostedGeometry costed =
       costed_geometry(plan, shared.loaded->scene, memory_budget(run.max_memory_bytes),
-                      job_machine_costs(job, run), shared.caster.get());
+                      job_machine_costs(plan.model.threads, run), shared.caster.get());
   return prepare_variant(shared, true, std::move(costed), job, plan, run, progress, cache_dir, log);
 }
 
@@ -445,7 +447,6 @@ PreparedJob prepare_variant(SharedScene& shared, bool last, CostedGeometry coste
       for (std::size_t k = from; k < lines.size(); ++k) log(lines[k]);
   };
   PreparedJob out;
-  out.job = job;
   out.plan = plan;
   out.run = run;
   // The first variant carries the scene's and the BVH's time (timings.json sums them).

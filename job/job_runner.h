@@ -12,7 +12,6 @@
 #include <utility>
 #include <vector>
 
-#include "job/config.h"
 #include "job/constraint_check.h"
 #include "job/job_cost.h"
 #include "job/job_scene.h"
@@ -29,7 +28,6 @@ namespace ilp {
 
 // The expensive part, independent of goal targets.
 struct PreparedJob {
-  JobConfig job;
   VariantPlan plan;            // the product searched and the stages' specs
   RunOptions run;
   JobScene loaded;

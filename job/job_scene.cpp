@@ -1,5 +1,7 @@
 #include "job/job_scene.h"
 
+#include "job/config.h"
+
 #include <xxhash.h>
 
 #include <algorithm>

@@ -7,10 +7,17 @@
 #include <string>
 #include <vector>
 
-#include "job/config.h"
 #include "core/scene/scene.h"
 
 namespace ilp {
+
+// job/config.h: the scene stage reads the job's scene keys.
+struct JobConfig;
+struct ReflectanceSetting;
+struct FloorSetting;
+struct EmitterSetting;
+struct LuminaireSetting;
+class KeyWriter;
 
 class KeyWriter;  // core/base/key_hash.h
 

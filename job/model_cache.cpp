@@ -8,6 +8,7 @@
 //   SampleOperatorStats, every field in declaration order (size_t as u64, bool as u8, int as i32)
 //   f64 build_seconds  u64 log lines  str each line (the model's whole log: geometry lines first)
 //   16 bytes: XXH3-128 of every byte before it, in xxHash's canonical (big-endian) form
+#include "job/config.h"
 #include "job/model_cache.h"
 
 #include <signal.h>

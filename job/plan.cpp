@@ -1,3 +1,4 @@
+#include "job/config.h"
 #include "job/plan.h"
 
 #include <sstream>

@@ -12,13 +12,14 @@
 #include "core/light/luminaire_product.h"
 #include "core/cost/machine_speed.h"
 #include "core/operator/sample_operator.h"
-#include "job/config.h"
 #include "job/verification_spec.h"
 #include "optimizer/lighting_model.h"
 #include "optimizer/scenario_spec.h"
 #include "optimizer/search_spec.h"
 
 namespace ilp {
+
+struct JobConfig;  // job/config.h: plan_job is its only reader on the way to the stages
 
 // What a command's options add to a job: not from the file, never written into it.
 struct RunOptions {

@@ -1,4 +1,5 @@
 // From the job's luminaires.products to the variants a search tries.
+#include "job/config.h"
 #include "job/products.h"
 
 #include <iomanip>

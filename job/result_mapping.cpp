@@ -1,5 +1,7 @@
 #include "job/result_mapping.h"
 
+#include "job/config.h"
+
 #include <algorithm>
 #include <iomanip>
 #include <sstream>

@@ -12,6 +12,8 @@
 
 namespace ilp {
 
+struct EnergySettings;  // job/config.h
+
 // Product x count, watts each and in all (empty when the outcome has no layout).
 std::vector<BillLine> bill_of_materials(const VariantPlan& plan, const JobOutcome& outcome);
 

@@ -1,5 +1,7 @@
 #include "job/variant_search.h"
 
+#include "job/config.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -64,7 +66,7 @@ std::string timing_note(const JobOutcome& outcome) {
 std::vector<CostedGeometry> cost_variants(const SharedScene& shared, const JobConfig& job,
                                           const std::vector<VariantPlan>& plans, const RunOptions& run) {
   const std::optional<MemoryBudget> memory = memory_budget(run.max_memory_bytes);
-  const MachineCosts costs = job_machine_costs(job, run);
+  const MachineCosts costs = job_machine_costs(worker_threads(job, run), run);
   std::vector<CostedGeometry> costed;
   for (const VariantPlan& plan : plans)
     costed.push_back(costed_geometry(plan, shared.loaded->scene, memory, costs, shared.caster.get()));

@@ -17,6 +17,7 @@
 #include "core/exact/exact_solver.h"
 #include "core/transport/ray_caster.h"
 #include "core/scene/reference_scenes.h"
+#include "job/config.h"
 
 namespace ilp {
 namespace {

@@ -1,6 +1,7 @@
 // The automatic verification method chosen by the cost model: exact while its sparse
 // rows fit, else a sample that fits in memory (issue 12: a 25 % sample of
 // 398K patches, 79,000 x 79,000 dense, ran out of memory after 12 minutes).
+#include "job/config.h"
 #include "job/job_cost.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
 // The defect correction between verification rounds, against the ratios worked by hand.
+#include "job/config.h"
 #include "job/round_calibration.h"
 
 #include <gtest/gtest.h>

@@ -13,6 +13,7 @@
 #include "job/verification_margin.h"
 #include "tests/optimizer/optimizer_test_scenes.h"
 #include "tests/test_support.h"
+#include "job/config.h"
 
 namespace ilp {
 namespace {

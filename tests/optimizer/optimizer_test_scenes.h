@@ -12,6 +12,7 @@
 #include "job/job_runner.h"
 #include "job/plan.h"
 #include "tests/test_support.h"
+#include "job/config.h"
 
 namespace ilp::test {
 
