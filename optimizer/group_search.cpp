@@ -301,38 +301,67 @@ std::optional<Eigen::VectorXd> least_cost_outputs_n(const std::vector<OutputCons
 
 namespace {
 
-// Every combination of arrangements (one per group, indices into each group's options),
-// the first group's index varying slowest, with its lower bound on the power.
-struct Combination {
-  std::vector<int> options;
-  double bound_w = 0.0;
+// Every combination of arrangements (one per group: k indices into the groups' options,
+// flat), the first group's index varying slowest, each with its lower bound on the power.
+struct Combinations {
+  std::size_t k = 0;
+  std::vector<int> picks;      // combination c: picks[c * k .. c * k + k)
+  std::vector<double> bound_w;
+  int pick(std::size_t c, std::size_t g) const { return picks[c * k + g]; }
 };
 
-std::vector<Combination> combinations(const std::vector<GroupChoices>& groups,
-                                      const std::vector<std::vector<Eigen::VectorXd>>& gains,
-                                      const Eigen::VectorXd& deficits) {
+Combinations combinations(const std::vector<GroupChoices>& groups, const std::vector<std::vector<Eigen::VectorXd>>& gains,
+                          const Eigen::VectorXd& deficits) {
   const std::size_t k = groups.size();
   double count = 1.0;
   for (const GroupChoices& g : groups) count *= static_cast<double>(g.options.size());
-  if (count > kMaxGroupCombinations)
+  if (k > 2 && count > kMaxGroupCombinations)  // (pairs are as many as two groups have)
     throw std::invalid_argument("search_groups: " + std::to_string(static_cast<long long>(count)) +
                                 " combinations of arrangements (at most " +
                                 std::to_string(static_cast<long long>(kMaxGroupCombinations)) + ")");
-  std::vector<Combination> out;
+  Combinations out;
+  out.k = k;
+  out.picks.reserve(static_cast<std::size_t>(count) * k);
+  out.bound_w.reserve(static_cast<std::size_t>(count));
   std::vector<int> at(k, 0);
+  std::vector<const GroupOption*> members(k);
+  std::vector<Eigen::VectorXd> g(k);
   while (true) {
-    std::vector<const GroupOption*> members;
-    std::vector<Eigen::VectorXd> g;
     for (std::size_t i = 0; i < k; ++i) {
-      members.push_back(&groups[i].options[static_cast<std::size_t>(at[i])]);
-      g.push_back(gains[i][static_cast<std::size_t>(at[i])]);
+      members[i] = &groups[i].options[static_cast<std::size_t>(at[i])];
+      g[i] = gains[i][static_cast<std::size_t>(at[i])];
     }
-    out.push_back({at, least_pair_power_w(members, g, deficits)});
+    out.picks.insert(out.picks.end(), at.begin(), at.end());
+    out.bound_w.push_back(least_pair_power_w(members, g, deficits));
     std::size_t i = k;  // the last group's index varies fastest
     while (i > 0 && ++at[i - 1] == static_cast<int>(groups[i - 1].options.size())) at[--i] = 0;
     if (i == 0) break;
   }
   return out;
+}
+
+// The least-power outputs of one combination: the plane's exact enumeration for one or two
+// groups (as before any number were searched), GLPK's simplex for more.
+std::optional<Eigen::VectorXd> combination_outputs(const LightingModel& model, const GroupSearchSpec& spec,
+                                                   const std::vector<const Eigen::VectorXd*>& units,
+                                                   const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                                                   const Eigen::VectorXd& cost) {
+  const Eigen::Index k = lo.size();
+  if (k > 2) {
+    std::vector<OutputConstraintN> constraints = linear_goal_constraints_n(model, spec.goals, model.fixed_lux, units);
+    if (std::isfinite(spec.max_power_w)) constraints.push_back({-cost, -spec.max_power_w});
+    return least_cost_outputs_n(constraints, lo, hi, cost);
+  }
+  auto plane = [k](const Eigen::VectorXd& v) {
+    Eigen::Vector2d p = Eigen::Vector2d::Zero();
+    p.head(k) = v;
+    return p;
+  };
+  std::vector<OutputConstraint> constraints = linear_goal_constraints(model, spec.goals, model.fixed_lux, units);
+  if (std::isfinite(spec.max_power_w)) constraints.push_back({-plane(cost), -spec.max_power_w});
+  const std::optional<Eigen::Vector2d> s = least_cost_outputs(constraints, plane(lo), plane(hi), plane(cost));
+  if (!s) return std::nullopt;
+  return Eigen::VectorXd(s->head(k));
 }
 
 bool any_collide(const std::vector<const GroupOption*>& members) {
@@ -369,14 +398,16 @@ GroupSearchResult search_groups(const LightingModel& model, const GroupSearchSpe
       gains[g].push_back(std::move(v));
     }
   // Every combination with its bound, least bound first.
-  std::vector<Combination> all = combinations(groups, gains, deficits);
-  std::stable_sort(all.begin(), all.end(), [](const Combination& a, const Combination& b) { return a.bound_w < b.bound_w; });
+  const Combinations all = combinations(groups, gains, deficits);
+  std::vector<std::size_t> order(all.bound_w.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all.bound_w[a] < all.bound_w[b]; });
 
   const PairEvaluator evaluator(model, spec);
   GroupSearchResult best;
-  best.pairs = static_cast<long>(all.size());
+  best.pairs = static_cast<long>(order.size());
   double best_missed = std::numeric_limits<double>::infinity();
-  auto keep = [&](const std::vector<const GroupOption*>& members, const Combination& c, const Eigen::VectorXd& s,
+  auto keep = [&](const std::vector<const GroupOption*>& members, std::size_t c, const Eigen::VectorXd& s,
                   PairLight&& light, std::vector<GoalJudgement>&& goals, bool feasible) {
     best.feasible = feasible;
     best.groups.clear();
@@ -384,7 +415,7 @@ GroupSearchResult search_groups(const LightingModel& model, const GroupSearchSpe
     for (std::size_t g = 0; g < k; ++g) {
       const double flux = s[static_cast<Eigen::Index>(g)];
       const double power_w = flux * members[g]->count() / members[g]->efficacy_lm_per_w;
-      best.groups.push_back({c.options[g], flux, power_w});
+      best.groups.push_back({all.pick(c, g), flux, power_w});
       best.power_w += power_w;
     }
     best.goals = std::move(goals);
@@ -393,14 +424,14 @@ GroupSearchResult search_groups(const LightingModel& model, const GroupSearchSpe
     best.glare = std::move(light.glare);
   };
   const auto dims = static_cast<Eigen::Index>(k);
-  for (std::size_t n = 0; n < all.size(); ++n) {
-    const Combination& c = all[n];
-    if (best.feasible && c.bound_w >= best.power_w) {
-      best.pruned = static_cast<long>(all.size() - n);
+  for (std::size_t n = 0; n < order.size(); ++n) {
+    const std::size_t c = order[n];
+    if (best.feasible && all.bound_w[c] >= best.power_w) {
+      best.pruned = static_cast<long>(order.size() - n);
       break;
     }
     std::vector<const GroupOption*> members;
-    for (std::size_t g = 0; g < k; ++g) members.push_back(&groups[g].options[static_cast<std::size_t>(c.options[g])]);
+    for (std::size_t g = 0; g < k; ++g) members.push_back(&groups[g].options[static_cast<std::size_t>(all.pick(c, g))]);
     if (any_collide(members)) {
       ++best.colliding;
       continue;
@@ -414,10 +445,8 @@ GroupSearchResult search_groups(const LightingModel& model, const GroupSearchSpe
       cost[e] = members[g]->count() / members[g]->efficacy_lm_per_w;
       units.push_back(&members[g]->light->lux_per_lm);
     }
-    std::vector<OutputConstraintN> constraints = linear_goal_constraints_n(model, spec.goals, model.fixed_lux, units);
-    if (std::isfinite(spec.max_power_w)) constraints.push_back({-cost, -spec.max_power_w});
     ++best.solved;
-    const std::optional<Eigen::VectorXd> s = least_cost_outputs_n(constraints, lo, hi, cost);
+    const std::optional<Eigen::VectorXd> s = combination_outputs(model, spec, units, lo, hi, cost);
     if (s) {
       PairLight light = evaluator.light(members, *s);
       std::vector<GoalJudgement> goals = evaluator.judge(light);

@@ -26,8 +26,8 @@
 namespace ilp {
 
 // Groups a job may search together (their luminaires are named A1 ... F1), and the
-// combinations of arrangements (one per group) a search may weigh: a product of the
-// groups' arrangement counts above it is refused before any is solved.
+// combinations of arrangements (one per group) a search of three or more may weigh: a
+// product of the groups' arrangement counts above it is refused before any is solved.
 inline constexpr int kMaxSearchedGroups = 6;
 inline constexpr double kMaxGroupCombinations = 2e6;
 
@@ -116,7 +116,7 @@ struct GroupSearchResult {
 // The least-power combination (min_power). `model` gives the goal areas, the fixed
 // sources' light and the observers (every group's model has the same goal rows). Throws
 // std::invalid_argument for no group, more than kMaxSearchedGroups, a group without
-// options or more than kMaxGroupCombinations combinations.
+// options or, for three or more groups, more than kMaxGroupCombinations combinations.
 GroupSearchResult search_groups(const LightingModel& model, const GroupSearchSpec& spec,
                                 const std::vector<GroupChoices>& groups);
 
