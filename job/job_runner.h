@@ -136,7 +136,7 @@ struct Verification {
 };
 
 // Places `layout` as real luminaires in the job's scene and solves it as
-// job.verification says (exact, or a sample of verification.sample_fraction), with
+// the plan's VerificationSpec says (exact, or a sample of verification.sample_fraction), with
 // rays independent of the operator's. Method "none" returns an empty Verification.
 Verification verify_layout(const PreparedJob& prepared, const std::vector<PlacedLuminaire>& layout,
                            const ProgressCallback& progress = {});
@@ -223,7 +223,7 @@ using ConstraintLines = std::function<std::vector<ConstraintOutcome>(const JobOu
 
 // The one verification and outcome assembly of every search, a single one and one of
 // luminaire groups: the found layout placed as real luminaires (each of its variant,
-// scene_with_layout) and solved as job.verification says, the one flux correction for
+// scene_with_layout) and solved as the plan's VerificationSpec says, the one flux correction for
 // every luminaire, each goal as predicted, searched and verified, the constraints, power
 // and power density. `real`: the goals at their real (initial) targets and the objective.
 // The outcome's search is left for the caller.
@@ -259,7 +259,7 @@ std::string outcome_luminaire_name(const JobOutcome& outcome, std::size_t j);
 const VariantPlan& outcome_plan(const PreparedJob& prepared, const JobOutcome& outcome, std::size_t j);
 
 // Solves the job's scene with `scene` (the job's, the layout's `luminaires` real
-// luminaires added) as job.verification says: what verify_layout does once it has placed them.
+// luminaires added) as the plan's VerificationSpec says: what verify_layout does once it has placed them.
 // `states`: the other lighting states to verify on the same solve (Verification::state_lux).
 Verification verify_scene(const PreparedJob& prepared, const Scene& scene, int luminaires,
                           const ProgressCallback& progress = {}, const std::vector<LitState>& states = {});
