@@ -51,13 +51,13 @@ void read_scenario_goals(const Value& section, const JobConfig& job, ScenarioSpe
       auto v = entry.get(std::string(rule.key));
       if (!v) continue;
       if (rule.area == AreaKind::glare) v->fail("a scenario judges illuminance; UGR is judged for the normal lighting");
-      if (rule.area == AreaKind::cylindrical && metric_rule(goal->metric).area != AreaKind::cylindrical)
+      // The goal's name must have an area of the kind this metric is measured over.
+      const bool laid = std::any_of(job.goals.begin(), job.goals.end(), [&](const GoalSetting& g) {
+        return g.name == name && metric_rule(g.metric).area == rule.area;
+      });
+      if (!laid && rule.area == AreaKind::cylindrical)
         v->fail("is measured over a goal's cylinders: name a goal with a cylindrical metric");
-      if (rule.area == AreaKind::illuminance && metric_rule(goal->metric).area != AreaKind::illuminance &&
-          std::none_of(job.goals.begin(), job.goals.end(), [&](const GoalSetting& g) {
-            return g.name == name && metric_rule(g.metric).area == AreaKind::illuminance;
-          }))
-        v->fail("goal '" + name + "' has no illuminance area (only cylinders or observers)");
+      if (!laid) v->fail("goal '" + name + "' has no illuminance area (only cylinders or observers)");
       const double target = v->number();
       if (const std::string broken = target_rule(rule.metric, target); !broken.empty()) v->fail(broken);
       scenario.goals.push_back({name, rule.metric, target});

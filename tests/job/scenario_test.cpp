@@ -139,6 +139,10 @@ TEST(Scenarios, TheSectionIsReadWithItsTargetsAndBadEntriesNameTheirKey) {
   says(error("  - name: x\n    fraction: 1.5\n    goals: [{goal: work_plane, min_lux: 1}]\n"),
        {"scenarios[0].fraction", "[0, 1]"});
   says(error("  - name: x\n    light: reflected\n    goals: [{goal: work_plane, min_lux: 1}]\n"), {"must be total"});
+  says(error("  - name: x\n    goals: [{goal: floor, cylindrical_lux: 50}]\n"), {"name a goal with a cylindrical metric"});
+  // The office's work plane has its preset's Ez,m: a scenario may judge its cylinders too.
+  EXPECT_EQ(load_job_config(with("  - name: x\n    goals: [{goal: work_plane, average_lux: 100, cylindrical_lux: 30}]\n"))
+                .scenarios[0].goals.size(), 2u);
 }
 
 }  // namespace
