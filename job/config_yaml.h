@@ -282,6 +282,10 @@ inline Eigen::Vector2d pair_of(const Value& v, double (*check)(const Value&)) {
 // products_named: luminaires.products is a list of names chosen from job.products (a
 // room choosing from its building's catalogue), not the products' definitions.
 void read_luminaires(const Map& luminaires, JobConfig& job, bool products_named = false);
+// config_goals.cpp: the grids section, then the goals section (its entries name grids
+// and products; presets, observers, the immediate surrounding area).
+void read_grids(const Value& section, JobConfig& job);
+void read_goals(const Value& section, JobConfig& job);
 // config_scenarios.cpp: the scenarios section (after goals, whose areas it names).
 void read_scenarios(const Value& section, JobConfig& job);
 std::vector<std::string> luminaire_keys();  // every key of the luminaires section
