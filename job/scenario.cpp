@@ -38,11 +38,11 @@ std::vector<LitState> scenario_states(const std::vector<ScenarioSpec>& scenarios
   return out;
 }
 
-Eigen::VectorXd predicted_scenario_lux(const ScenarioSpec& scenario, const LightingModel& primary,
-                                       const std::vector<const LightingModel*>& models, const JobOutcome& outcome) {
+Eigen::VectorXd predicted_scenario_lux(const ScenarioSpec& scenario, const std::vector<double>& fractions,
+                                       const LightingModel& primary, const std::vector<const LightingModel*>& models,
+                                       const JobOutcome& outcome) {
   const bool direct = scenario.light == LightCounted::direct;
   Eigen::VectorXd lux = scenario.fixed_fraction * (direct ? primary.fixed_direct_lux : primary.fixed_lux);
-  const std::vector<double> fractions = scenario_fractions(scenario, outcome);
   for (std::size_t j = 0; j < outcome.luminaires.size(); ++j) {
     if (fractions[j] == 0.0) continue;
     const LightingModel& model = models.empty() ? primary : *models.at(j);
@@ -69,7 +69,7 @@ std::vector<ScenarioOutcome> judge_scenarios(const std::vector<ScenarioSpec>& sc
       o.power_w += o.fractions[j] * outcome.luminaires[j].power_w;
       if (o.fractions[j] > 0.0) ++o.lit;
     }
-    o.predicted_lux = predicted_scenario_lux(spec, primary, models, outcome);
+    o.predicted_lux = predicted_scenario_lux(spec, o.fractions, primary, models, outcome);
     // Illuminance goals only (the config refuses a glare goal in a scenario): no eyes.
     const Eigen::VectorXd none = Eigen::VectorXd::Zero(observers);
     SearchSpec judged;

@@ -26,10 +26,11 @@ std::vector<LitState> scenario_states(const std::vector<ScenarioSpec>& scenarios
 
 // A scenario's light at the model's goal rows through the operator's columns: each
 // luminaire's blend of its variant's candidate columns (all the light, or their direct
-// part) at its fraction of its flux, plus the fixed sources' at fixed_fraction.
-// models[j]: the lighting model luminaire j was searched on.
-Eigen::VectorXd predicted_scenario_lux(const ScenarioSpec& scenario, const LightingModel& primary,
-                                       const std::vector<const LightingModel*>& models, const JobOutcome& outcome);
+// part) at its fraction of its flux (`fractions`: scenario_fractions), plus the fixed
+// sources' at fixed_fraction. models[j]: the lighting model luminaire j was searched on.
+Eigen::VectorXd predicted_scenario_lux(const ScenarioSpec& scenario, const std::vector<double>& fractions,
+                                       const LightingModel& primary, const std::vector<const LightingModel*>& models,
+                                       const JobOutcome& outcome);
 
 // Every scenario of the plan judged on the outcome (after its flux correction): predicted
 // through the operator's columns, verified from Verification::state_lux (one per scenario,

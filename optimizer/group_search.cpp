@@ -280,19 +280,26 @@ std::vector<OutputConstraintN> linear_goal_constraints_n(const LightingModel& mo
                                                               static_cast<Eigen::Index>(unit_lux.size()));
 }
 
+namespace {
+
+// A vector of one or two groups' values in the plane (zero beyond them), as the exact
+// enumeration takes it.
+Eigen::Vector2d in_plane(const Eigen::VectorXd& v) {
+  Eigen::Vector2d p = Eigen::Vector2d::Zero();
+  p.head(v.size()) = v;
+  return p;
+}
+
+}  // namespace
+
 std::optional<Eigen::VectorXd> least_cost_outputs_n(const std::vector<OutputConstraintN>& constraints,
                                                     const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
                                                     const Eigen::VectorXd& cost) {
   const Eigen::Index k = lo.size();
   if (k <= 2) {  // the exact vertex enumeration of the plane
-    auto plane = [k](const Eigen::VectorXd& v) {
-      Eigen::Vector2d p = Eigen::Vector2d::Zero();
-      p.head(k) = v;
-      return p;
-    };
     std::vector<OutputConstraint> flat;
-    for (const OutputConstraintN& c : constraints) flat.push_back({plane(c.coeff), c.rhs});
-    const std::optional<Eigen::Vector2d> s = least_cost_outputs(flat, plane(lo), plane(hi), plane(cost));
+    for (const OutputConstraintN& c : constraints) flat.push_back({in_plane(c.coeff), c.rhs});
+    const std::optional<Eigen::Vector2d> s = least_cost_outputs(flat, in_plane(lo), in_plane(hi), in_plane(cost));
     if (!s) return std::nullopt;
     return Eigen::VectorXd(s->head(k));
   }
@@ -352,14 +359,9 @@ std::optional<Eigen::VectorXd> combination_outputs(const LightingModel& model, c
     if (std::isfinite(spec.max_power_w)) constraints.push_back({-cost, -spec.max_power_w});
     return least_cost_outputs_n(constraints, lo, hi, cost);
   }
-  auto plane = [k](const Eigen::VectorXd& v) {
-    Eigen::Vector2d p = Eigen::Vector2d::Zero();
-    p.head(k) = v;
-    return p;
-  };
   std::vector<OutputConstraint> constraints = linear_goal_constraints(model, spec.goals, model.fixed_lux, units);
-  if (std::isfinite(spec.max_power_w)) constraints.push_back({-plane(cost), -spec.max_power_w});
-  const std::optional<Eigen::Vector2d> s = least_cost_outputs(constraints, plane(lo), plane(hi), plane(cost));
+  if (std::isfinite(spec.max_power_w)) constraints.push_back({-in_plane(cost), -spec.max_power_w});
+  const std::optional<Eigen::Vector2d> s = least_cost_outputs(constraints, in_plane(lo), in_plane(hi), in_plane(cost));
   if (!s) return std::nullopt;
   return Eigen::VectorXd(s->head(k));
 }
