@@ -12,6 +12,7 @@
 #include "core/grid/calc_grid.h"
 #include "core/transport/ray_caster.h"
 #include "job/config.h"
+#include "job/plan.h"
 #include "core/base/error.h"
 #include "job/job_scene.h"
 #include "output/atomic_file.h"
@@ -154,7 +155,7 @@ void print_grid_errors(const std::map<std::string, std::vector<Point>>& summary,
 int run_accuracy(const AccuracyArgs& args) {
   JobConfig job = load_job_config(args.config);
   const RunOptions run = run_options(args.threads, "");
-  const JobScene loaded = load_job_scene(job);
+  const JobScene loaded = load_job_scene(scene_spec(job));
   const Scene& scene = loaded.scene;
   for (const std::string& line : loaded.log) std::cerr << line << "\n";
   double emitted_lm = 0.0;

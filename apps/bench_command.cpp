@@ -14,6 +14,7 @@
 #include "apps/cli_support.h"
 #include "apps/commands.h"
 #include "job/config.h"
+#include "job/plan.h"
 #include "core/cost/cost_model.h"
 #include "core/exact/exact_solver.h"
 #include "job/job_runner.h"
@@ -62,12 +63,13 @@ int run_bench(const BenchArgs& args) {
   job.search->layout = LayoutFamily::free;
   job.search->count_min = job.search->count_max = args.luminaires;
   job.constraints.max_luminaires.reset();
-  const VariantPlan plan = plan_job(job, run).front();  // products: the first product at its first rotation
+  const JobPlan job_plan = plan_job(job, run);
+  const VariantPlan& plan = job_plan.variants.front();  // products: the first product at its first rotation
   const ProgressCallback progress = make_progress(args.quiet);
 
   // Build (no cache: the build is what is measured).
   const PreparedJob prepared =
-      prepare_job(job, plan, run, progress, "", [](const std::string& line) { std::cerr << line << "\n"; });
+      prepare_job(job_plan.scene, plan, run, progress, "", [](const std::string& line) { std::cerr << line << "\n"; });
   const LightingModel& model = prepared.model;
   const SampleOperatorStats& st = model.stats;
   const double build_memory_gb = peak_memory_gb();

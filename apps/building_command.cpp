@@ -18,8 +18,11 @@
 #include "core/cost/cost_model.h"
 #include "dist/communicator.h"
 #include "job/building.h"
+#include "job/plan.h"
 #include "job/room_exchange.h"
 #include "output/building_record.h"
+#include "run/building_ranks.h"
+#include "run/split_run.h"
 #include "job/config.h"
 
 namespace ilp::cli {
@@ -91,118 +94,60 @@ void stage_received(OutputSet& set, const std::string& name, const std::string& 
   set.staged(name);
 }
 
-// The building over several ranks (mpirun -np N, docs/cluster.md): room r runs on rank
-// room_rank(r, N); each rank sends rank 0 its rooms' records, times and files (or its
-// first failure); rank 0 writes the one output set when every room ran, in room order,
-// so the files are the single-process run's bytes. Every rank takes part in the one
-// gather and the one broadcast of the exit code whatever fails, so a failure anywhere
-// ends every rank with exit 1, rank 0 printing the failure of the lowest room.
+// The building over several ranks (mpirun -np N, docs/cluster.md; run/building_ranks.h):
+// rank 0 stages its own rooms' files in the one output set, the others send theirs;
+// rank 0 writes the set when every room ran, in room order.
 int run_building_distributed(const RunArgs& args, const JobConfig& job, const dist::Communicator& comm) {
   const auto start = Clock::now();
   RunOptions run = run_options(args.threads, args.max_memory, true);
-  // The ranks on one node share its memory: without --max-memory each may use its share
-  // of what the node has, so the cost model refuses a room that does not fit beside the
-  // others' (a scene and its BVH are per rank; docs/cluster.md).
-  if (!run.max_memory_bytes && comm.node_size() > 1) {
-    if (const std::optional<double> node = memory_budget_bytes(std::nullopt)) {
-      run.max_memory_bytes = *node / comm.node_size();
-      if (comm.is_root())
-        std::cerr << "memory per rank: " << format_bytes(*run.max_memory_bytes) << " (what this node has, over its "
-                  << comm.node_size() << " ranks; --max-memory sets it per rank)\n";
-    }
-  }
+  // Each rank's share of its node's memory, so that the cost model refuses a room that
+  // does not fit beside the others' (a scene and its BVH are per rank).
+  share_node_memory(run, comm, false);
   const ProgressCallback progress = make_progress(args.quiet);
   const std::string cache = building_cache(args);
   std::optional<OutputSet> set;
-  RankReport mine;
-  try {
-    if (comm.is_root()) set.emplace(output_directory(job, args.out_dir), building_output_names(job));
-  } catch (...) {
-    mine.failure = RoomFailure{0, dist::failure_message(std::current_exception())};
-  }
-  for (std::size_t r = 0; r < job.rooms.size() && !mine.failure; ++r) {
-    if (room_rank(r, comm.size()) != comm.rank()) continue;
-    try {
-      const auto room_start = Clock::now();
-      const JobConfig& room = room_job(job, r);
-      std::cerr << "room " << r + 1 << " of " << job.rooms.size() << ": " << job.rooms[r].name << " (rank "
-                << comm.rank() << " of " << comm.size() << ")\n";
-      const RoomRun result = run_room(room, run, progress, cache);
-      RoomOutcome outcome;
-      outcome.room = r;
-      outcome.record = result.record;
-      if (set) {
-        set->set_subfolder(room_folder(job, r));
-        stage_room_outputs(*set, room, result);
-        set->set_subfolder("");
-      } else {
-        outcome.files = room_files(job, r, result);
-      }
-      outcome.seconds = seconds_since(room_start);
-      mine.rooms.push_back(std::move(outcome));
-    } catch (...) {
-      mine.failure = RoomFailure{r, dist::failure_message(std::current_exception())};
+  BuildingRun building;
+  for (const RoomSetting& room : job.rooms) building.room_names.push_back(room.name);
+  building.setup_on_root = [&] { set.emplace(output_directory(job, args.out_dir), building_output_names(job)); };
+  building.run_room = [&](std::size_t r) {
+    const auto room_start = Clock::now();
+    const JobConfig& room = room_job(job, r);
+    std::cerr << "room " << r + 1 << " of " << job.rooms.size() << ": " << job.rooms[r].name << " (rank "
+              << comm.rank() << " of " << comm.size() << ")\n";
+    const RoomRun result = run_room(room, plan_job(room, run), run, progress, cache);
+    RoomOutcome outcome;
+    outcome.room = r;
+    outcome.record = result.record;
+    if (set) {
+      set->set_subfolder(room_folder(job, r));
+      stage_room_outputs(*set, room, result);
+      set->set_subfolder("");
+    } else {
+      outcome.files = room_files(job, r, result);
     }
-  }
-  std::string my_report;
-  if (!comm.is_root()) {
-    try {
-      my_report = encode_rank_report(mine);
-    } catch (...) {
-      RankReport failed;
-      failed.failure = RoomFailure{mine.rooms.empty() ? 0 : mine.rooms.front().room,
-                                   dist::failure_message(std::current_exception())};
-      my_report = encode_rank_report(failed);
-    }
-  }
-  const std::vector<std::string> reports = comm.gather(my_report);
-  if (!comm.is_root()) {
-    const std::string code = comm.broadcast(std::string());
-    if (code != "0" && code != "2") throw dist::FailedElsewhere();
-    return std::stoi(code);
-  }
-  int code = 1;
-  std::exception_ptr failure;
-  try {
-    std::vector<RankReport> all{std::move(mine)};
-    std::size_t received = 0;
-    for (std::size_t k = 1; k < reports.size(); ++k) {
-      received += reports[k].size();
-      all.push_back(decode_rank_report(reports[k]));
-    }
-    std::cerr << "gathered " << received << " bytes of rooms' results from " << reports.size() - 1 << " ranks\n";
-    const RoomFailure* first = nullptr;
-    for (const RankReport& report : all)
-      if (report.failure && (first == nullptr || report.failure->room < first->room)) first = &*report.failure;
-    if (first != nullptr) throw std::runtime_error(first->message);
-    std::vector<const RoomOutcome*> by_room(job.rooms.size(), nullptr);
-    for (const RankReport& report : all)
-      for (const RoomOutcome& o : report.rooms)
-        if (o.room < by_room.size()) by_room[o.room] = &o;
+    outcome.seconds = seconds_since(room_start);
+    return outcome;
+  };
+  building.finish_on_root = [&](const std::vector<const RoomOutcome*>& by_room) {
     std::vector<ResultRecord> records;
     std::vector<std::pair<std::string, double>> timings;
     for (std::size_t r = 0; r < by_room.size(); ++r) {
-      if (by_room[r] == nullptr) throw std::runtime_error("room " + job.rooms[r].name + ": no rank sent its result");
       for (const auto& [name, bytes] : by_room[r]->files) stage_received(*set, name, bytes);
       records.push_back(by_room[r]->record);
       timings.emplace_back("room " + job.rooms[r].name, by_room[r]->seconds);
     }
-    BuildingRecord building = summarize_building(kProgramVersion, job, records);
+    BuildingRecord summary = summarize_building(kProgramVersion, job, records);
     timings.emplace_back("total", seconds_since(start));
-    building.timings_s = timings;
-    print_building(std::cout, building);
-    stage_building_json(*set, building);
+    summary.timings_s = timings;
+    print_building(std::cout, summary);
+    stage_building_json(*set, summary);
     const std::vector<std::string> written = set->commit();
     std::cout << "wrote " << written.size() << " files: " << set->folder() << "/result.json, timings.json and rooms/<name>/ for "
               << job.rooms.size() << " rooms (" << comm.size() << " ranks)\n";
     std::cout << std::fixed << std::setprecision(2) << "peak memory " << peak_memory_gb() << " GB (resident, rank 0)\n";
-    code = building.all_met ? 0 : 2;
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  comm.broadcast(std::to_string(failure ? 1 : code));
-  if (failure) std::rethrow_exception(failure);
-  return code;
+    return summary.all_met ? 0 : 2;
+  };
+  return run_rooms_over_ranks(comm, building);
 }
 
 }  // namespace
@@ -222,7 +167,7 @@ int run_building(const RunArgs& args, const JobConfig& job) {
     const auto room_start = Clock::now();
     const JobConfig& room = room_job(job, r);
     std::cerr << "room " << r + 1 << " of " << job.rooms.size() << ": " << job.rooms[r].name << "\n";
-    const RoomRun result = run_room(room, run, progress, cache);
+    const RoomRun result = run_room(room, plan_job(room, run), run, progress, cache);
     set.set_subfolder(room_folder(job, r));
     stage_room_outputs(set, room, result);
     set.set_subfolder("");

@@ -10,6 +10,7 @@
 #include "apps/commands.h"
 #include "core/base/error.h"
 #include "dist/communicator.h"
+#include "job/setting_keys.h"
 
 namespace {
 constexpr int kMaxThreads = 1024;  // as solver.threads of a job
@@ -257,6 +258,7 @@ CLI::App* add_calibrate_command(CLI::App& app, ilp::cli::CalibrateArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ilp::name_settings_by_key();  // messages name the settings as the job file does
   // Every rank of an mpirun starts MPI here (a plain start makes no MPI call).
   ilp::dist::Communicator& comm = ilp::dist::Communicator::world();
   LineBuf err_lines(std::cerr.rdbuf());

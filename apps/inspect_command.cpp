@@ -112,11 +112,10 @@ namespace {
 
 // The estimate `ilp run` prints for each variant of the job (its products' files read),
 // the same figures from the same function (costed_geometry); `label` names a group.
-std::vector<CostEstimate> print_cost_estimates(const JobConfig& job, const RunOptions& run, const Scene& scene,
-                                               const std::string& label = {}) {
+std::vector<CostEstimate> print_cost_estimates(const std::vector<VariantPlan>& plans, const RunOptions& run,
+                                               const Scene& scene, const std::string& label = {}) {
   const std::optional<MemoryBudget> budget = memory_budget(run.max_memory_bytes);
   const std::optional<double> bytes = budget ? std::optional<double>(budget->bytes) : std::nullopt;
-  const std::vector<VariantPlan> plans = plan_job(job, run);
   std::vector<CostEstimate> estimates;
   for (const VariantPlan& plan : plans) {
     const CostedGeometry costed = costed_geometry(plan, scene, budget, job_machine_costs(plan.model.threads, run));
@@ -126,11 +125,11 @@ std::vector<CostEstimate> print_cost_estimates(const JobConfig& job, const RunOp
     if (plans.size() > 1) std::cout << " for " << printable(plan.product.product) << " at " << plan.product.rotation_deg << " deg";
     std::cout << " (" << counts.goal_patches << " goal patches, " << counts.grid_points << " grid points, "
               << costed.model.grid.size() << " candidates, k = " << counts.sample_size << ", " << counts.channels
-              << (counts.channels == 1 ? " channel" : " channels") << ", " << job.form_factors.rays_per_patch
+              << (counts.channels == 1 ? " channel" : " channels") << ", " << plan.model.operator_options.form_factors.rays_per_patch
               << " rays per row; memory available "
               << (budget ? format_bytes(budget->bytes) + " (" + budget->source + ")" : std::string("unknown")) << "):\n";
     for (const std::string& line : format_estimate(costed.estimate)) std::cout << "  " << line << "\n";
-    const VerificationPlan verification = plan_verification(job.verification, scene.patches.size(), counts.population,
+    const VerificationPlan verification = plan_verification(plan.verification.settings, scene.patches.size(), counts.population,
                                                             counts.goal_patches, counts.luminaires, bytes);
     if (!verification.reason.empty()) std::cout << "  verification: " << verification.reason << "\n";
     if (!costed.refusal.empty()) std::cout << "  would be refused: " << costed.refusal << "\n";
@@ -142,18 +141,18 @@ std::vector<CostEstimate> print_cost_estimates(const JobConfig& job, const RunOp
 // builds its own operator and runs its own verification), the figure `ilp run` prints
 // from the same function. A job of luminaire groups: each group's, then the whole run's
 // as groups_run_seconds counts it. Returns the whole run's seconds.
-double print_room_estimates(const JobConfig& job, const RunOptions& run, const Scene& scene) {
+double print_room_estimates(const JobPlan& job, const RunOptions& run, const Scene& scene) {
   if (!job.groups.empty()) {
     std::vector<std::vector<CostEstimate>> groups;
-    for (std::size_t g = 0; g < job.groups.size(); ++g)
-      groups.push_back(print_cost_estimates(group_job(job, g), run, scene, " for group '" + job.groups[g].name + "'"));
+    for (const GroupPlan& group : job.groups)
+      groups.push_back(print_cost_estimates(group.variants, run, scene, " for group '" + group.name + "'"));
     const double whole_s = groups_run_seconds(groups);
     std::cout << "cost estimate of the whole run: about " << fixed(whole_s, 1) << " s for its " << groups.size()
               << " groups (every group's operators, searched together, verified once)\n";
     return whole_s;
   }
-  const std::vector<CostEstimate> estimates = print_cost_estimates(job, run, scene);
-  const double whole_run_s = whole_run_seconds(job.objective, estimates);
+  const std::vector<CostEstimate> estimates = print_cost_estimates(job.variants, run, scene);
+  const double whole_run_s = whole_run_seconds(job.goals.objective, estimates);
   if (estimates.size() > 1)
     std::cout << "cost estimate of the whole run: about " << fixed(whole_run_s, 1) << " s for its " << estimates.size()
               << " variants, one after another\n";
@@ -165,9 +164,10 @@ void print_building_estimates(const JobConfig& job, const RunOptions& run) {
   double total_s = 0.0;
   for (std::size_t r = 0; r < job.rooms.size(); ++r) {
     const JobConfig& room = room_job(job, r);
-    const JobScene loaded = load_job_scene(room);
+    const JobPlan plan = plan_job(room, run);
+    const JobScene loaded = load_job_scene(plan.scene);
     std::cout << "room " << job.rooms[r].name << " (" << loaded.scene.patches.size() << " patches):\n";
-    total_s += print_room_estimates(room, run, loaded.scene);
+    total_s += print_room_estimates(plan, run, loaded.scene);
   }
   std::cout << "cost estimate of the building: about " << fixed(total_s, 1) << " s for its " << job.rooms.size()
             << " rooms, one after another\n";
@@ -181,7 +181,7 @@ int run_inspect(const InspectArgs& args) {
   const RunOptions run = run_options(args.threads, args.max_memory);
   job.mesh_read.import_limits.max_memory_bytes = memory_budget_bytes(run.max_memory_bytes);
   TriangleMesh mesh;
-  const JobScene loaded = load_job_scene(job, &mesh);
+  const JobScene loaded = load_job_scene(scene_spec(job), &mesh);
   const Scene& scene = loaded.scene;
   const RayCaster caster(scene, worker_threads(job, run));
   InspectOptions options;
@@ -217,7 +217,7 @@ int run_inspect(const InspectArgs& args) {
       RunOptions calibrated = run;  // the machine's speed, as `ilp run` reads it
       calibrated.machine = machine_calibration();
       std::cout << describe(calibrated.machine) << "\n";
-      if (job.rooms.empty()) print_room_estimates(job, calibrated, scene);
+      if (job.rooms.empty()) print_room_estimates(plan_job(job, calibrated), calibrated, scene);
       else print_building_estimates(job, calibrated);
     } catch (const IlpError& e) {
       std::cout << "cost estimate: not available: " << e.what() << "\n";

@@ -23,6 +23,7 @@
 #include "apps/plan_outputs.h"
 #include "apps/run_support.h"
 #include "job/config.h"
+#include "job/plan.h"
 #include "core/light/luminaire_product.h"
 #include "core/cost/cost_model.h"
 #include "optimizer/goal_metrics.h"
@@ -30,6 +31,8 @@
 #include "job/job_runner.h"
 #include "job/result_mapping.h"
 #include "job/variant_search.h"
+#include "run/room_run.h"
+#include "run/split_run.h"
 #include "output/atomic_file.h"
 #include "output/building_record.h"
 #include "dist/communicator.h"
@@ -68,11 +71,8 @@ void log_build(const PreparedJob& prepared) {
 
 void log_line(const std::string& line) { std::cerr << printable(line, true) << "\n"; }
 
-// Every variant of the job prepared, each one's build logged.
-std::vector<PreparedJob> prepare_all(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
-                                     const std::string& cache_dir) {
-  return prepare_variants(job, plan_job(job, run), run, progress, cache_dir, log_line, log_build);
-}
+// The run's reports: progress bars, the run log on stderr, each operator's build line.
+RunHooks run_hooks(const ProgressCallback& progress) { return {progress, log_line, log_build}; }
 
 // Every grid of the job with its light: verified where the job was verified (after the
 // flux correction), else predicted.
@@ -436,140 +436,50 @@ std::string default_cache_dir() {
   return ".ilp-cache";
 }
 
-RoomRun run_room(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
+RoomRun run_room(const JobConfig& job, const JobPlan& plan, const RunOptions& run, const ProgressCallback& progress,
                  const std::string& cache, std::vector<PreparedJob> prebuilt, double prebuilt_seconds) {
-  const auto start = Clock::now();
   RoomRun out;
-  // Several groups: every group's variants prepared, searched together (job/group_runner.h).
-  if (!prebuilt.empty()) out.groups.prepared = std::move(prebuilt);
-  else if (job.groups.empty()) out.groups.prepared = prepare_all(job, run, progress, cache);
-  else out.groups = prepare_groups(job, run, progress, cache, log_line, log_build);
-  const std::vector<PreparedJob>& all = out.groups.prepared;
-  out.chosen = job.groups.empty() ? solve_variants(all, job_goals(job), progress, log_line)
-                                  : solve_groups(out.groups, job, progress, log_line);
-  const PreparedJob& prepared = all[out.chosen.variant];
-  const JobOutcome& outcome = out.chosen.outcome;
-  // Every variant's phases, summed: what the run cost.
-  double scene_s = 0.0, bvh_s = 0.0, operator_s = 0.0;
-  for (const PreparedJob& p : all) {
-    scene_s += p.scene_seconds;
-    bvh_s += p.bvh_seconds;
-    operator_s += p.loaded_from_cache ? p.cache_seconds : p.model.build_seconds;
-  }
-  const std::vector<std::pair<std::string, double>> timings{
-      {"scene", scene_s},
-      {"BVH", bvh_s},
-      {prepared.loaded_from_cache ? "operator from cache" : "operator", operator_s},
-      {"search", out.chosen.search_seconds},
-      {"verification", out.chosen.verify_seconds},
-      {"total", prebuilt_seconds + seconds_since(start)}};
+  out.run = run_plan(plan, run, run_hooks(progress), cache, std::move(prebuilt), prebuilt_seconds);
+  const PreparedJob& prepared = out.prepared();
+  const JobOutcome& outcome = out.run.chosen.outcome;
   // No layout (every count screened out): nothing lit to report per grid.
   const bool no_layout = outcome.search.beaten;
   if (!no_layout) out.grids = run_grid_results(prepared, job, outcome);
   std::vector<GridRecord> grid_records;
   for (const GridResult& g : out.grids) grid_records.push_back(grid_record(g, outcome.verification.method != "none"));
-  out.record = make_record(kVersion, prepared, job, outcome, grid_records, timings);
+  out.record = make_record(kVersion, prepared, job, outcome, grid_records, out.run.timings);
   out.record.bill_of_materials = bill_of_materials(prepared.plan, outcome);
-  out.record.variants = out.chosen.records;
+  out.record.variants = out.run.chosen.records;
   out.record.files = run_output_names(job, true);
   if (no_layout) record_no_layout(out.record);
   return out;
 }
 
 void stage_room_outputs(OutputSet& set, const JobConfig& job, const RoomRun& room) {
-  stage_outputs(set, {room.prepared(), job, room.chosen.outcome, room.record, room.grids});
+  stage_outputs(set, {room.prepared(), job, room.run.chosen.outcome, room.record, room.grids});
 }
 
-int run_single_room(const RunArgs& args, const JobConfig& job, std::vector<PreparedJob> prepared = {},
-                    double prepared_seconds = 0.0);
+int run_single_room(const RunArgs& args, const JobConfig& job, const RunOptions& run, const JobPlan& plan,
+                    std::vector<PreparedJob> prepared = {}, double prepared_seconds = 0.0);
 
 namespace {
 
-std::string to_bytes(const std::vector<double>& values) {
-  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
-}
-
-std::vector<double> from_bytes(const std::string& bytes) {
-  std::vector<double> values(bytes.size() / sizeof(double));
-  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(double));
-  return values;
-}
-
-// This rank's share of an operator build (core/operator/work_share.h) over dist::agree:
-// a round's partial sums gathered to rank 0 as raw doubles (the ranks of one job share
-// a byte order), the total broadcast from it. A failure anywhere fails the step on
-// every rank (dist::in_agreed_steps).
-WorkShare operator_share(const dist::Communicator& comm) {
-  WorkShare share;
-  share.index = comm.rank();
-  share.count = comm.size();
-  share.gather = [&comm](std::vector<double> mine) {
-    std::vector<std::vector<double>> out;
-    dist::agree(comm, {true, to_bytes(mine)}, [&out](std::vector<std::string> all) {
-      for (const std::string& bytes : all) out.push_back(from_bytes(bytes));
-      return std::string();
-    });
-    return out;
-  };
-  share.broadcast = [&comm](std::vector<double> values) {
-    return from_bytes(dist::agree(comm, {true, comm.is_root() ? to_bytes(values) : std::string()},
-                                  [](std::vector<std::string> all) { return std::move(all[0]); }));
-  };
-  return share;
-}
-
-// "peak memory per rank <when>: 0: 1.23 GB, 1: 0.98 GB" on rank 0: each rank's resident
-// peak so far (getrusage's maxrss), one gather.
-void print_peak_memory_per_rank(const dist::Communicator& comm, const std::string& when) {
-  std::ostringstream mine;
-  mine << std::fixed << std::setprecision(2) << peak_memory_gb();
-  const std::vector<std::string> all = comm.gather(mine.str());
-  if (!comm.is_root()) return;
-  std::cout << "peak memory per rank " << when << ":";
-  for (std::size_t r = 0; r < all.size(); ++r) std::cout << (r == 0 ? " " : ", ") << r << ": " << all[r] << " GB";
-  std::cout << "\n" << std::flush;
-}
-
-// Under mpirun, a single-room job without luminaire groups: every rank loads the scene
-// and BVH and computes its share of each operator build (its columns of T: the direct
-// light at the sample and hit patches, the first reflection, the k x k solve; the goal
-// patches' direct light by blocks; core/operator/work_share.h); rank 0 then searches and
-// verifies alone while the others wait (docs/cluster.md).
+// Under mpirun, a single-room job without luminaire groups: its operator builds split
+// over the ranks (run/split_run.h), then rank 0 searches and verifies alone.
 int run_split_room(const RunArgs& args, const JobConfig& job, const dist::Communicator& comm) {
   RunOptions run = run_options(args.threads, args.max_memory, true);
-  run.operator_share = operator_share(comm);
-  // The ranks on one node share its memory: without --max-memory each may use its share of
-  // what the node has (rank 0's figure on every rank, so that every rank plans alike).
-  if (!run.max_memory_bytes && comm.node_size() > 1) {
-    std::string node;
-    if (comm.is_root())
-      if (const std::optional<double> bytes = memory_budget_bytes(std::nullopt)) node = std::to_string(*bytes);
-    node = comm.broadcast(node);
-    if (!node.empty()) {
-      run.max_memory_bytes = std::stod(node) / comm.node_size();
-      if (comm.is_root())
-        std::cerr << "memory per rank: " << format_bytes(*run.max_memory_bytes) << " (what this node has, over its "
-                  << comm.node_size() << " ranks; --max-memory sets it per rank)\n";
-    }
-  }
-  const std::string cache = cache_folder(args.cache_dir, args.no_cache);
-  if (comm.is_root())
-    std::cerr << "operator build split over " << comm.size()
-              << " ranks (scene, BVH and rows on every rank, the sources' columns of the direct light at the "
-                 "sample and hit patches and of the k x k solve split); the search and verification then run on "
-                 "rank 0\n";
-  std::vector<PreparedJob> prepared;
+  share_node_memory(run, comm, true);
+  const JobPlan plan = plan_job(job, run);
   const auto build_start = Clock::now();
-  dist::in_agreed_steps(comm, [&] {
-    if (comm.is_root()) prepared = prepare_all(job, run, make_progress(args.quiet), cache);
-    else prepared = prepare_variants(job, plan_job(job, run), run, {}, cache, {});
-  });
-  if (!comm.is_root()) prepared.clear();  // rank 0 alone searches: the others hold nothing more
-  print_peak_memory_per_rank(comm, "after the operator build");
+  std::vector<PreparedJob> prepared =
+      prepare_split(plan, run, comm, run_hooks(make_progress(args.quiet)), cache_folder(args.cache_dir, args.no_cache));
+  print_peak_memory_per_rank(comm, "after the operator build", peak_memory_gb());
   const double build_seconds = seconds_since(build_start);
-  const int code =
-      dist::on_root_only(comm, [&] { return run_single_room(args, job, std::move(prepared), build_seconds); });
-  print_peak_memory_per_rank(comm, "at the end");
+  const int code = dist::on_root_only(comm, [&] {
+    return run_single_room(args, job, run_options(args.threads, args.max_memory, true), plan, std::move(prepared),
+                           build_seconds);
+  });
+  print_peak_memory_per_rank(comm, "at the end", peak_memory_gb());
   return code;
 }
 
@@ -596,21 +506,24 @@ int run_job(const RunArgs& args) {
     if (job.groups.empty()) return run_split_room(args, job, comm);
     // A single-room job with luminaire groups: rank 0 alone (docs/cluster.md).
     note_root_alone(comm);
-    return dist::on_root_only(comm, [&] { return run_single_room(args, job); });
+    return dist::on_root_only(comm, [&] {
+      const RunOptions run = run_options(args.threads, args.max_memory, true);
+      return run_single_room(args, job, run, plan_job(job, run));
+    });
   }
   const JobConfig job = load_job_config(args.config);
   if (!job.rooms.empty()) return run_building(args, job);
-  return run_single_room(args, job);
+  const RunOptions run = run_options(args.threads, args.max_memory, true);
+  return run_single_room(args, job, run, plan_job(job, run));
 }
 
-int run_single_room(const RunArgs& args, const JobConfig& job, std::vector<PreparedJob> prepared,
-                    double prepared_seconds) {
-  const RunOptions run = run_options(args.threads, args.max_memory, true);
+int run_single_room(const RunArgs& args, const JobConfig& job, const RunOptions& run, const JobPlan& plan,
+                    std::vector<PreparedJob> prepared, double prepared_seconds) {
   const ProgressCallback progress = make_progress(args.quiet);
   // Staged from the start, so a folder that cannot take the outputs fails before the work.
   OutputSet set(output_directory(job, args.out_dir), run_output_names(job, false));
-  const RoomRun room = run_room(job, run, progress, cache_folder(args.cache_dir, args.no_cache), std::move(prepared),
-                                prepared_seconds);
+  const RoomRun room = run_room(job, plan, run, progress, cache_folder(args.cache_dir, args.no_cache),
+                                std::move(prepared), prepared_seconds);
   print_result(std::cout, room.record);
   stage_room_outputs(set, job, room);
   for (const std::string& file : set.commit()) std::cout << "wrote " << file << "\n";
@@ -626,10 +539,11 @@ int run_sweep(const SweepArgs& args) {
   if (!job.rooms.empty())
     throw ConfigError(job.path + ": rooms: ilp sweep runs single-room jobs; run the building with ilp run");
   const RunOptions run = run_options(args.threads, args.max_memory, true);
+  const JobPlan plan = plan_job(job, run);
   SweepSetting sweep;
   if (!args.set.empty()) {
     sweep = parse_set(args.set);
-    JobGoals probe = job_goals(job);
+    JobGoals probe = plan.goals;
     for (double v : sweep.values) set_goal_target(probe, sweep.key, v);  // bad keys and values fail before any work
   } else if (job.sweep) {
     sweep = *job.sweep;
@@ -639,7 +553,8 @@ int run_sweep(const SweepArgs& args) {
   }
   const ProgressCallback progress = make_progress(args.quiet);
   OutputSet set(output_directory(job, args.out_dir), {"sweep.csv", "sweep.svg"});
-  const std::vector<PreparedJob> prepared = prepare_all(job, run, progress, cache_folder(args.cache_dir, args.no_cache));
+  const std::vector<PreparedJob> prepared = prepare_variants(plan, run, progress, cache_folder(args.cache_dir, args.no_cache),
+                                                             log_line, log_build);
 
   std::ostringstream csv;
   csv << std::setprecision(9) << csv_field(sweep.key)
@@ -659,7 +574,7 @@ int run_sweep(const SweepArgs& args) {
   for (std::size_t i = 0; i < sweep.values.size(); ++i) {
     std::cerr << "sweep point " << i + 1 << " of " << sweep.values.size() << ": " << sweep.key << " = "
               << sweep.values[i] << "\n";
-    JobGoals point = job_goals(job);  // the plan's goals, this point's target set
+    JobGoals point = plan.goals;  // the plan's goals, this point's target set
     set_goal_target(point, sweep.key, sweep.values[i]);
     const JobOutcome outcome = solve_variants(prepared, point, progress, log_line).outcome;
     csv << sweep.values[i] << ',' << outcome.luminaires.size() << ',' << outcome.power_w << ','

@@ -11,6 +11,7 @@
 #include "job/config.h"
 #include "job/group_runner.h"
 #include "job/variant_search.h"
+#include "run/room_run.h"
 #include "output/atomic_file.h"
 #include "output/result_record.h"
 
@@ -18,20 +19,19 @@ namespace ilp::cli {
 
 inline constexpr const char* kProgramVersion = "ilp 0.1.0";
 
-// One single-room job run: its variants (or groups) prepared, the layout chosen and
-// verified, the grids' light and the record (timings of this room only).
+// One single-room job run: its plan run (run/room_run.h), the grids' light and the
+// record (timings of this room only).
 struct RoomRun {
-  PreparedGroups groups;
-  VariantChoice chosen;
+  PlanRun run;
   std::vector<GridResult> grids;
   ResultRecord record;
-  const PreparedJob& prepared() const { return groups.prepared[chosen.variant]; }
+  const PreparedJob& prepared() const { return run.prepared(); }
 };
 
-// Prepares, searches and verifies `job` (a single-room job), logging to stderr; with
-// `prebuilt` (its variants, prepared already: a split build, which took prebuilt_seconds)
-// it searches and verifies those.
-RoomRun run_room(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
+// Runs `plan`, the plan of `job` (a single-room job), logging to stderr, and maps what it
+// found to the room's record; with `prebuilt` (its variants, prepared already: a split
+// build, which took prebuilt_seconds) it searches and verifies those.
+RoomRun run_room(const JobConfig& job, const JobPlan& plan, const RunOptions& run, const ProgressCallback& progress,
                  const std::string& cache, std::vector<PreparedJob> prebuilt = {}, double prebuilt_seconds = 0.0);
 
 // Every file `ilp run` may write for a single-room job (all formats), or those its

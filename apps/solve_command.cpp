@@ -195,7 +195,7 @@ int run_solve(const SolveArgs& args) {
   if (args.method == "exact") job.method = SolveMethod::exact;
   if (args.method == "sample") job.method = SolveMethod::sample;
   job.mesh_read.import_limits.max_memory_bytes = memory_budget_bytes(run.max_memory_bytes);
-  const JobScene loaded = load_job_scene(job);
+  const JobScene loaded = load_job_scene(scene_spec(job));
   for (const std::string& line : loaded.log) std::cerr << line << "\n";
   std::cerr << describe(run.machine) << "\n";
   {

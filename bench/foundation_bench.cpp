@@ -40,7 +40,7 @@ const Fixture& fixture() {
     const char* env = std::getenv("ILP_BENCH_CONFIG");
     auto out = std::make_unique<Fixture>();
     out->job = ilp::load_job_config(env ? env : ILP_SOURCE_DIR "/configs/office_fixed.yaml");
-    out->scene = ilp::load_job_scene(out->job).scene;
+    out->scene = ilp::load_job_scene(scene_spec(out->job)).scene;
     return out;
   }();
   return *f;

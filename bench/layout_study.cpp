@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
   try {
     const ilp::JobConfig job = ilp::load_job_config(argc > 1 ? argv[1] : ILP_SOURCE_DIR "/configs/office.yaml");
     const int layouts = argc > 2 ? std::stoi(argv[2]) : 12;
-    const ilp::PreparedJob prepared = ilp::prepare_job(job, ilp::plan_job(job).front());
+    const ilp::PreparedJob prepared = ilp::prepare_job(scene_spec(job), ilp::plan_job(job).variants.front());
     std::printf("# Layout study: %s (%zu patches, %zu goal patches, %zu candidates, k = %d, operator %.2f s)\n\n",
                 job.path.c_str(), prepared.loaded.scene.patches.size(), prepared.model.goal_patches.size(),
                 prepared.model.grid.size(), prepared.model.sample_size, prepared.model.build_seconds);

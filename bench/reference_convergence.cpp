@@ -17,7 +17,7 @@
 int main(int argc, char** argv) {
   try {
     const ilp::JobConfig job = ilp::load_job_config(argc > 1 ? argv[1] : ILP_SOURCE_DIR "/configs/office_fixed.yaml");
-    const ilp::Scene scene = ilp::load_job_scene(job).scene;
+    const ilp::Scene scene = ilp::load_job_scene(scene_spec(job)).scene;
     std::vector<int> surfaces;
     for (const std::string& name : job.report_surfaces) surfaces.push_back(scene.find_surface(name));
     if (surfaces.empty())

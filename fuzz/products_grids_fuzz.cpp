@@ -35,8 +35,8 @@ void run(const std::string& path) {
   job.scene.max_patches = std::min<std::size_t>(job.scene.max_patches, 20000);  // as a small budget would
   ilp::RunOptions options;
   options.threads = 1;
-  const std::vector<ilp::VariantPlan> plans = ilp::plan_job(job, options);
-  const ilp::JobScene loaded = ilp::load_job_scene(job);
+  const std::vector<ilp::VariantPlan> plans = ilp::plan_job(job, options).variants;
+  const ilp::JobScene loaded = ilp::load_job_scene(scene_spec(job));
   const ilp::MemoryBudget budget{64e6, "the harness"};
   for (const ilp::VariantPlan& plan : plans) {
     if (!job.search || job.goals.empty()) break;

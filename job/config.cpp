@@ -1,3 +1,4 @@
+#include "job/setting_keys.h"
 #include "job/config.h"
 
 #include <yaml-cpp/eventhandler.h>
@@ -451,6 +452,7 @@ SampleSizeRule SampleSettings::rule() const {
 int SampleSettings::size_for(std::size_t population) const { return rule().size_for(population); }
 
 JobConfig load_job_config(const std::string& path) {
+  name_settings_by_key();  // the stages' messages name their settings as this file does
   JobConfig job;
   job.path = path;
   {

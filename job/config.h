@@ -29,45 +29,10 @@
 #include "optimizer/scenario_spec.h"
 #include "output/output_formats.h"
 #include "optimizer/search_spec.h"
+#include "job/scene_spec.h"
 #include "job/verification_spec.h"
 
 namespace ilp {
-
-struct ReflectanceSetting {
-  std::string surface;
-  Eigen::Vector3d rgb;  // each channel in [0, 1); equal channels when given as one number
-  FileLoc loc;
-};
-
-// scene.add_floor: a horizontal rectangle added to the mesh as its own surface, facing
-// up (a real floor where a model has only a ground plane around it, or none).
-struct FloorSetting {
-  std::string name;
-  Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Zero();  // x, y corners, scene frame (m)
-  double z_m = 0.0;
-  Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.3);
-  FileLoc loc;
-};
-
-struct EmitterSetting {
-  std::string surface;
-  double exitance_lm_per_m2 = 0.0;
-  FileLoc loc;
-};
-
-// luminaires.placed: a fixed luminaire, as the scene adds it (add_luminaire): its type,
-// where it is and its output. Without a product, the square Lambertian panel of
-// luminaires.size_m; with one, the product's type as the config loader resolved it
-// (job/products.h: its photometric file read there, once per product).
-struct LuminaireSetting {
-  std::string name;
-  Eigen::Vector3d position_m;  // centre of the emitting face, scene frame (z up, m)
-  double flux_lm = 0.0;
-  FileLoc loc;
-  std::string product;         // a product of luminaires.products; empty: the plain panel
-  LuminaireType type = LuminaireType::square_lambertian(0.6);
-  double rotation_deg = 0.0;   // about +z, counter-clockwise seen from above
-};
 
 // How `ilp solve` computes illuminance: through the sample-based operator, or the
 // exact reference (every form-factor row, Gauss-Seidel).
@@ -285,14 +250,6 @@ struct SweepSetting {
 
 struct RoomSetting;
 
-// The part of a model one room of a building job sees (rooms[].surfaces): the surfaces
-// it names, each a name or a prefix ending in '*'; every other surface of the mesh is
-// left out of the room's scene, as scene.exclude_surfaces would. Empty: the whole model.
-struct SurfacePattern {
-  std::string pattern;  // "office_1_floor", or "office_1_*" (every name starting "office_1_")
-  std::string key;      // where it was written: rooms[2].surfaces[0]
-  FileLoc loc;
-};
 
 struct JobConfig {
   std::string path;                     // the YAML file

@@ -1,7 +1,5 @@
 #include "job/group_runner.h"
 
-#include "job/config.h"
-
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -21,8 +19,9 @@ struct GroupLights {
   std::vector<const PreparedJob*> variants;
 };
 
-std::string located_group(const JobConfig& job, std::size_t g, const std::string& what) {
-  return located(job.groups[g].loc, "luminaires.groups[" + std::to_string(g) + "] ('" + job.groups[g].name + "'): " + what);
+std::string located_group(const PreparedGroups& groups, std::size_t g, const std::string& what) {
+  const GroupName& group = groups.names[g];
+  return located(group.loc, "luminaires.groups[" + std::to_string(g) + "] ('" + group.name + "'): " + what);
 }
 
 // Share of a goal's target a group must give some point of the goal's area directly,
@@ -51,8 +50,8 @@ bool serves_a_goal(const GroupLights& lights) {
   return false;
 }
 
-std::vector<GroupLights> arrangement_lights(const PreparedGroups& groups, const JobConfig& job) {
-  std::vector<GroupLights> out(job.groups.size());
+std::vector<GroupLights> arrangement_lights(const PreparedGroups& groups) {
+  std::vector<GroupLights> out(groups.names.size());
   for (std::size_t k = 0; k < groups.prepared.size(); ++k) {
     const PreparedJob& p = groups.prepared[k];
     GroupLights& g = out[groups.group[k]];
@@ -61,22 +60,22 @@ std::vector<GroupLights> arrangement_lights(const PreparedGroups& groups, const 
   }
   for (std::size_t g = 0; g < out.size(); ++g) {
     if (!serves_a_goal(out[g]))
-      throw ConfigError(located_group(job, g, "serves no goal: none of its candidates, at full output, lights any point of a "
+      throw ConfigError(located_group(groups, g, "serves no goal: none of its candidates, at full output, lights any point of a "
                                               "goal's area directly with 1 % of its target (move its zone or mounting toward "
                                               "the goals, or leave it out)"));
     bool any = false;
     for (const RegularLights& l : out[g].per_variant) any = any || !l.arrangements.empty();
     if (!any)
-      throw ConfigError(located_group(job, g, "no arrangement can be mounted or built; " +
+      throw ConfigError(located_group(groups, g, "no arrangement can be mounted or built; " +
                                                   out[g].per_variant.front().first_refusal));
   }
   return out;
 }
 
-std::vector<GroupChoices> group_choices(const JobConfig& job, const std::vector<GroupLights>& lights) {
+std::vector<GroupChoices> group_choices(const PreparedGroups& groups, const std::vector<GroupLights>& lights) {
   std::vector<GroupChoices> out;
   for (std::size_t g = 0; g < lights.size(); ++g) {
-    GroupChoices c{job.groups[g].name, {}};
+    GroupChoices c{groups.names[g].name, {}};
     for (std::size_t v = 0; v < lights[g].variants.size(); ++v) {
       const SearchLuminaire& s = lights[g].variants[v]->plan.search.luminaire;
       const Eigen::Vector2d extent_m = 2.0 * s.type.half_footprint_m(s.rotation_deg, s.tilt_deg);
@@ -89,13 +88,13 @@ std::vector<GroupChoices> group_choices(const JobConfig& job, const std::vector<
 }
 
 // The outcome's luminaires and groups from the search's pair.
-void place_groups(FoundLayout& out, const JobConfig& job, const std::vector<GroupLights>& lights,
+void place_groups(FoundLayout& out, const PreparedGroups& groups, const std::vector<GroupLights>& lights,
                   const std::vector<GroupChoices>& choices, const GroupSearchResult& found) {
   for (std::size_t g = 0; g < choices.size(); ++g) {
     const GroupPick& pick = found.groups[g];
     const GroupOption& option = choices[g].options[static_cast<std::size_t>(pick.option)];
     OutcomeGroup group;
-    group.name = job.groups[g].name;
+    group.name = groups.names[g].name;
     group.label_prefix = std::string(1, static_cast<char>('A' + g));
     group.plan = lights[g].variants[static_cast<std::size_t>(option.variant)]->plan;
     group.first = out.luminaires.size();
@@ -180,26 +179,21 @@ std::string search_line(const GroupSearchResult& r, const std::vector<GroupChoic
 
 }  // namespace
 
-PreparedGroups prepare_groups(const JobConfig& job, const RunOptions& run, const ProgressCallback& progress,
+PreparedGroups prepare_groups(const JobPlan& job, const RunOptions& run, const ProgressCallback& progress,
                               const std::string& cache_dir, const LogSink& log,
                               const std::function<void(const PreparedJob&)>& prepared_log) {
   PreparedGroups out;
   if (job.groups.empty()) return out;
-  // The groups share the room (group_job changes only the search and the products): the
-  // model is read and its BVH built once, and every group's variants costed on it first,
-  // so that the whole run's estimate comes before any operator is built.
-  // Read through the first group's job, which has a search (the whole job has only groups).
-  std::vector<JobConfig> jobs;
-  for (std::size_t g = 0; g < job.groups.size(); ++g) jobs.push_back(group_job(job, g));
-  SharedScene shared = load_shared_scene(jobs.front(), run);
+  // The groups share the room: the model is read and its BVH built once, and every
+  // group's variants costed on it first, so that the whole run's estimate comes before
+  // any operator is built.
+  SharedScene shared = load_shared_scene(job.scene, job.threads, run);
   log_shared_scene(shared, run, log);
-  for (const JobConfig& one : jobs) require_search_surfaces(one, shared.loaded->scene);
-  std::vector<std::vector<VariantPlan>> plans;
+  for (const GroupPlan& group : job.groups) require_search_surfaces(group.surfaces, job.scene.mesh_path, shared.loaded->scene);
   std::vector<std::vector<CostedGeometry>> costed;
   std::vector<std::vector<CostEstimate>> estimates;
-  for (std::size_t g = 0; g < job.groups.size(); ++g) {
-    plans.push_back(plan_job(jobs[g], run));
-    costed.push_back(cost_variants(shared, jobs[g], plans.back(), run));
+  for (const GroupPlan& group : job.groups) {
+    costed.push_back(cost_variants(shared, group.variants, run));
     estimates.push_back(estimates_of(costed.back()));
   }
   if (log) {
@@ -211,9 +205,11 @@ PreparedGroups prepare_groups(const JobConfig& job, const RunOptions& run, const
     log(line.str());
   }
   for (std::size_t g = 0; g < job.groups.size(); ++g) {
-    if (log) log("group '" + job.groups[g].name + "'");
-    for (PreparedJob& p : prepare_costed(shared, g + 1 == job.groups.size(), std::move(costed[g]), jobs[g], plans[g],
-                                         run, progress, cache_dir, log, prepared_log)) {
+    const GroupPlan& group = job.groups[g];
+    out.names.push_back({group.name, group.loc});
+    if (log) log("group '" + group.name + "'");
+    for (PreparedJob& p : prepare_costed(shared, g + 1 == job.groups.size(), std::move(costed[g]), job.scene,
+                                         group.variants, run, progress, cache_dir, log, prepared_log)) {
       out.prepared.push_back(std::move(p));
       out.group.push_back(g);
     }
@@ -221,34 +217,34 @@ PreparedGroups prepare_groups(const JobConfig& job, const RunOptions& run, const
   return out;
 }
 
-VariantChoice solve_groups(const PreparedGroups& groups, const JobConfig& job, const ProgressCallback& progress,
+VariantChoice solve_groups(const PreparedGroups& groups, const JobGoals& goals, const ProgressCallback& progress,
                            const LogSink& log) {
-  if (!objective_rule(job.objective).minimises_power)
-    throw ConfigError(job.path + ": objective: luminaires.groups are searched for min_power only");
   const PreparedJob& primary = groups.prepared.front();
+  if (!objective_rule(goals.objective).minimises_power)
+    throw ConfigError(primary.plan.source + ": objective: luminaires.groups are searched for min_power only");
   const double mf = primary.plan.maintenance_factor;
   for (const PreparedJob& p : groups.prepared) {
     if (std::abs(p.plan.maintenance_factor - mf) > 1e-12)
-      throw ConfigError(located_group(job, groups.group[static_cast<std::size_t>(&p - groups.prepared.data())],
+      throw ConfigError(located_group(groups, groups.group[static_cast<std::size_t>(&p - groups.prepared.data())],
                                       "product '" + p.plan.product.product +
                                           "' has its own maintenance factor: every group's products must share one"));
     if (p.model.goal_rows() != primary.model.goal_rows())
       throw std::logic_error("solve_groups: the groups' models have different goal rows");
   }
-  const std::vector<GroupLights> lights = arrangement_lights(groups, job);
-  const std::vector<GroupChoices> choices = group_choices(job, lights);
-  const SearchSpec& spec = primary.plan.search;  // the goals at initial targets
+  const std::vector<GroupLights> lights = arrangement_lights(groups);
+  const std::vector<GroupChoices> choices = group_choices(groups, lights);
+  const SearchSpec spec = search_at(primary.plan, goals);  // the goals at initial targets
   PowerDensityCap cap;
   std::tie(cap.area_m2, cap.area_source) = power_density_area(primary);
-  cap.max_w_per_m2 = primary.plan.goals.max_power_density_w_per_m2;
+  cap.max_w_per_m2 = goals.max_power_density_w_per_m2;
   const GroupSearchResult found = search_groups(primary.model, {spec.goals, cap.max_power_w()}, choices);
   if (log) log(search_line(found, choices));
   if (found.groups.empty())
-    throw ConfigError(job.path + ": luminaires.groups: no pair of arrangements can be placed together (in every pair a "
+    throw ConfigError(primary.plan.source + ": luminaires.groups: no pair of arrangements can be placed together (in every pair a "
                                  "luminaire of one group lies on one of the other's; give the groups separate zones)");
 
   FoundLayout found_layout;
-  place_groups(found_layout, job, lights, choices, found);
+  place_groups(found_layout, groups, lights, choices, found);
   found_layout.light = {found.lux, found.eye_indirect_lux, found.glare};
   found_layout.direct_lux = predicted_direct(found_layout, lights, primary.model);
   found_layout.as_searched = found.goals;

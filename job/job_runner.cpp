@@ -1,6 +1,5 @@
 #include "job/job_runner.h"
 
-#include "job/config.h"
 
 #include <algorithm>
 #include <chrono>
@@ -399,26 +398,26 @@ std::string luminaire_name(std::size_t j) {
   return name.append(std::to_string(j + 1));
 }
 
-SharedScene load_shared_scene(const JobConfig& job, const RunOptions& run) {
+SharedScene load_shared_scene(const SceneSpec& scene, int threads, const RunOptions& run) {
   SharedScene out;
   auto start = Clock::now();
   // Meshing stops before it makes more patches than the memory could ever hold
   // (a scene, its BVH and the least build take about 1 kB a patch).
   const std::optional<MemoryBudget> memory = memory_budget(run.max_memory_bytes);
-  JobConfig scene_job = job;
-  if (memory) scene_job.scene.max_patches = std::min(job.scene.max_patches, static_cast<std::size_t>(memory->bytes / 1024.0));
+  SceneSpec limited = scene;
+  if (memory) limited.scene.max_patches = std::min(scene.scene.max_patches, static_cast<std::size_t>(memory->bytes / 1024.0));
   // A model read through assimp: its reading process may use no more than the job may.
-  if (memory) scene_job.mesh_read.import_limits.max_memory_bytes = memory->bytes;
+  if (memory) limited.mesh_read.import_limits.max_memory_bytes = memory->bytes;
   try {
-    out.loaded = std::make_shared<JobScene>(load_job_scene(scene_job));
+    out.loaded = std::make_shared<JobScene>(load_job_scene(limited));
   } catch (const ConfigError& e) {
-    if (!memory || scene_job.scene.max_patches == job.scene.max_patches) throw;
+    if (!memory || limited.scene.max_patches == scene.scene.max_patches) throw;
     throw ConfigError(std::string(e.what()) + " (about 1 kB a patch within the " + format_bytes(memory->bytes) +
                       " of memory the job may use: " + memory->source + ")");
   }
   out.scene_seconds = seconds_since(start);
   start = Clock::now();
-  out.caster = std::make_shared<const RayCaster>(out.loaded->scene, worker_threads(job, run));
+  out.caster = std::make_shared<const RayCaster>(out.loaded->scene, threads);
   out.bvh_seconds = seconds_since(start);
   return out;
 }
@@ -429,17 +428,17 @@ void log_shared_scene(const SharedScene& shared, const RunOptions& run, const Lo
   log(describe(run.machine));
 }
 
-PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const RunOptions& run,
+PreparedJob prepare_job(const SceneSpec& scene, const VariantPlan& plan, const RunOptions& run,
                         const ProgressCallback& progress, const std::string& cache_dir, const LogSink& log) {
-  SharedScene shared = load_shared_scene(job, run);
+  SharedScene shared = load_shared_scene(scene, plan.model.threads, run);
   log_shared_scene(shared, run, log);
   CostedGeometry costed =
       costed_geometry(plan, shared.loaded->scene, memory_budget(run.max_memory_bytes),
                       job_machine_costs(plan.model.threads, run), shared.caster.get());
-  return prepare_variant(shared, true, std::move(costed), job, plan, run, progress, cache_dir, log);
+  return prepare_variant(shared, true, std::move(costed), scene, plan, run, progress, cache_dir, log);
 }
 
-PreparedJob prepare_variant(SharedScene& shared, bool last, CostedGeometry costed, const JobConfig& job,
+PreparedJob prepare_variant(SharedScene& shared, bool last, CostedGeometry costed, const SceneSpec& scene,
                             const VariantPlan& plan, const RunOptions& run, const ProgressCallback& progress,
                             const std::string& cache_dir, const LogSink& log) {
   auto emit = [&](const std::vector<std::string>& lines, std::size_t from) {
@@ -474,7 +473,7 @@ PreparedJob prepare_variant(SharedScene& shared, bool last, CostedGeometry coste
   }
 
   auto start = Clock::now();
-  const std::string key = lighting_model_key(job, plan.model);
+  const std::string key = lighting_model_key(scene, plan.model);
   const std::string file = (std::filesystem::path(cache_dir) / (key + ".ilpmodel")).string();
   const std::optional<std::string> not_used = load_lighting_model(file, key, out.model);
   out.cache_seconds = seconds_since(start);
@@ -798,16 +797,14 @@ JobOutcome solve_prepared(const PreparedJob& prepared, const JobGoals& goals, co
   bounds.power_to_beat_w = power_to_beat_w;
   double search_seconds = 0.0, verify_seconds = 0.0;
   const double mf = prepared.plan.maintenance_factor;
-  SearchSpec real = prepared.plan.search;
-  real.goals = initial_goals(goals, mf);
-  real.objective = goals.objective;
+  SearchSpec real = search_at(prepared.plan, goals);
   PowerDensityCap power_cap;
   std::tie(power_cap.area_m2, power_cap.area_source) = power_density_area(prepared);
   power_cap.max_w_per_m2 = goals.max_power_density_w_per_m2;
   real.layout.max_power_w = power_cap.max_power_w();
   for (int round = 0; round < rounds; ++round) {
     SearchSpec searched = real;
-    searched.goals = initial_goals(search_goals, mf);
+    searched.goals = search_at(prepared.plan, search_goals).goals;
     JobOutcome outcome = search_and_verify(prepared, real, searched, power_cap, progress, bounds);
     if (outcome.search.beaten) {
       if (!best) return outcome;  // nothing could beat the power given: nothing searched

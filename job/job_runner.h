@@ -41,8 +41,9 @@ struct PreparedJob {
   std::vector<std::string> estimate_log;  // the cost model's estimate (core/cost/cost_model.h), for the run log
 };
 
-// Throws ConfigError when the job does not describe an inverse problem (no
-// luminaires.mounting_surface or no goals), naming the file.
+// The variant of a job whose scene `scene` describes, prepared: the scene read and
+// meshed, its BVH built, the lighting model's geometry costed (a job that cannot fit is
+// refused: ConfigError) and its operator built or read from the cache.
 //
 // With a cache folder (job/model_cache.h), the operator is read from
 // cache_dir/KEY.ilpmodel when that file is valid for the job; otherwise it is built
@@ -53,7 +54,7 @@ struct PreparedJob {
 // scene's before the operator is built, which can take a minute); they are also kept
 // in loaded.log and model.log.
 using LogSink = std::function<void(const std::string& line)>;
-PreparedJob prepare_job(const JobConfig& job, const VariantPlan& plan, const RunOptions& run = {},
+PreparedJob prepare_job(const SceneSpec& scene, const VariantPlan& plan, const RunOptions& run = {},
                         const ProgressCallback& progress = {}, const std::string& cache_dir = "", const LogSink& log = {});
 
 // The scene and its BVH, read once for every variant of a job (neither depends on the
@@ -64,7 +65,8 @@ struct SharedScene {
   std::shared_ptr<const RayCaster> caster;
   double scene_seconds = 0.0, bvh_seconds = 0.0;
 };
-SharedScene load_shared_scene(const JobConfig& job, const RunOptions& run);
+// `threads`: the BVH build's worker threads (0: every core).
+SharedScene load_shared_scene(const SceneSpec& scene, int threads, const RunOptions& run);
 // Its log lines, then the machine's speed the estimates that follow are made at
 // (run.machine: core/cost/machine_speed.h).
 void log_shared_scene(const SharedScene& shared, const RunOptions& run, const LogSink& log);
@@ -72,7 +74,7 @@ void log_shared_scene(const SharedScene& shared, const RunOptions& run, const Lo
 // (costed_geometry on shared.loaded->scene with shared.caster), which it logs and refuses
 // as prepare_job does; it does not log the scene's lines. `last`: no later variant uses
 // `shared`, whose scene is then moved into the PreparedJob rather than copied.
-PreparedJob prepare_variant(SharedScene& shared, bool last, CostedGeometry costed, const JobConfig& job,
+PreparedJob prepare_variant(SharedScene& shared, bool last, CostedGeometry costed, const SceneSpec& scene,
                             const VariantPlan& plan, const RunOptions& run, const ProgressCallback& progress,
                             const std::string& cache_dir, const LogSink& log);
 

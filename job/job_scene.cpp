@@ -1,7 +1,5 @@
 #include "job/job_scene.h"
 
-#include "job/config.h"
-
 #include <xxhash.h>
 
 #include <algorithm>
@@ -54,26 +52,26 @@ std::string placed_product_line(const LuminaireSetting& l) {
 // an error (issue 22: a 3DS file in millimetres would otherwise be read as metres,
 // a thousand times too large, without a word but the log's). OBJ, PLY and OFF never
 // state one and keep the default; every shipped job sets scale_to_m.
-SceneOptions scene_frame(const JobConfig& job, const TriangleMesh& mesh, std::vector<std::string>& log) {
-  SceneOptions o = job.scene;
-  if (!is_imported_format(lower_extension(job.mesh_path))) return o;
+SceneOptions scene_frame(const SceneSpec& spec, const TriangleMesh& mesh, std::vector<std::string>& log) {
+  SceneOptions o = spec.scene;
+  if (!is_imported_format(lower_extension(spec.mesh_path))) return o;
   const MeshFrame& stated = mesh.frame;
   std::ostringstream unit, up;
-  if (!job.scale_to_m_loc.file.empty()) {
+  if (!spec.scale_to_m_loc.file.empty()) {
     unit << "unit: scene.scale_to_m = " << o.scale_to_m << " m per unit, as the job sets it";
     if (stated.scale_to_m) unit << " (the file states " << stated.unit_note << ")";
   } else if (stated.scale_to_m) {
     o.scale_to_m = *stated.scale_to_m;
     unit << "unit: " << stated.unit_note;
   } else {
-    throw ConfigError(located(job.mesh_loc, "scene.mesh: " + job.mesh_path +
+    throw ConfigError(located(spec.mesh_loc, "scene.mesh: " + spec.mesh_path +
                                                 ": the file does not state its unit (" +
-                                                (lower_extension(job.mesh_path) == ".3ds" ? "3DS files carry none"
+                                                (lower_extension(spec.mesh_path) == ".3ds" ? "3DS files carry none"
                                                                                           : "no unit in the file") +
                                                 "): set scene.scale_to_m, the metres per file unit (1 for metres, "
                                                 "0.001 for millimetres; `ilp inspect --scale`)"));
   }
-  if (!job.up_axis_loc.file.empty()) {
+  if (!spec.up_axis_loc.file.empty()) {
     up << "up axis: scene.up_axis = " << (o.up_axis == UpAxis::y ? "y" : "z") << ", as the job sets it";
     if (stated.up_axis) up << " (the file states " << stated.up_note << ")";
   } else if (stated.up_axis) {
@@ -93,7 +91,7 @@ bool matches(const std::string& name, const std::string& pattern) {
   return name == pattern;
 }
 
-// A room's part of the model (JobConfig::keep_surfaces): every surface no pattern
+// A room's part of the model (SceneSpec::keep_surfaces): every surface no pattern
 // matches is excluded. A pattern that matches no surface is an error at its line.
 void keep_only(const std::vector<std::string>& names, const std::vector<SurfacePattern>& keep,
                std::vector<bool>& excluded) {
@@ -126,19 +124,16 @@ ConfigError unknown_surface(const FileLoc& loc, const std::string& key, const st
 
 }  // namespace
 
-void require_search_surfaces(const JobConfig& job, const Scene& scene) {
-  if (!job.search) return;
+void require_search_surfaces(const SearchSurfaces& search, const std::string& mesh_path, const Scene& scene) {
   std::set<std::string> mesh_surfaces;  // sorted, as load_job_scene names them
   for (const Surface& surface : scene.surfaces)
     if (!surface.is_luminaire()) mesh_surfaces.insert(surface.name);
   auto require = [&](const std::string& name, const FileLoc& loc, const std::string& key) {
     if (!mesh_surfaces.contains(name))
-      throw unknown_surface(loc, key, name, job.mesh_path, {mesh_surfaces.begin(), mesh_surfaces.end()});
+      throw unknown_surface(loc, key, name, mesh_path, {mesh_surfaces.begin(), mesh_surfaces.end()});
   };
-  if (!job.search->suspended_height_m)
-    require(job.search->mounting_surface, job.search->mounting_loc, "luminaires.mounting_surface");
-  if (!job.search->floor_surface.empty())
-    require(job.search->floor_surface, job.search->floor_loc, "luminaires.floor_surface");
+  if (!search.suspended) require(search.mounting_surface, search.mounting_loc, "luminaires.mounting_surface");
+  if (!search.floor_surface.empty()) require(search.floor_surface, search.floor_loc, "luminaires.floor_surface");
 }
 
 namespace {
@@ -160,17 +155,17 @@ struct MeshSurfaces {
 };
 
 // scene.mesh read (within the machine's memory), its notes logged.
-TriangleMesh read_job_mesh(const JobConfig& job, std::vector<std::string>& log) {
+TriangleMesh read_job_mesh(const SceneSpec& spec, std::vector<std::string>& log) {
   // A model read through assimp never takes more than the machine (or its cgroup) has
   // available: a malformed file can make assimp allocate without bound. A caller with a
   // smaller budget (--max-memory) sets the limit itself.
-  MeshReadOptions read = job.mesh_read;
+  MeshReadOptions read = spec.mesh_read;
   if (!read.import_limits.max_memory_bytes) read.import_limits.max_memory_bytes = memory_budget_bytes(std::nullopt);
   TriangleMesh mesh;
   try {
-    mesh = load_mesh(job.mesh_path, read);
+    mesh = load_mesh(spec.mesh_path, read);
   } catch (const SceneError& e) {
-    throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
+    throw SceneError(located(spec.mesh_loc, std::string("scene.mesh: ") + e.what()));
   }
   log.insert(log.end(), mesh.notes.begin(), mesh.notes.end());
   return mesh;
@@ -182,13 +177,13 @@ struct TriangleEdits {
 
 // Excluded surfaces lose their triangles (the surface stays, empty); two-sided ones get a
 // reversed copy of each triangle, back to back with it.
-TriangleEdits exclude_and_double(const JobConfig& job, const MeshSurfaces& surfaces, TriangleMesh& mesh) {
-  std::vector<bool> excluded(mesh.surface_names.size(), false), two_sided(mesh.surface_names.size(), job.two_sided_all);
-  for (std::size_t k = 0; k < job.exclude_surfaces.size(); ++k)
-    excluded[surfaces.require(job.exclude_surfaces[k], job.exclude_surface_locs[k], "scene.exclude_surfaces")] = true;
-  keep_only(mesh.surface_names, job.keep_surfaces, excluded);
-  for (std::size_t k = 0; k < job.two_sided_surfaces.size(); ++k)
-    two_sided[surfaces.require(job.two_sided_surfaces[k], job.two_sided_locs[k], "scene.two_sided")] = true;
+TriangleEdits exclude_and_double(const SceneSpec& spec, const MeshSurfaces& surfaces, TriangleMesh& mesh) {
+  std::vector<bool> excluded(mesh.surface_names.size(), false), two_sided(mesh.surface_names.size(), spec.two_sided_all);
+  for (std::size_t k = 0; k < spec.exclude_surfaces.size(); ++k)
+    excluded[surfaces.require(spec.exclude_surfaces[k], spec.exclude_surface_locs[k], "scene.exclude_surfaces")] = true;
+  keep_only(mesh.surface_names, spec.keep_surfaces, excluded);
+  for (std::size_t k = 0; k < spec.two_sided_surfaces.size(); ++k)
+    two_sided[surfaces.require(spec.two_sided_surfaces[k], spec.two_sided_locs[k], "scene.two_sided")] = true;
   TriangleEdits edits;
   const std::size_t n = mesh.triangles.size();
   std::size_t kept = 0;
@@ -220,11 +215,11 @@ TriangleEdits exclude_and_double(const JobConfig& job, const MeshSurfaces& surfa
 
 // Added floors: a rectangle each, in the file's frame and units (make_scene turns it
 // back); returns each one's surface and reflectance.
-std::vector<std::pair<int, Eigen::Vector3d>> add_floors(const JobConfig& job, const SceneOptions& frame,
+std::vector<std::pair<int, Eigen::Vector3d>> add_floors(const SceneSpec& spec, const SceneOptions& frame,
                                                         MeshSurfaces& surfaces, TriangleMesh& mesh,
                                                         std::vector<std::string>& log) {
   std::vector<std::pair<int, Eigen::Vector3d>> added_rho;
-  for (const FloorSetting& f : job.add_floors) {
+  for (const FloorSetting& f : spec.add_floors) {
     if (surfaces.index.count(f.name))
       throw ConfigError(located(f.loc, "scene.add_floor: name '" + f.name + "' is already a surface of the mesh"));
     const int s = static_cast<int>(mesh.surface_names.size());
@@ -250,11 +245,11 @@ std::vector<std::pair<int, Eigen::Vector3d>> add_floors(const JobConfig& job, co
 }
 
 // Reflectance per surface from the config, then per triangle (config > MTL Kd > default).
-TriangleReflectance triangle_reflectance(const JobConfig& job, const MeshSurfaces& surfaces, const TriangleMesh& mesh,
+TriangleReflectance triangle_reflectance(const SceneSpec& spec, const MeshSurfaces& surfaces, const TriangleMesh& mesh,
                                          const std::vector<std::pair<int, Eigen::Vector3d>>& added_rho) {
   std::vector<std::optional<Eigen::Vector3d>> surface_rho(mesh.surface_names.size());
   for (const auto& [s, rgb] : added_rho) surface_rho[static_cast<std::size_t>(s)] = rgb;
-  for (const ReflectanceSetting& r : job.reflectance)
+  for (const ReflectanceSetting& r : spec.reflectance)
     surface_rho[surfaces.require(r.surface, r.loc, "scene.reflectance." + r.surface)] = r.rgb;
   TriangleReflectance rho(mesh.triangles.size());
   std::vector<int> bad_kd_surface(mesh.materials.size(), -1);  // per material: a surface that uses it
@@ -264,16 +259,16 @@ TriangleReflectance triangle_reflectance(const JobConfig& job, const MeshSurface
     const int m = mesh.triangle_material[t];
     if (surface_rho[s]) {
       rho[t] = *surface_rho[s];
-    } else if (m >= 0 && mesh.materials[m].kd && !job.ignore_material_kd) {
+    } else if (m >= 0 && mesh.materials[m].kd && !spec.ignore_material_kd) {
       rho[t] = *mesh.materials[m].kd;
       if (((rho[t].array() < 0.0) || (rho[t].array() >= 1.0)).any() && bad_kd_surface[m] < 0) {
         bad_kd_surface[m] = s;
         bad_kd_order.push_back(m);
       }
-    } else if (job.default_reflectance) {
-      rho[t] = *job.default_reflectance;
+    } else if (spec.default_reflectance) {
+      rho[t] = *spec.default_reflectance;
     } else {
-      throw ConfigError(located(job.mesh_loc, "surface '" + mesh.surface_names[s] +
+      throw ConfigError(located(spec.mesh_loc, "surface '" + mesh.surface_names[s] +
                                                   "' has no reflectance: give it in scene.reflectance "
                                                   "(or scene.default_reflectance), or a Kd in the MTL"));
     }
@@ -290,34 +285,34 @@ TriangleReflectance triangle_reflectance(const JobConfig& job, const MeshSurface
     }
     throw SceneError(located(mesh.materials[bad_kd_order.front()].kd_loc,
                              "Kd outside [0, 1) for " + std::to_string(bad_kd_order.size()) + " material(s): " + list +
-                                 ": set their surfaces' reflectance in scene.reflectance of " + job.path));
+                                 ": set their surfaces' reflectance in scene.reflectance of " + spec.path));
   }
   return rho;
 }
 
 // The patches, meshed from the edited mesh (errors located at the keys that cause them).
-Scene mesh_scene(const JobConfig& job, const TriangleMesh& mesh, const TriangleReflectance& rho,
+Scene mesh_scene(const SceneSpec& spec, const TriangleMesh& mesh, const TriangleReflectance& rho,
                  const SceneOptions& frame) {
   try {
     return make_scene(mesh, rho, frame);
   } catch (const PatchLimitError& e) {
-    const FileLoc& loc = job.max_patch_edge_loc.file.empty() ? job.mesh_loc : job.max_patch_edge_loc;
+    const FileLoc& loc = spec.max_patch_edge_loc.file.empty() ? spec.mesh_loc : spec.max_patch_edge_loc;
     throw ConfigError(located(loc, std::string("scene.max_patch_edge_m: ") + e.what()));
   } catch (const SceneError& e) {
-    throw SceneError(located(job.mesh_loc, std::string("scene.mesh: ") + e.what()));
+    throw SceneError(located(spec.mesh_loc, std::string("scene.mesh: ") + e.what()));
   }
 }
 
 // The job's own sources: emitting surfaces and placed luminaires (inside the model).
-void place_job_sources(const JobConfig& job, const MeshSurfaces& surfaces, JobScene& out) {
+void place_job_sources(const SceneSpec& spec, const MeshSurfaces& surfaces, JobScene& out) {
   Scene& scene = out.scene;
-  for (std::size_t k = 0; k < job.emitting_surfaces.size(); ++k) {
-    const EmitterSetting& e = job.emitting_surfaces[k];
+  for (std::size_t k = 0; k < spec.emitting_surfaces.size(); ++k) {
+    const EmitterSetting& e = spec.emitting_surfaces[k];
     const std::string key = "scene.emitting_surfaces[" + std::to_string(k) + "].surface";
     set_surface_exitance(scene, surfaces.require(e.surface, e.loc, key), e.exitance_lm_per_m2);
   }
   const Eigen::AlignedBox3d mesh_bounds = scene.bounds_m;
-  for (const LuminaireSetting& l : job.luminaires) {
+  for (const LuminaireSetting& l : spec.luminaires) {
     // Outside the model is almost always a unit or axis mix-up (mm, y up).
     if (!mesh_bounds.contains(l.position_m)) {
       std::ostringstream os;
@@ -335,7 +330,7 @@ void place_job_sources(const JobConfig& job, const MeshSurfaces& surfaces, JobSc
 
 // Every surface the job reports or lights keeps a patch (not all excluded or degenerate),
 // and the search's surfaces are the mesh's.
-void check_job_surfaces(const JobConfig& job, const MeshSurfaces& surfaces, const Scene& scene) {
+void check_job_surfaces(const SceneSpec& spec, const MeshSurfaces& surfaces, const Scene& scene) {
   std::vector<std::size_t> patches_of(scene.surfaces.size(), 0);
   for (const Patch& p : scene.patches) ++patches_of[static_cast<std::size_t>(p.surface)];
   auto require_patches = [&](int surface, const FileLoc& loc, const std::string& key) {
@@ -344,55 +339,54 @@ void check_job_surfaces(const JobConfig& job, const MeshSurfaces& surfaces, cons
                                          "' has no patch left (left out by scene.exclude_surfaces or the room's surfaces, or every face "
                                          "degenerate)"));
   };
-  for (std::size_t k = 0; k < job.report_surfaces.size(); ++k) {
-    const int s = scene.find_surface(job.report_surfaces[k]);
+  for (std::size_t k = 0; k < spec.report_surfaces.size(); ++k) {
+    const int s = scene.find_surface(spec.report_surfaces[k]);
     if (s < 0)
-      throw ConfigError(located(job.report_surface_locs[k], "report.surfaces: unknown surface '" +
-                                                               job.report_surfaces[k] + "'"));
-    require_patches(s, job.report_surface_locs[k], "report.surfaces");
+      throw ConfigError(located(spec.report_surface_locs[k], "report.surfaces: unknown surface '" +
+                                                               spec.report_surfaces[k] + "'"));
+    require_patches(s, spec.report_surface_locs[k], "report.surfaces");
   }
   // The inverse problem's surfaces: those of the mesh (a placed luminaire is no goal).
-  for (const GoalSetting& g : job.goals)
+  for (const GoalSurfaces& g : spec.goals)
     for (const std::string& s : g.surfaces)
-      require_patches(surfaces.require(s, g.surfaces_loc, "goals." + g.name + ".surface"), g.surfaces_loc,
-                      "goals." + g.name + ".surface");
-  if (job.search && !job.search->suspended_height_m)
-    surfaces.require(job.search->mounting_surface, job.search->mounting_loc, "luminaires.mounting_surface");
-  if (job.search && !job.search->floor_surface.empty())
-    surfaces.require(job.search->floor_surface, job.search->floor_loc, "luminaires.floor_surface");
+      require_patches(surfaces.require(s, g.loc, "goals." + g.name + ".surface"), g.loc, "goals." + g.name + ".surface");
+  if (spec.search && !spec.search->suspended)
+    surfaces.require(spec.search->mounting_surface, spec.search->mounting_loc, "luminaires.mounting_surface");
+  if (spec.search && !spec.search->floor_surface.empty())
+    surfaces.require(spec.search->floor_surface, spec.search->floor_loc, "luminaires.floor_surface");
 }
 
 // The scene's lines after it is meshed: the mesh, the split, what was left out or doubled.
-void log_meshed(const JobConfig& job, const TriangleMesh& mesh, const SurfaceSplitReport& split,
+void log_meshed(const SceneSpec& spec, const TriangleMesh& mesh, const SurfaceSplitReport& split,
                 const TriangleEdits& edits, JobScene& out) {
   std::ostringstream os;
-  os << "mesh " << job.mesh_path << ": " << out.scene.stats << " (" << mesh.polygons_split
+  os << "mesh " << spec.mesh_path << ": " << out.scene.stats << " (" << mesh.polygons_split
      << " polygons fan-triangulated), " << mesh.surface_names.size() << " surfaces";
   out.log.push_back(os.str());
   out.log.insert(out.log.end(), split.log.begin(), split.log.end());
-  if (edits.excluded > 0 || !job.exclude_surfaces.empty())
-    out.log.push_back(std::string(job.keep_surfaces.empty() ? "" : "the room's surfaces and ") + "scene.exclude_surfaces: " + std::to_string(edits.excluded) + " triangles of " +
-                      std::to_string(job.exclude_surfaces.size()) + " surfaces left out");
+  if (edits.excluded > 0 || !spec.exclude_surfaces.empty())
+    out.log.push_back(std::string(spec.keep_surfaces.empty() ? "" : "the room's surfaces and ") + "scene.exclude_surfaces: " + std::to_string(edits.excluded) + " triangles of " +
+                      std::to_string(spec.exclude_surfaces.size()) + " surfaces left out");
   if (edits.doubled > 0)
     out.log.push_back("scene.two_sided: " + std::to_string(edits.doubled) +
                       " triangles doubled back to back (both sides reflect; counted in the triangles above)");
 }
 
 // The scene's last line: patches, area, bounds, channels and what emits.
-void log_sources(const JobConfig& job, JobScene& out) {
+void log_sources(const SceneSpec& spec, JobScene& out) {
   const Scene& scene = out.scene;
   double luminaire_flux_lm = 0.0, surface_flux_lm = 0.0;
   for (const Patch& p : scene.patches)
     (scene.surfaces[p.surface].is_luminaire() ? luminaire_flux_lm : surface_flux_lm) += p.area_m2 * p.exitance_lm_per_m2;
-  if (luminaire_flux_lm + surface_flux_lm == 0.0 && !job.search)  // an inverse job places its own
+  if (luminaire_flux_lm + surface_flux_lm == 0.0 && !spec.search)  // an inverse job places its own
     out.log.push_back("warning: nothing emits light, so every illuminance will be 0 lx "
                       "(add luminaires.placed or scene.emitting_surfaces)");
   std::ostringstream os;
   os.precision(3);
   os << std::fixed << "scene: " << scene.patches.size() << " patches, " << scene.total_area_m2() << " m2, bounds ["
      << scene.bounds_m.min().transpose() << "] .. [" << scene.bounds_m.max().transpose() << "] m, "
-     << (scene.channels == 1 ? "gray (1 channel)" : "coloured (3 channels)") << ", " << job.luminaires.size()
-     << (job.luminaires.size() == 1 ? " luminaire" : " luminaires") << "; emitted flux " << std::setprecision(0)
+     << (scene.channels == 1 ? "gray (1 channel)" : "coloured (3 channels)") << ", " << spec.luminaires.size()
+     << (spec.luminaires.size() == 1 ? " luminaire" : " luminaires") << "; emitted flux " << std::setprecision(0)
      << luminaire_flux_lm << " lm from luminaires, "
      << surface_flux_lm << " lm from emitting surfaces";
   out.log.push_back(os.str());
@@ -402,22 +396,22 @@ void log_sources(const JobConfig& job, JobScene& out) {
 
 // By stage: the mesh read and its frame, surfaces split, left out and doubled, floors
 // added, reflectances, meshing, the job's own sources, the surfaces checked, the log.
-JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out) {
+JobScene load_job_scene(const SceneSpec& spec, TriangleMesh* mesh_out) {
   JobScene out;
-  TriangleMesh mesh = read_job_mesh(job, out.log);
-  const SceneOptions frame = scene_frame(job, mesh, out.log);
+  TriangleMesh mesh = read_job_mesh(spec, out.log);
+  const SceneOptions frame = scene_frame(spec, mesh, out.log);
   out.frame = frame;
-  const SurfaceSplitReport split = split_surfaces(mesh, frame, job.surface_split);
-  MeshSurfaces surfaces{{}, job.mesh_path};
+  const SurfaceSplitReport split = split_surfaces(mesh, frame, spec.surface_split);
+  MeshSurfaces surfaces{{}, spec.mesh_path};
   for (std::size_t s = 0; s < mesh.surface_names.size(); ++s) surfaces.index[mesh.surface_names[s]] = static_cast<int>(s);
-  const TriangleEdits edits = exclude_and_double(job, surfaces, mesh);
-  const std::vector<std::pair<int, Eigen::Vector3d>> added_rho = add_floors(job, frame, surfaces, mesh, out.log);
-  const TriangleReflectance rho = triangle_reflectance(job, surfaces, mesh, added_rho);
-  out.scene = mesh_scene(job, mesh, rho, frame);
-  log_meshed(job, mesh, split, edits, out);
-  place_job_sources(job, surfaces, out);
-  check_job_surfaces(job, surfaces, out.scene);
-  log_sources(job, out);
+  const TriangleEdits edits = exclude_and_double(spec, surfaces, mesh);
+  const std::vector<std::pair<int, Eigen::Vector3d>> added_rho = add_floors(spec, frame, surfaces, mesh, out.log);
+  const TriangleReflectance rho = triangle_reflectance(spec, surfaces, mesh, added_rho);
+  out.scene = mesh_scene(spec, mesh, rho, frame);
+  log_meshed(spec, mesh, split, edits, out);
+  place_job_sources(spec, surfaces, out);
+  check_job_surfaces(spec, surfaces, out.scene);
+  log_sources(spec, out);
   if (mesh_out) *mesh_out = std::move(mesh);
   return out;
 }
@@ -533,14 +527,14 @@ void hash_fields(KeyWriter& k, const LuminaireSetting& l) {
   k.field("rotation_deg", l.rotation_deg).field("type", l.type);
 }
 
-// Each JobConfig field is a scene input below or named in the comment at the end.
-static_assert(field_count<JobConfig>() == 45,
-              "JobConfig changed: if load_job_scene reads the new field, hash it in hash_scene_inputs; "
-              "if the operator depends on it otherwise, it must reach it through plan_job's ModelSpec");
-void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
+// Each SceneSpec field is a scene input below or named in the comment at the end (and
+// each JobConfig field reaches the scene through SceneSpec or not at all: scene_spec).
+static_assert(field_count<SceneSpec>() == 26,
+              "SceneSpec changed: if load_job_scene reads the new field, hash it in hash_scene_inputs");
+void hash_scene_inputs(KeyWriter& k, const SceneSpec& spec) {
   // The input files. The mesh's path does not matter, only its bytes and how it is
   // read: the extension picks the reader, and PLY/OFF name their surface after the stem.
-  const fs::path mesh(job.mesh_path);
+  const fs::path mesh(spec.mesh_path);
   std::string ext = mesh.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   k.field("mesh_format", ext);
@@ -557,28 +551,24 @@ void hash_scene_inputs(KeyWriter& k, const JobConfig& job) {
       k.field("gltf_uri", uri).field("gltf_uri_bytes", file_digest(mesh.parent_path() / uri, nullptr));
   }
   // Set in the job, they override what an imported file states of its frame.
-  k.field("up_axis_set", !job.up_axis_loc.file.empty()).field("scale_to_m_set", !job.scale_to_m_loc.file.empty());
+  k.field("up_axis_set", !spec.up_axis_loc.file.empty()).field("scale_to_m_set", !spec.scale_to_m_loc.file.empty());
 
-  k.field("mesh_read", job.mesh_read).field("scene", job.scene).field("surface_split", job.surface_split);
-  k.field("reflectance", job.reflectance);  // in file order: a later one wins
-  k.field("default_reflectance", job.default_reflectance);
-  k.field("emitting_surfaces", job.emitting_surfaces);
-  k.field("add_floors", job.add_floors);
-  k.field("exclude_surfaces", job.exclude_surfaces);
+  k.field("mesh_read", spec.mesh_read).field("scene", spec.scene).field("surface_split", spec.surface_split);
+  k.field("reflectance", spec.reflectance);  // in file order: a later one wins
+  k.field("default_reflectance", spec.default_reflectance);
+  k.field("emitting_surfaces", spec.emitting_surfaces);
+  k.field("add_floors", spec.add_floors);
+  k.field("exclude_surfaces", spec.exclude_surfaces);
   std::vector<std::string> kept;
-  for (const SurfacePattern& p : job.keep_surfaces) kept.push_back(p.pattern);
+  for (const SurfacePattern& p : spec.keep_surfaces) kept.push_back(p.pattern);
   k.field("keep_surfaces", kept);
-  k.field("two_sided_surfaces", job.two_sided_surfaces).field("two_sided_all", job.two_sided_all);
-  k.field("luminaire_size_m", job.luminaire_size_m).field("luminaires", job.luminaires);
-  k.field("ignore_material_kd", job.ignore_material_kd);
+  k.field("two_sided_surfaces", spec.two_sided_surfaces).field("two_sided_all", spec.two_sided_all);
+  k.field("luminaire_size_m", spec.luminaire_size_m).field("luminaires", spec.luminaires);
+  k.field("ignore_material_kd", spec.ignore_material_kd);
   // Not scene inputs: path, mesh_loc, max_patch_edge_loc, (up_axis_loc and scale_to_m_loc
-  // only as set or not, above), exclude_surface_locs, keep_surfaces' locs, rooms (each
-  // room runs as its own job, keep_surfaces its part of the scene),
-  // two_sided_locs, report_surfaces and report_surface_locs (checked, never change the
-  // scene), max_memory_bytes (lowers scene.max_patches, a limit that refuses a scene);
-  // form_factors, direct_light, sample, search, groups (each through group_job and plan_job), goals, grids (the operator's, through
-  // plan_job's ModelSpec); radiosity, method, maintenance_factor, maintenance_loc,
-  // constraints, objective, optimizer, verification, output, energy, sweep, scenarios (not the operator's).
+  // only as set or not, above), exclude_surface_locs, keep_surfaces' locs, two_sided_locs,
+  // report_surfaces, report_surface_locs, goals and search (checked, never change the
+  // scene).
 }
 
 }  // namespace ilp

@@ -1,23 +1,16 @@
-// From a job configuration to a ready scene: loads the mesh, resolves every
-// triangle's reflectance (config by surface name, else the MTL Kd, else the
-// config's default), builds patches, sets emitting surfaces and adds luminaires.
-// Names in the config that the mesh lacks are ConfigErrors pointing at the config.
+// From a job's scene spec (job/scene_spec.h) to a ready scene: loads the mesh, resolves
+// every triangle's reflectance (the job's by surface name, else the MTL Kd, else the
+// job's default), builds patches, sets emitting surfaces and adds luminaires. Names in
+// the job that the mesh lacks are ConfigErrors pointing at the job file.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "core/scene/scene.h"
+#include "job/scene_spec.h"
 
 namespace ilp {
-
-// job/config.h: the scene stage reads the job's scene keys.
-struct JobConfig;
-struct ReflectanceSetting;
-struct FloorSetting;
-struct EmitterSetting;
-struct LuminaireSetting;
-class KeyWriter;
 
 class KeyWriter;  // core/base/key_hash.h
 
@@ -31,15 +24,15 @@ struct JobScene {
 
 // `mesh_out`, when given, receives the mesh the scene was made from (file units, after
 // surface splitting, exclusions and two-sided doubling), for `ilp inspect`. A model read
-// through assimp is limited to job.mesh_read.import_limits, its memory by default to the
+// through assimp is limited to spec.mesh_read.import_limits, its memory by default to the
 // machine's available memory (memory_budget_bytes).
-JobScene load_job_scene(const JobConfig& job, TriangleMesh* mesh_out = nullptr);
+JobScene load_job_scene(const SceneSpec& spec, TriangleMesh* mesh_out = nullptr);
 
 // The search's surfaces (luminaires.mounting_surface, unless suspended, and
-// luminaires.floor_surface) are surfaces of the scene's mesh: a located ConfigError naming
-// the surfaces there if not. load_job_scene checks them for its own job; a job of groups
-// reads its scene once and checks each group's.
-void require_search_surfaces(const JobConfig& job, const Scene& scene);
+// luminaires.floor_surface) are surfaces of the scene's mesh (`mesh_path`): a located
+// ConfigError naming the surfaces there if not. load_job_scene checks spec.search; a job
+// of groups reads its scene once and checks each group's.
+void require_search_surfaces(const SearchSurfaces& search, const std::string& mesh_path, const Scene& scene);
 
 // The operator cache's key (core/base/key_hash.h): everything load_job_scene's scene
 // depends on. The mesh file by its bytes (and, for OBJ, each mtllib's name and bytes;
@@ -47,14 +40,14 @@ void require_search_surfaces(const JobConfig& job, const Scene& scene);
 // PLY/OFF, its stem (the surface's name), not its path; then mesh_read, scene,
 // surface_split, reflectance, default_reflectance, emitting_surfaces, add_floors,
 // exclude_surfaces, two_sided_surfaces, two_sided_all, luminaire_size_m, luminaires and
-// ignore_material_kd. Every other JobConfig field is either no scene input (the solver,
-// goals, grids and search reach the operator through plan_job's ModelSpec, hashed on
-// their own) or never changes the scene (file locations, checks, the memory budget).
-void hash_scene_inputs(KeyWriter& k, const JobConfig& job);
+// ignore_material_kd. Every other SceneSpec field never changes the scene (file
+// locations, the surfaces checked); the job's other keys reach the operator through
+// plan_job's ModelSpec, hashed on their own, or not at all.
+void hash_scene_inputs(KeyWriter& k, const SceneSpec& spec);
 
-// The schema's scene settings in the key: every field but loc. (Here rather than next
-// to their definitions in job/config.h; LuminaireSetting's keeps its fields in one place
-// for when placed luminaires carry a product.)
+// The scene settings in the key: every field but loc. (Here rather than next to their
+// definitions in job/scene_spec.h; LuminaireSetting's keeps its fields in one place for
+// when placed luminaires carry a product.)
 void hash_fields(KeyWriter& k, const ReflectanceSetting& r);
 void hash_fields(KeyWriter& k, const FloorSetting& f);
 void hash_fields(KeyWriter& k, const EmitterSetting& e);

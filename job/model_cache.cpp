@@ -8,7 +8,6 @@
 //   SampleOperatorStats, every field in declaration order (size_t as u64, bool as u8, int as i32)
 //   f64 build_seconds  u64 log lines  str each line (the model's whole log: geometry lines first)
 //   16 bytes: XXH3-128 of every byte before it, in xxHash's canonical (big-endian) form
-#include "job/config.h"
 #include "job/model_cache.h"
 
 #include <signal.h>
@@ -290,16 +289,16 @@ const std::string kSizesDiffer = "sizes do not match the scene's goal patches/ca
 
 }  // namespace
 
-std::string lighting_model_key_text(const JobConfig& job, const ModelSpec& model) {
+std::string lighting_model_key_text(const SceneSpec& scene, const ModelSpec& model) {
   KeyWriter k;
   k.field("ilp_lighting_model_cache_format", kLightingModelCacheVersion);
-  hash_scene_inputs(k, job);
+  hash_scene_inputs(k, scene);
   k.field("model", model);
   return k.text();
 }
 
-std::string lighting_model_key(const JobConfig& job, const ModelSpec& model) {
-  const std::string text = lighting_model_key_text(job, model);
+std::string lighting_model_key(const SceneSpec& scene, const ModelSpec& model) {
+  const std::string text = lighting_model_key_text(scene, model);
   return hex(canonical(XXH3_128bits(text.data(), text.size())));
 }
 

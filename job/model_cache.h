@@ -17,7 +17,7 @@
 #include <optional>
 #include <string>
 
-#include "job/config.h"
+#include "job/scene_spec.h"
 #include "optimizer/lighting_model.h"
 
 namespace ilp {
@@ -28,11 +28,11 @@ inline constexpr std::uint32_t kLightingModelCacheVersion = 8;  // 2: duplicate 
 
 // 32 lowercase hex digits: XXH3-128 of lighting_model_key_text. Never throws for a
 // missing or unreadable file (it contributes a marker instead).
-std::string lighting_model_key(const JobConfig& job, const ModelSpec& model);
+std::string lighting_model_key(const SceneSpec& scene, const ModelSpec& model);
 
-// The canonical text the key digests: the format version, hash_scene_inputs(job) and
+// The canonical text the key digests: the format version, hash_scene_inputs(scene) and
 // hash_fields(model), one field a line (to see which field two keys differ in).
-std::string lighting_model_key_text(const JobConfig& job, const ModelSpec& model);
+std::string lighting_model_key_text(const SceneSpec& scene, const ModelSpec& model);
 
 // Writes the operator part of `model` to `path`, atomically: to a temporary file
 // next to it that is renamed over `path` once complete (a previous file stays as it

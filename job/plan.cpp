@@ -3,6 +3,7 @@
 
 #include <sstream>
 
+#include "core/base/key_hash.h"
 #include "job/goal_rules.h"
 #include "job/products.h"
 
@@ -111,36 +112,9 @@ SearchSpec search_spec(const JobConfig& job, const VariantPlan& plan, const RunO
   layout.min_distance_m = job.constraints.min_distance_m;
   layout.mounting_surface = s.suspended_height_m ? "the suspension plane" : s.mounting_surface;
   layout.loc = s.layout_loc;
-  spec.goals = initial_goals(plan.goals, plan.maintenance_factor);
-  spec.objective = job.objective;
   spec.options = job.optimizer;
   spec.options.threads = worker_threads(job, run);
   return spec;
-}
-
-}  // namespace
-
-int worker_threads(const JobConfig& job, const RunOptions& run) { return run.threads.value_or(job.form_factors.threads); }
-
-SampleOperatorOptions operator_options(const JobConfig& job, const RunOptions& run) {
-  SampleOperatorOptions options;
-  options.strategy = job.sample.strategy;
-  options.sample_seed = job.sample.seed;
-  options.indirect = job.sample.indirect;
-  options.hit_block_patches = job.sample.hit_block_patches;
-  options.form_factors = job.form_factors;
-  options.direct_light = job.direct_light;
-  options.form_factors.threads = options.direct_light.threads = worker_threads(job, run);
-  return options;
-}
-
-ExactSolveOptions exact_options(const JobConfig& job, const RunOptions& run) {
-  ExactSolveOptions options;
-  options.form_factors = job.form_factors;
-  options.direct_light = job.direct_light;
-  options.radiosity = job.radiosity;
-  options.form_factors.threads = options.direct_light.threads = options.radiosity.threads = worker_threads(job, run);
-  return options;
 }
 
 JobGoals job_goals(const JobConfig& job) {
@@ -151,25 +125,27 @@ JobGoals job_goals(const JobConfig& job) {
   return out;
 }
 
-double initial_target(GoalMetric metric, double maintained, double maintenance_factor) {
-  return metric_rule(metric).lux ? maintained / maintenance_factor : maintained;
-}
-
+// Every line at its initial target (GoalSpec, as the search and the verification judge).
 std::vector<GoalSpec> initial_goals(const JobGoals& goals, double maintenance_factor) {
   std::vector<GoalSpec> out;
   for (const GoalLine& g : goals.lines) out.push_back({g.name, g.metric, initial_target(g.metric, g.target, maintenance_factor)});
   return out;
 }
 
-void set_goal_target(JobGoals& goals, const std::string& key, double value) {
-  goal_rules::apply(
-      goals.lines, key, value, [&](const std::string& rule) -> void { throw ConfigError("--set " + key + ": " + rule); },
-      [&](const std::string& rule) -> void {
-        throw ConfigError("--set " + key + " = " + goal_rules::format_number(value) + ": " + rule);
-      });
+// What the outputs cost, from output.formats.
+OutputWork output_work(const OutputSettings& output) {
+  OutputWork work;
+  for (const std::string& key : output.formats) {
+    const OutputFormat& f = *find_output_format(key);
+    work.patch_files = work.patch_files || f.per_patch;
+    work.renders = work.renders || f.rendered;
+    work.plan_render = work.plan_render || f.renders_plan;
+  }
+  return work;
 }
 
-std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
+// The variants of a job with one search (a single-search job, or one group's job).
+std::vector<VariantPlan> plan_variants(const JobConfig& job, const RunOptions& run) {
   if (!job.search) {
     // A forward job (every luminaire placed, light computed, nothing chosen) is for
     // `ilp solve` and `ilp accuracy`: the message says so rather than only what is missing.
@@ -199,20 +175,121 @@ std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run) {
     plan.maintenance_factor = product.maintenance_factor.value_or(job.maintenance_factor);
     plan.goals = job_goals(job);
     plan.verification = {job.verification, exact_options(job, run), operator_options(job, run), worker_threads(job, run)};
-    for (const std::string& key : job.output.formats) {
-      const OutputFormat& f = *find_output_format(key);
-      plan.outputs.patch_files = plan.outputs.patch_files || f.per_patch;
-      plan.outputs.renders = plan.outputs.renders || f.rendered;
-      plan.outputs.plan_render = plan.outputs.plan_render || f.renders_plan;
-    }
+    plan.outputs = output_work(job.output);
     plan.source = job.path;
     plan.model = model_spec(job, plan.product, run);
     plan.search = search_spec(job, plan, run);
+    plan.search = search_at(plan, plan.goals);
     plan.scenarios = job.scenarios;
     for (ScenarioSpec& s : plan.scenarios)
       for (GoalSpec& g : s.goals)
         g.target = initial_target(g.metric, g.target, plan.maintenance_factor);
     out.push_back(std::move(plan));
+  }
+  return out;
+}
+
+SearchSurfaces search_surfaces(const LuminaireSearch& s) {
+  return {s.mounting_surface, s.mounting_loc, s.suspended_height_m.has_value(), s.floor_surface, s.floor_loc};
+}
+
+}  // namespace
+
+int worker_threads(const JobConfig& job, const RunOptions& run) { return run.threads.value_or(job.form_factors.threads); }
+
+SampleOperatorOptions operator_options(const JobConfig& job, const RunOptions& run) {
+  SampleOperatorOptions options;
+  options.strategy = job.sample.strategy;
+  options.sample_seed = job.sample.seed;
+  options.indirect = job.sample.indirect;
+  options.hit_block_patches = job.sample.hit_block_patches;
+  options.form_factors = job.form_factors;
+  options.direct_light = job.direct_light;
+  options.form_factors.threads = options.direct_light.threads = worker_threads(job, run);
+  return options;
+}
+
+ExactSolveOptions exact_options(const JobConfig& job, const RunOptions& run) {
+  ExactSolveOptions options;
+  options.form_factors = job.form_factors;
+  options.direct_light = job.direct_light;
+  options.radiosity = job.radiosity;
+  options.form_factors.threads = options.direct_light.threads = options.radiosity.threads = worker_threads(job, run);
+  return options;
+}
+
+double initial_target(GoalMetric metric, double maintained, double maintenance_factor) {
+  return metric_rule(metric).lux ? maintained / maintenance_factor : maintained;
+}
+
+SearchSpec search_at(const VariantPlan& variant, const JobGoals& goals) {
+  SearchSpec spec = variant.search;
+  spec.goals = initial_goals(goals, variant.maintenance_factor);
+  spec.objective = goals.objective;
+  return spec;
+}
+
+void set_goal_target(JobGoals& goals, const std::string& key, double value) {
+  goal_rules::apply(
+      goals.lines, key, value, [&](const std::string& rule) -> void { throw ConfigError("--set " + key + ": " + rule); },
+      [&](const std::string& rule) -> void {
+        throw ConfigError("--set " + key + " = " + goal_rules::format_number(value) + ": " + rule);
+      });
+}
+
+// Each JobConfig field reaches the scene through SceneSpec or is no scene input (the
+// comment in hash_scene_inputs, job/job_scene.cpp, and the test CacheKey.SceneInputsCover
+// EveryJobConfigField say which).
+static_assert(field_count<JobConfig>() == 45,
+              "JobConfig changed: if load_job_scene reads the new field, carry it in SceneSpec (and hash it in "
+              "hash_scene_inputs); if the operator depends on it otherwise, it must reach it through ModelSpec");
+SceneSpec scene_spec(const JobConfig& job) {
+  SceneSpec s;
+  s.path = job.path;
+  s.mesh_path = job.mesh_path;
+  s.mesh_loc = job.mesh_loc;
+  s.mesh_read = job.mesh_read;
+  s.scene = job.scene;
+  s.surface_split = job.surface_split;
+  s.max_patch_edge_loc = job.max_patch_edge_loc;
+  s.up_axis_loc = job.up_axis_loc;
+  s.scale_to_m_loc = job.scale_to_m_loc;
+  s.reflectance = job.reflectance;
+  s.default_reflectance = job.default_reflectance;
+  s.emitting_surfaces = job.emitting_surfaces;
+  s.add_floors = job.add_floors;
+  s.exclude_surfaces = job.exclude_surfaces;
+  s.exclude_surface_locs = job.exclude_surface_locs;
+  s.two_sided_surfaces = job.two_sided_surfaces;
+  s.two_sided_locs = job.two_sided_locs;
+  s.two_sided_all = job.two_sided_all;
+  s.luminaire_size_m = job.luminaire_size_m;
+  s.luminaires = job.luminaires;
+  s.ignore_material_kd = job.ignore_material_kd;
+  s.keep_surfaces = job.keep_surfaces;
+  s.report_surfaces = job.report_surfaces;
+  s.report_surface_locs = job.report_surface_locs;
+  for (const GoalSetting& g : job.goals) s.goals.push_back({g.name, g.surfaces, g.surfaces_loc});
+  if (job.search) s.search = search_surfaces(*job.search);
+  return s;
+}
+
+JobPlan plan_job(const JobConfig& job, const RunOptions& run) {
+  JobPlan out;
+  out.source = job.path;
+  out.threads = worker_threads(job, run);
+  out.goals = job_goals(job);
+  if (job.groups.empty()) {
+    out.scene = scene_spec(job);
+    out.variants = plan_variants(job, run);
+    return out;
+  }
+  // The groups share the room (group_job changes only the search and the products); the
+  // scene is read through the first group's job, which has a search.
+  for (std::size_t g = 0; g < job.groups.size(); ++g) {
+    const JobConfig one = group_job(job, g);
+    if (g == 0) out.scene = scene_spec(one);
+    out.groups.push_back({job.groups[g].name, job.groups[g].loc, search_surfaces(*one.search), plan_variants(one, run)});
   }
   return out;
 }

@@ -1,8 +1,10 @@
 // From the job file to what each stage is given: the translation happens here, once,
-// and core/ and optimizer/ see only these stage inputs (options structs, specs), never
-// the schema. One plan per product variant: the luminaire it places (the plain panel
+// and the stages (job/'s runners, core/ and optimizer/) see only the plan and its stage
+// inputs (options structs, specs), never the schema. A JobPlan holds the scene's spec,
+// the goals and one plan per product variant: the luminaire it places (the plain panel
 // of the flux_lm/efficacy keys is a product too), the lighting model's spec, the
-// search's spec (goal targets already initial for the variant's maintenance factor).
+// search's spec (goal targets already initial for the variant's maintenance factor); a
+// job of luminaire groups holds each group's variants.
 #pragma once
 
 #include <optional>
@@ -12,6 +14,7 @@
 #include "core/light/luminaire_product.h"
 #include "core/cost/machine_speed.h"
 #include "core/operator/sample_operator.h"
+#include "job/scene_spec.h"
 #include "job/verification_spec.h"
 #include "optimizer/lighting_model.h"
 #include "optimizer/scenario_spec.h"
@@ -57,13 +60,10 @@ struct JobGoals {
   Objective objective = Objective::min_power;
   std::optional<double> max_power_density_w_per_m2;
 };
-JobGoals job_goals(const JobConfig& job);
 
 // The target a goal is searched and verified at: initial = maintained / maintenance
 // factor for lux metrics, the target itself for ratios (U0) and UGR.
 double initial_target(GoalMetric metric, double maintained, double maintenance_factor);
-// Every line at its initial target (GoalSpec, as the search and the verification judge).
-std::vector<GoalSpec> initial_goals(const JobGoals& goals, double maintenance_factor);
 // Sets the target of the line `key` names ("goals.NAME.average_lux", ".min_lux",
 // ".max_lux", ".uniformity", ...) to `value`, checked as the job file is; throws
 // ConfigError "--set KEY ..." naming the key or the rule broken.
@@ -89,10 +89,38 @@ struct VariantPlan {
   std::vector<ScenarioSpec> scenarios;  // the job's other lighting states, goals at initial targets
 };
 
-// Every variant the job searches: each product at each rotation, or the plain panel.
-// Throws ConfigError for a job that places no luminaires (no mounting surface or no
-// goals), or a product whose photometric file cannot be used.
-std::vector<VariantPlan> plan_job(const JobConfig& job, const RunOptions& run = {});
+// The variant's search at the targets of `goals` (the plan's, a sweep point's or a
+// verification round's): every line at its initial target for the variant's
+// maintenance factor (GoalSpec, as the search and the verification judge), the goals'
+// objective. The one place maintained lines become the search's.
+SearchSpec search_at(const VariantPlan& variant, const JobGoals& goals);
+
+// One luminaire group of a job of groups (luminaires.groups[g]): its name, where the
+// job gives it, the surfaces its search needs of the mesh, and its variants.
+struct GroupPlan {
+  std::string name;
+  FileLoc loc;
+  SearchSurfaces surfaces;
+  std::vector<VariantPlan> variants;
+};
+
+// The whole job as the stages take it.
+struct JobPlan {
+  std::string source;                 // the job file, for messages
+  SceneSpec scene;                    // what the scene stage reads (group 0's search surfaces for groups)
+  int threads = 0;                    // worker threads (0: every core)
+  JobGoals goals;                     // the job's goal lines, maintained
+  std::vector<VariantPlan> variants;  // a single search: each product at each rotation (empty with groups)
+  std::vector<GroupPlan> groups;      // luminaires.groups, searched together (then no variants)
+};
+
+// The scene stage's input of a job (the whole of it for `ilp solve`, `inspect`, `accuracy`).
+SceneSpec scene_spec(const JobConfig& job);
+
+// Every variant the job searches, each product at each rotation or the plain panel; or
+// every group's. Throws ConfigError for a job that places no luminaires (no mounting
+// surface or no goals), or a product whose photometric file cannot be used.
+JobPlan plan_job(const JobConfig& job, const RunOptions& run = {});
 
 
 }  // namespace ilp

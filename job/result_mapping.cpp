@@ -242,7 +242,7 @@ ResultRecord make_record(const std::string& program_version, const PreparedJob& 
                             floor_z ? std::optional<double>(l.position_m.z() - *floor_z) : std::nullopt,
                             luminaire.tilt_deg, group ? group->name : std::string()});
   }
-  const VerdictLines lines = verdict_lines(job_goals(job), outcome);
+  const VerdictLines lines = verdict_lines(prepared.plan.goals, outcome);
   r.goals = lines.goals;
   r.constraints = lines.constraints;
   r.scenarios = scenario_records(job, outcome);

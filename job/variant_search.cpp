@@ -1,7 +1,5 @@
 #include "job/variant_search.h"
 
-#include "job/config.h"
-
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -17,9 +15,7 @@ namespace {
 
 // The search luminaire's least power for every count, at the targets of `goals`.
 double least_power_w(const PreparedJob& prepared, const JobGoals& goals) {
-  SearchSpec spec = prepared.plan.search;
-  spec.goals = initial_goals(goals, prepared.plan.maintenance_factor);
-  return least_layout_power_w(prepared.model, spec);
+  return least_layout_power_w(prepared.model, search_at(prepared.plan, goals));
 }
 
 // The names of the lines an outcome does not meet: "desks uniformity, min_distance_m".
@@ -63,13 +59,13 @@ std::string timing_note(const JobOutcome& outcome) {
 
 }  // namespace
 
-std::vector<CostedGeometry> cost_variants(const SharedScene& shared, const JobConfig& job,
-                                          const std::vector<VariantPlan>& plans, const RunOptions& run) {
+std::vector<CostedGeometry> cost_variants(const SharedScene& shared, const std::vector<VariantPlan>& plans,
+                                          const RunOptions& run) {
   const std::optional<MemoryBudget> memory = memory_budget(run.max_memory_bytes);
-  const MachineCosts costs = job_machine_costs(worker_threads(job, run), run);
   std::vector<CostedGeometry> costed;
   for (const VariantPlan& plan : plans)
-    costed.push_back(costed_geometry(plan, shared.loaded->scene, memory, costs, shared.caster.get()));
+    costed.push_back(costed_geometry(plan, shared.loaded->scene, memory, job_machine_costs(plan.model.threads, run),
+                                     shared.caster.get()));
   return costed;
 }
 
@@ -80,7 +76,7 @@ std::vector<CostEstimate> estimates_of(const std::vector<CostedGeometry>& costed
 }
 
 std::vector<PreparedJob> prepare_costed(SharedScene& shared, bool takes_scene, std::vector<CostedGeometry> costed,
-                                        const JobConfig& job, const std::vector<VariantPlan>& plans,
+                                        const SceneSpec& scene, const std::vector<VariantPlan>& plans,
                                         const RunOptions& run, const ProgressCallback& progress,
                                         const std::string& cache_dir, const LogSink& log,
                                         const std::function<void(const PreparedJob&)>& prepared_log) {
@@ -94,31 +90,31 @@ std::vector<PreparedJob> prepare_costed(SharedScene& shared, bool takes_scene, s
       log(line.str());
       for (const std::string& note : plan.product.notes) log(note);
     }
-    out.push_back(prepare_variant(shared, takes_scene && v + 1 == plans.size(), std::move(costed[v]), job, plan, run,
+    out.push_back(prepare_variant(shared, takes_scene && v + 1 == plans.size(), std::move(costed[v]), scene, plan, run,
                                   progress, cache_dir, log));
     if (prepared_log) prepared_log(out.back());
   }
   return out;
 }
 
-std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vector<VariantPlan>& plans,
-                                          const RunOptions& run, const ProgressCallback& progress,
+std::vector<PreparedJob> prepare_variants(const JobPlan& job, const RunOptions& run, const ProgressCallback& progress,
                                           const std::string& cache_dir, const LogSink& log,
                                           const std::function<void(const PreparedJob&)>& prepared_log) {
+  const std::vector<VariantPlan>& plans = job.variants;
   if (plans.empty()) return {};
   // The scene, its BVH and every variant's geometry once (none depends on another variant).
-  SharedScene shared = load_shared_scene(job, run);
+  SharedScene shared = load_shared_scene(job.scene, job.threads, run);
   log_shared_scene(shared, run, log);
-  std::vector<CostedGeometry> costed = cost_variants(shared, job, plans, run);
+  std::vector<CostedGeometry> costed = cost_variants(shared, plans, run);
   if (plans.size() > 1 && log) {
     // The whole run's estimate before the first variant: what a user plans with.
     std::ostringstream line;
     line << "estimate: the whole run, building every variant's operator and verifying its layout: about "
-         << std::fixed << std::setprecision(1) << whole_run_seconds(job.objective, estimates_of(costed)) << " s for its "
+         << std::fixed << std::setprecision(1) << whole_run_seconds(job.goals.objective, estimates_of(costed)) << " s for its "
          << plans.size() << " variants, one after another";
     log(line.str());
   }
-  return prepare_costed(shared, true, std::move(costed), job, plans, run, progress, cache_dir, log, prepared_log);
+  return prepare_costed(shared, true, std::move(costed), job.scene, plans, run, progress, cache_dir, log, prepared_log);
 }
 
 VariantChoice solve_variants(const std::vector<PreparedJob>& prepared, const JobGoals& goals,

@@ -12,10 +12,9 @@
 
 namespace ilp {
 
-// Every variant of the plan prepared, its notes and the run log's lines sent to `log`,
-// then the prepared variant to `prepared_log` (its build line).
-std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vector<VariantPlan>& plans,
-                                          const RunOptions& run, const ProgressCallback& progress,
+// Every variant of the plan (job.variants) prepared, its notes and the run log's lines
+// sent to `log`, then the prepared variant to `prepared_log` (its build line).
+std::vector<PreparedJob> prepare_variants(const JobPlan& job, const RunOptions& run, const ProgressCallback& progress,
                                           const std::string& cache_dir, const LogSink& log,
                                           const std::function<void(const PreparedJob&)>& prepared_log = {});
 
@@ -23,11 +22,11 @@ std::vector<PreparedJob> prepare_variants(const JobConfig& job, const std::vecto
 // one scene (luminaire groups): every variant's costed geometry on the shared scene (none
 // depends on another), then the variants prepared from it (the last one takes the
 // shared scene when `takes_scene`).
-std::vector<CostedGeometry> cost_variants(const SharedScene& shared, const JobConfig& job,
-                                          const std::vector<VariantPlan>& plans, const RunOptions& run);
+std::vector<CostedGeometry> cost_variants(const SharedScene& shared, const std::vector<VariantPlan>& plans,
+                                          const RunOptions& run);
 std::vector<CostEstimate> estimates_of(const std::vector<CostedGeometry>& costed);
 std::vector<PreparedJob> prepare_costed(SharedScene& shared, bool takes_scene, std::vector<CostedGeometry> costed,
-                                        const JobConfig& job, const std::vector<VariantPlan>& plans,
+                                        const SceneSpec& scene, const std::vector<VariantPlan>& plans,
                                         const RunOptions& run, const ProgressCallback& progress,
                                         const std::string& cache_dir, const LogSink& log,
                                         const std::function<void(const PreparedJob&)>& prepared_log = {});

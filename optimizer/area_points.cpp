@@ -1,5 +1,6 @@
 #include "optimizer/area_points.h"
 
+#include "core/base/setting.h"
 #include <cmath>
 #include <iomanip>
 #include <numbers>
@@ -63,10 +64,11 @@ ReceiverPoint eye_receiver(const UgrObserver& o) {
 
 std::vector<UgrObserver> area_observers(const Scene& scene, const RayCaster& caster, const GoalAreaSpec& area,
                                         std::optional<double> floor_z_m, const std::string& floor_surface) {
-  const std::string key = "goals." + area.name + ".ugr_max";
+  const std::string key = setting_name(Setting::goal_ugr_max, area.name);
   if (!floor_z_m)
-    throw ConfigError(located(area.loc, key + ": no floor to put the observers' eyes above: name "
-                                              "luminaires.floor_surface (or lay a grid over_surface the floor)"));
+    throw ConfigError(located(area.loc, key + ": no floor to put the observers' eyes above: name " +
+                                            setting_name(Setting::floor_surface) + " (or set " +
+                                            setting_name(Setting::grid_over_surface) + " to the floor)"));
   std::vector<UgrObserver> out;
   if (area.observers.empty()) {
     const Eigen::AlignedBox2d box = floor_box(scene, floor_surface);
@@ -81,7 +83,7 @@ std::vector<UgrObserver> area_observers(const Scene& scene, const RayCaster& cas
     const ObserverSpec& s = area.observers[i];
     UgrObserver o{{s.xy_m.x(), s.xy_m.y(), *floor_z_m + s.eye_height_m}, {s.view.x(), s.view.y(), 0.0}};
     if (const std::string why = eye_refusal(scene, caster, o.position_m); !why.empty())
-      throw ConfigError(located(s.loc, "goals." + area.name + ".observers[" + std::to_string(i) + "]: " + why));
+      throw ConfigError(located(s.loc, setting_name(Setting::goal_observers, area.name) + "[" + std::to_string(i) + "]: " + why));
     out.push_back(o);
   }
   return out;

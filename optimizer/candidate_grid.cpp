@@ -1,5 +1,6 @@
 #include "optimizer/candidate_grid.h"
 
+#include "core/base/setting.h"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -235,8 +236,8 @@ CandidateGrid::CandidateGrid(const Scene& scene, int wall_surface, const Eigen::
       throw std::invalid_argument((std::ostringstream() << "wall '" << name << "': its faces facing " << facing_text
                                                         << " lie in more than one plane (" << (a == 0 ? "x" : "y")
                                                         << " = " << plane << " and " << plane + d
-                                                        << " m): name one wall (scene.regions, or surfaces_from: "
-                                                           "connected)").str());
+                                                        << " m): name one wall (" << setting_name(Setting::regions) << ", or "
+                                                        << setting_name(Setting::surfaces_from) << ": connected)").str());
   }
   if (!(z_m > lowest && z_m < highest))
     throw std::out_of_range((std::ostringstream() << "at z = " << z_m << " m, outside wall '" << name << "' (z from "

@@ -1,5 +1,6 @@
 #include "optimizer/layout_search.h"
 
+#include "core/base/setting.h"
 #include <nlopt.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -99,13 +100,13 @@ class LayoutCoding {
       if (layout.array_spacing_m) a.spacing = (*layout.array_spacing_m)[axis];
       const double tolerance = 1e-9 * (1.0 + std::abs(a.hi));
       if (a.offset && (*a.offset < a.lo - tolerance || *a.offset > a.hi + tolerance))
-        throw ConfigError(located(layout.loc, "luminaires.array.offset_m: the first luminaire would not lie wholly on '" +
+        throw ConfigError(located(layout.loc, setting_name(Setting::array_offset) + ": the first luminaire would not lie wholly on '" +
                                                     layout.mounting_surface + "'"));
       const double reach = a.spacing ? *a.spacing * (a.count - 1) : 0.0;
       if (a.offset && a.spacing && *a.offset + reach > a.hi + tolerance)
-        throw ConfigError(located(layout.loc, "luminaires.array: the array does not fit on '" + layout.mounting_surface + "'"));
+        throw ConfigError(located(layout.loc, setting_name(Setting::array) + ": the array does not fit on '" + layout.mounting_surface + "'"));
       if (a.spacing && !a.offset && a.lo + reach > a.hi + tolerance)
-        throw ConfigError(located(layout.loc, "luminaires.array.spacing_m: the array is wider than '" +
+        throw ConfigError(located(layout.loc, setting_name(Setting::array_spacing) + ": the array is wider than '" +
                                                     layout.mounting_surface + "'"));
       const double even = (a.hi - a.lo) / a.count;
       if (!a.offset) {
@@ -493,7 +494,8 @@ std::vector<int> searched_counts(const LayoutSpec& layout) {
   } else {
     for (int n = layout.count_min; n <= layout.count_max; ++n) counts.push_back(n);
   }
-  if (counts.empty()) throw std::invalid_argument("no luminaire count is allowed by luminaires.count and constraints.max_luminaires");
+  if (counts.empty()) throw std::invalid_argument("no luminaire count is allowed by " + setting_name(Setting::count) + " and " +
+                                                    setting_name(Setting::max_luminaires));
   return counts;
 }
 
@@ -756,7 +758,7 @@ std::string crowded_members(const SearchSpec& spec, const Arrangement& a) {
       out << std::fixed << std::setprecision(2);
       if (d.norm() < spec.layout.min_distance_m - kTouchM) {
         out << "infeasible: the members at " << metres(a.xy_m[i]) << " and " << metres(a.xy_m[j]) << " are " << d.norm()
-            << " m apart, closer than constraints.min_distance_m = " << spec.layout.min_distance_m << " m";
+            << " m apart, closer than " << setting_name(Setting::min_distance) << " = " << spec.layout.min_distance_m << " m";
         return out.str();
       }
       if (d.x() < 2.0 * half.x() - kTouchM && d.y() < 2.0 * half.y() - kTouchM) {
@@ -775,11 +777,10 @@ std::vector<Arrangement> layout_arrangements(const LightingModel& model, const S
   try {
     arrangements = regular_arrangements(spec.layout, arrangement_frame(model, spec));
   } catch (const std::length_error& e) {
-    throw ConfigError(located(spec.layout.loc, std::string("luminaires.layout: ") + e.what()));
+    throw ConfigError(located(spec.layout.loc, setting_name(Setting::layout) + ": " + e.what()));
   }
   if (arrangements.empty())
-    throw ConfigError(located(spec.layout.loc, "luminaires.layout: no arrangement of this layout has a luminaire count "
-                                               "in [" + std::to_string(spec.layout.count_min) + ", " +
+    throw ConfigError(located(spec.layout.loc, setting_name(Setting::layout) + ": no arrangement of this layout has a luminaire count in [" + std::to_string(spec.layout.count_min) + ", " +
                                                std::to_string(spec.layout.count_max) + "] in the mounting zone"));
   return arrangements;
 }

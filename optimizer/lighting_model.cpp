@@ -1,5 +1,7 @@
 #include "optimizer/lighting_model.h"
 
+#include "core/base/setting.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -35,16 +37,21 @@ CandidateGridOptions grid_options(const CandidateSpec& search, const Eigen::Alig
           .zone_m = zone};
 }
 
+// What to set where a height is measured from a floor the job does not name.
+std::string floor_hint() {
+  return setting_name(Setting::floor_surface) + " (or set " + setting_name(Setting::grid_over_surface) + " to the floor)";
+}
+
 // Suspended luminaires: a plane over the zone at the height above the floor, below
 // the scene's top.
 CandidateGrid suspension_grid(const Scene& scene, const CandidateSpec& search, const Eigen::AlignedBox2d& zone,
                               std::optional<double> floor_z_m) {
-  const std::string key = "luminaires.suspended.height_m";
+  const std::string key = setting_name(Setting::suspended_height);
   if (!floor_z_m)
-    throw ConfigError(located(search.suspended_loc, key + ": no floor to measure from: name luminaires.floor_surface "
-                                                          "(or lay a grid over_surface the floor)"));
+    throw ConfigError(located(search.suspended_loc, key + ": no floor to measure from: name " + floor_hint()));
   if (zone.isEmpty())
-    throw ConfigError(located(search.suspended_loc, key + ": no zone to hang over: give luminaires.zone or goals"));
+    throw ConfigError(located(search.suspended_loc,
+                              key + ": no zone to hang over: give " + setting_name(Setting::zone) + " or goals"));
   const double z = *floor_z_m + *search.suspended_height_m;
   if (!(z < scene.bounds_m.max().z()))
     throw ConfigError(located(search.suspended_loc, (std::ostringstream() << key << " = " << *search.suspended_height_m
@@ -62,10 +69,9 @@ CandidateGrid suspension_grid(const Scene& scene, const CandidateSpec& search, c
 CandidateGrid wall_grid(const Scene& scene, int surface, const CandidateSpec& search, const Eigen::AlignedBox2d& zone,
                         std::optional<double> floor_z_m) {
   const WallMountSpec& wall = *search.wall;
-  const std::string key = "luminaires.on_wall.height_m";
+  const std::string key = setting_name(Setting::wall_height);
   if (!floor_z_m)
-    throw ConfigError(located(wall.height_loc, key + ": no floor to measure from: name luminaires.floor_surface "
-                                                     "(or lay a grid over_surface the floor)"));
+    throw ConfigError(located(wall.height_loc, key + ": no floor to measure from: name " + floor_hint()));
   const double z = *floor_z_m + wall.height_m;
   if (!(z < scene.bounds_m.max().z()))
     throw ConfigError(located(wall.height_loc, (std::ostringstream() << key << " = " << wall.height_m << ": at z = " << z
@@ -77,13 +83,13 @@ CandidateGrid wall_grid(const Scene& scene, int surface, const CandidateSpec& se
     throw ConfigError(located(wall.height_loc, key + " = " + (std::ostringstream() << wall.height_m).str() + ": " + e.what()));
   } catch (const std::invalid_argument& e) {
     if (search.zone_m && std::string_view(e.what()).find("zone") != std::string_view::npos)
-      throw ConfigError(located(search.zone_loc, std::string("luminaires.zone: ") + e.what()));
+      throw ConfigError(located(search.zone_loc, setting_name(Setting::zone) + ": " + e.what()));
     if (std::string_view(e.what()).find("facing must be") != std::string_view::npos)
-      throw ConfigError(located(wall.facing_loc, std::string("luminaires.on_wall.facing: ") + e.what()));
-    throw ConfigError(located(search.mounting_loc, std::string("luminaires.on_wall.surface: ") + e.what()));
+      throw ConfigError(located(wall.facing_loc, setting_name(Setting::wall_facing) + ": " + e.what()));
+    throw ConfigError(located(search.mounting_loc, setting_name(Setting::wall_surface) + ": " + e.what()));
   } catch (const std::length_error& e) {
     const FileLoc& at = search.spacing_loc.file.empty() ? search.mounting_loc : search.spacing_loc;
-    throw ConfigError(located(at, std::string("luminaires.candidate_spacing_m: ") + e.what()));
+    throw ConfigError(located(at, setting_name(Setting::candidate_spacing) + ": " + e.what()));
   }
 }
 
@@ -93,26 +99,26 @@ CandidateGrid make_grid(const Scene& scene, const CandidateSpec& search, const E
   if (search.wall) {
     const int surface = scene.find_surface(search.mounting_surface);
     if (surface < 0)
-      throw ConfigError(located(search.mounting_loc, "luminaires.on_wall.surface: unknown surface '" +
+      throw ConfigError(located(search.mounting_loc, setting_name(Setting::wall_surface) + ": unknown surface '" +
                                                          search.mounting_surface + "'"));
     return wall_grid(scene, surface, search, zone, floor_z_m);
   }
   const int surface = scene.find_surface(search.mounting_surface);
   if (surface < 0)
-    throw ConfigError(located(search.mounting_loc, "luminaires.mounting_surface: unknown surface '" +
+    throw ConfigError(located(search.mounting_loc, setting_name(Setting::mounting_surface) + ": unknown surface '" +
                                                        search.mounting_surface + "'"));
   try {
     return CandidateGrid(scene, surface, grid_options(search, zone));
   } catch (const std::invalid_argument& e) {
     if (search.zone_m && std::string_view(e.what()).find("zone") != std::string_view::npos)
-      throw ConfigError(located(search.zone_loc, std::string("luminaires.zone: ") + e.what()));
-    throw ConfigError(located(search.mounting_loc, std::string("luminaires.mounting_surface: ") + e.what()));
+      throw ConfigError(located(search.zone_loc, setting_name(Setting::zone) + ": " + e.what()));
+    throw ConfigError(located(search.mounting_loc, setting_name(Setting::mounting_surface) + ": " + e.what()));
   } catch (const std::length_error& e) {
     const FileLoc& at = search.spacing_loc.file.empty() ? search.mounting_loc : search.spacing_loc;
-    throw ConfigError(located(at, std::string("luminaires.candidate_spacing_m: ") + e.what()));
+    throw ConfigError(located(at, setting_name(Setting::candidate_spacing) + ": " + e.what()));
   } catch (const std::out_of_range& e) {
     const FileLoc& at = search.offset_loc.file.empty() ? search.mounting_loc : search.offset_loc;
-    throw ConfigError(located(at, std::string("luminaires.mount_offset_m: ") + e.what()));
+    throw ConfigError(located(at, setting_name(Setting::mount_offset) + ": " + e.what()));
   }
 }
 
@@ -131,7 +137,7 @@ std::optional<double> floor_height_m(const Scene& scene, const ModelSpec& spec, 
   const int surface = surface_name.empty() ? -1 : scene.find_surface(surface_name);
   if (surface < 0) {
     if (!spec.candidates.floor_surface.empty())
-      throw ConfigError(located(spec.candidates.floor_loc, "luminaires.floor_surface: unknown surface '" + surface_name + "'"));
+      throw ConfigError(located(spec.candidates.floor_loc, setting_name(Setting::floor_surface) + ": unknown surface '" + surface_name + "'"));
     surface_name.clear();
     return std::nullopt;
   }
@@ -144,7 +150,7 @@ std::optional<double> floor_height_m(const Scene& scene, const ModelSpec& spec, 
   if (!(area > 0.0)) {
     if (!spec.candidates.floor_surface.empty())
       throw ConfigError(located(spec.candidates.floor_loc,
-                                "luminaires.floor_surface: '" + surface_name + "' has no patch facing up"));
+                                setting_name(Setting::floor_surface) + ": '" + surface_name + "' has no patch facing up"));
     surface_name.clear();
     return std::nullopt;
   }
@@ -287,7 +293,7 @@ void log_candidates(LightingModel& model, const CandidateSpec& spec) {
     std::ostringstream zone;
     zone << std::fixed << std::setprecision(3) << "mounting zone: x [" << model.zone_m.min().x() << ", "
          << model.zone_m.max().x() << "] y [" << model.zone_m.min().y() << ", " << model.zone_m.max().y() << "] m ("
-         << (spec.zone_m ? std::string("luminaires.zone") : "the goals' outline + " + std::to_string(*spec.zone_margin_m).substr(0, 4) + " m") << ")";
+         << (spec.zone_m ? setting_name(Setting::zone) : "the goals' outline + " + std::to_string(*spec.zone_margin_m).substr(0, 4) + " m") << ")";
     model.log.push_back(zone.str());
   }
   if (model.grid.ignored_patches() > 0)
@@ -306,8 +312,8 @@ void lay_area_points(LightingModel& model, const Scene& job_scene, const ModelSp
     const auto first = static_cast<Eigen::Index>(model.goal_patches.size() + model.goal_points.size());
     if (s.kind == AreaKind::cylindrical) {
       if (!model.floor_z_m)
-        throw ConfigError(located(s.loc, "goals." + s.name + ".cylindrical_lux: no floor to measure the eye height "
-                                         "from: name luminaires.floor_surface (or lay the grid over_surface the floor)"));
+        throw ConfigError(located(s.loc, setting_name(Setting::goal_cylindrical_lux, s.name) +
+                                         ": no floor to measure the eye height from: name " + floor_hint()));
       const CalcGrid& grid = model.grids.at(static_cast<std::size_t>(s.grid));
       const std::vector<ReceiverPoint> points = cylinder_receivers(grid, *model.floor_z_m + s.eye_height_m);
       model.goal_points.insert(model.goal_points.end(), points.begin(), points.end());

@@ -1,5 +1,7 @@
 #include "core/cost/cost_model.h"
 
+#include "core/base/setting.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -170,9 +172,10 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                               : 0.0;
   const double D_goal = 8.0 * G * L;
   const PairCosts pair = pair_costs(c, m);
-  const std::string grid_setting = "grids[].spacing_m (fewer points) or grids[].max_points";
+  const std::string grid_setting =
+      setting_name(Setting::grid_spacing) + " (fewer points) or " + setting_name(Setting::grid_max_points);
   out.phases.push_back({kScenePhase, n * m.scene_patch_s, 0.0,
-                        "scene.max_patch_edge_m (fewer patches)"});
+                        setting_name(Setting::patch_edge) + " (fewer patches)"});
   if (c.grid_points > 0)
     out.phases.push_back({"laying grids (" + std::to_string(c.grid_points) + " points at most)",
                           P * m.grid_rays_per_cell * m.gather_ray_s + d(c.grid_outline_tests) * m.outline_test_s,
@@ -181,9 +184,9 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                         ((G - P) * c.rays_per_patch + P * point_rays) * m.gather_ray_s +
                             ((G - P) * pair.precise + P * pair.point) * L,
                         goal_nnz * kRowNnzPeakBytes + 2.0 * D_goal,
-                        P > 0 ? grid_setting + ", or luminaires.candidate_spacing_m (fewer candidates)"
-                              : "scene.max_patch_edge_m (fewer goal patches) or luminaires.candidate_spacing_m (fewer "
-                                "candidates)"});
+                        P > 0 ? grid_setting + ", or " + setting_name(Setting::candidate_spacing) + " (fewer candidates)"
+                              : setting_name(Setting::patch_edge) + " (fewer goal patches) or " +
+                                    setting_name(Setting::candidate_spacing) + " (fewer candidates)"});
   auto hit_patches = [&](double rows, double rays) {
     return c.area_shares.empty() ? expected_hit_patches(rows, rays, pop, m) : expected_hit_patches(rows, rays, c.area_shares, m);
   };
@@ -216,7 +219,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                       held + 2.0 * sample_nnz * kRowNnzBytes +
                           (shares > 1 ? std::max(3.0 * 8.0 * kk * Lr, 8.0 * kk * Ls + 2.0 * 8.0 * block * Ls + 2.0 * first_bytes)
                                       : 3.0 * 8.0 * kk * Lr + 2.0 * 8.0 * block * Lr + 2.0 * first_bytes),
-                      "luminaires.candidate_spacing_m (fewer candidates) or " + setting});
+                      setting_name(Setting::candidate_spacing) + " (fewer candidates) or " + setting});
     phases.push_back({label + "k x k solve (" + std::to_string(c.channels) + (c.channels == 1 ? " channel)" : " channels)"),
                       interreflection_flops(kk, Ls, c.channels, c.rays_per_patch, m) * m.sparse_flop_s,
                       held + 2.0 * sample_nnz * kRowNnzBytes + 6.0 * 8.0 * kk * Ls + first_bytes + 4.0 * D_goal,
@@ -224,10 +227,11 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                       P > 0 && first_bytes > 0.0 ? setting + ", or " + grid_setting : setting});
     return phases;
   };
-  const std::string k_setting = "solver.sample_fraction, solver.sample_size or solver.target_error (k)";
+  const std::string k_setting = setting_name(Setting::sample_fraction) + ", " + setting_name(Setting::sample_size) + " or " +
+                                setting_name(Setting::target_error) + " (k)";
   if (reflecting && c.pilot_builds > 0 && c.pilot_size > 0) {
     PhaseEstimate pilot{"pilot samples (" + std::to_string(c.pilot_builds) + " x k = " + std::to_string(c.pilot_size) + ")",
-                        0.0, 0.0, "solver.pilot_fraction or solver.error_samples"};
+                        0.0, 0.0, setting_name(Setting::pilot_fraction) + " or " + setting_name(Setting::error_samples)};
     for (const PhaseEstimate& p : build(d(c.pilot_size), "", pilot.setting)) {
       pilot.seconds += c.pilot_builds * p.seconds;
       pilot.bytes = std::max(pilot.bytes, p.bytes);
@@ -238,7 +242,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
     for (PhaseEstimate& p : build(k, "", k_setting)) out.phases.push_back(std::move(p));
   out.phases.push_back({"T (goal patches x sources)",
                         c.channels * G * std::min<double>(k, c.rays_per_patch) * L * 2.0 * m.dense_flop_s,
-                        5.0 * D_goal, "luminaires.candidate_spacing_m (fewer candidates)"});
+                        5.0 * D_goal, setting_name(Setting::candidate_spacing) + " (fewer candidates)"});
   const double model_bytes = 2.0 * D_goal;  // the candidate columns, total and direct
   if (c.evaluations > 0)
     out.phases.push_back({"search (" + std::to_string(c.evaluations) + " evaluations)",
@@ -247,7 +251,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                                              m.blend_mac_s;
                             return c.search_max_seconds > 0.0 ? std::min(s, c.search_max_seconds) : s;
                           }(),
-                          model_bytes + 4.0 * G * L, "optimizer.max_evaluations"});
+                          model_bytes + 4.0 * G * L, setting_name(Setting::max_evaluations)});
   const double Lv = c.luminaires + 1.0;
   if (c.verify == CostCounts::Verify::exact) {
     // Goal patches' rows and the points' gathers at verify_rays, every other row at
@@ -268,7 +272,7 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                               std::to_string(static_cast<int>(other_rays)) + " elsewhere (up to " +
                               std::to_string(static_cast<int>(indirect)) + "), " + rounds_text(c.verify_rounds) + ")",
                           per, model_bytes + exact_verification_bytes(c.patches, row_rays),
-                          "verification.rays_per_patch or verification.method"});
+                          setting_name(Setting::verification_rays) + " or " + setting_name(Setting::verification_method)});
   } else if (c.verify == CostCounts::Verify::sample) {
     const double kv = d(c.verify_sample_size);
     const double hits = std::max(0.0, hit_patches(kv + G, c.verify_rays) - kv - G);
@@ -282,14 +286,15 @@ CostEstimate estimate_job_cost(const CostCounts& c, const MachineCosts& m) {
                           model_bytes + n * kPatchBytes +
                               sample_verification_bytes(c.verify_sample_size, c.goal_patches + c.grid_points, c.luminaires + 1,
                                                        c.verify_rays),
-                          "verification.sample_fraction or verification.method"});
+                          setting_name(Setting::verification_sample_fraction) + " or " +
+                              setting_name(Setting::verification_method)});
   }
   if (c.writes_outputs)
     out.phases.push_back({kOutputPhase,
                           m.output_base_s + (c.output_renders ? m.output_render_s : 0.0) +
                               d(c.plan_patches) * m.output_plan_patch_s + d(c.output_patches) * m.output_patch_s,
                           0.0,
-                          "output.formats (ply, csv write every patch)"});
+                          setting_name(Setting::output_formats) + " (ply, csv write every patch)"});
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "core/grid/calc_grid.h"
 
+#include "core/base/setting.h"
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -194,14 +195,14 @@ GridLattice lay_lattice(const Scene& scene, const CalcGridSetting& s) {
   grid.kind = s.kind;
   const Eigen::AlignedBox3d& bounds = scene.bounds_m;
   const double tolerance = 1e-6 * (1.0 + bounds.diagonal().norm());
-  const std::string label = "grids." + s.name;
+  const std::string label = setting_name(Setting::grid, s.name);
   double lu = 0.0, lv = 0.0;
   if (s.kind == GridKind::horizontal) {
     double z = s.height_m;
     if (!s.over_surface.empty()) {
       const int surface = scene.find_surface(s.over_surface);
       if (surface < 0)
-        throw ConfigError(located(s.shape_loc, label + ".over_surface: unknown surface '" + s.over_surface + "'"));
+        throw ConfigError(located(s.shape_loc, setting_name(Setting::grid_over_surface, s.name) + ": unknown surface '" + s.over_surface + "'"));
       double area = 0.0, weighted_z = 0.0;
       for (const Patch& p : scene.patches) {
         if (p.surface != surface || p.normal.z() < 0.9) continue;
@@ -211,7 +212,7 @@ GridLattice lay_lattice(const Scene& scene, const CalcGridSetting& s) {
         weighted_z += p.area_m2 * p.centroid_m.z();
       }
       if (!(area > 0.0))
-        throw ConfigError(located(s.shape_loc, label + ".over_surface: '" + s.over_surface +
+        throw ConfigError(located(s.shape_loc, setting_name(Setting::grid_over_surface, s.name) + ": '" + s.over_surface +
                                                    "' has no patch facing up to lay a work plane over"));
       z += weighted_z / area;
     } else if (s.band_width_m > 0.0) {
@@ -239,7 +240,7 @@ GridLattice lay_lattice(const Scene& scene, const CalcGridSetting& s) {
                                                    ", y " + metres(bounds.min().y()) + " to " + metres(bounds.max().y()) + ")"));
     }
     if (!(z > bounds.min().z() + tolerance && z < bounds.max().z() - tolerance))
-      throw ConfigError(located(s.height_loc, label + ".height_m: the plane at z = " + metres(z) +
+      throw ConfigError(located(s.height_loc, setting_name(Setting::grid_height, s.name) + ": the plane at z = " + metres(z) +
                                                   " is outside the scene (z " + metres(bounds.min().z()) + " to " +
                                                   metres(bounds.max().z()) + ")"));
     lu = outline.hi.x() - outline.lo.x() - 2.0 * s.border_m;
@@ -268,7 +269,7 @@ GridLattice lay_lattice(const Scene& scene, const CalcGridSetting& s) {
     grid.origin_m = Eigen::Vector3d(s.from_m.x(), s.from_m.y(), s.bottom_m) + s.border_m * (grid.u_axis + grid.v_axis);
   }
   if (!(lu > 0.0 && lv > 0.0))
-    throw ConfigError(located(s.border_loc, label + ".border_m: a band of " + metres(s.border_m) +
+    throw ConfigError(located(s.border_loc, setting_name(Setting::grid_border, s.name) + ": a band of " + metres(s.border_m) +
                                                 " leaves nothing of the grid's area (the band is wider than the room)"));
   grid.spacing_m = s.spacing_m ? *s.spacing_m : en12464_grid_spacing_m(std::max(lu, lv));
   Eigen::Vector2i n = grid_cell_counts(lu, lv, grid.spacing_m);
@@ -305,7 +306,7 @@ CalcGrid make_calc_grid(const Scene& scene, const RayCaster& caster, const CalcG
   const Outline& outline = lattice.outline;
   const Eigen::Vector3d normal = lattice.normal;
   const Eigen::Vector2i n(grid.cells_u, grid.cells_v);
-  const std::string label = "grids." + s.name;
+  const std::string label = setting_name(Setting::grid, s.name);
   std::size_t no_floor = 0;
   for (int j = 0; j < n.y(); ++j)
     for (int i = 0; i < n.x(); ++i) {

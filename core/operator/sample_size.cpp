@@ -1,5 +1,6 @@
 #include "core/operator/sample_size.h"
 
+#include "core/base/setting.h"
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -39,7 +40,7 @@ SampleSizeChoice choose_sample_size(const SampleSizeRule& rule, const Scene& sce
       << prediction.seconds << " s; target " << 100.0 * *rule.target_error << " % needs k = " << k << " of "
       << population << " (" << std::setprecision(1) << 100.0 * k / population << " %)";
   if (k < wanted)
-    log << std::setprecision(2) << "; capped from " << wanted << " by solver.max_sample_size (predicted error "
+    log << std::setprecision(2) << "; capped from " << wanted << " by " << setting_name(Setting::max_sample_size) << " (predicted error "
         << 100.0 * prediction.predicted_rms_error(k) << " %)";
   return {k, log.str()};
 }

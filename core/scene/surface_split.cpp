@@ -1,5 +1,6 @@
 #include "core/scene/surface_split.h"
 
+#include "core/base/setting.h"
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -240,7 +241,7 @@ SurfaceSplitReport split_surfaces(TriangleMesh& mesh, const SceneOptions& frame,
   }
   for (std::size_t r = 0; r < options.regions.size(); ++r)
     if (report.rule_pieces[r] == 0)
-      throw ConfigError(located(options.regions[r].loc, "scene.regions[" + std::to_string(r) + "] '" +
+      throw ConfigError(located(options.regions[r].loc, setting_name(Setting::regions) + "[" + std::to_string(r) + "] '" +
                                                             options.regions[r].name + "': no piece of " + mesh.path +
                                                             " matches (" + describe(options.regions[r]) +
                                                             "); `ilp inspect` lists the surfaces and their heights"));
@@ -270,7 +271,7 @@ SurfaceSplitReport split_surfaces(TriangleMesh& mesh, const SceneOptions& frame,
   report.log.push_back(line.str());
   for (std::size_t r = 0; r < options.regions.size(); ++r) {
     line.str("");
-    line << "scene.regions '" << options.regions[r].name << "' (" << describe(options.regions[r])
+    line << setting_name(Setting::regions) << " '" << options.regions[r].name << "' (" << describe(options.regions[r])
          << "): " << report.rule_pieces[r] << " pieces, " << report.rule_area_m2[r] << " m2";
     report.log.push_back(line.str());
   }

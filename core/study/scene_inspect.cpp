@@ -1,5 +1,6 @@
 #include "core/study/scene_inspect.h"
 
+#include "core/base/setting.h"
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -226,10 +227,11 @@ void add_warnings(const Scene& scene, const InspectOptions& options, SceneInspec
   if (largest && (mesh_surfaces == 1 || largest->area_m2 >= 0.9 * out.area_m2))
     w.push_back(mesh_surfaces == 1
                     ? "one surface ('" + largest->name + "') for the whole model: goals, reflectances and the mounting "
-                      "surface need their own; split it with scene.surfaces_from: connected or scene.regions "
-                      "(docs/config.md)"
+                      "surface need their own; split it with " + setting_name(Setting::surfaces_from) + ": connected or " +
+                          setting_name(Setting::regions) + " (docs/config.md)"
                     : "'" + largest->name + "' holds " + percent(largest->area_m2 / out.area_m2) +
-                          " of the area: consider splitting it (scene.surfaces_from: connected or scene.regions)");
+                          " of the area: consider splitting it (" + setting_name(Setting::surfaces_from) + ": connected or " +
+                          setting_name(Setting::regions) + ")");
   if (scene.stats.degenerate_dropped > 0 || scene.stats.duplicate_dropped > 0)
     w.push_back(std::to_string(scene.stats.degenerate_dropped) + " degenerate triangles (zero or near-zero area) and " +
                 std::to_string(scene.stats.duplicate_dropped) + " duplicates dropped by meshing");
@@ -238,11 +240,12 @@ void add_warnings(const Scene& scene, const InspectOptions& options, SceneInspec
     if (s.escape_share >= 0.5)
       w.push_back("'" + s.name + "': " + percent(s.escape_share) +
                   " of the probe rays from its front leave the model: it faces out of the room (wound inside out? "
-                  "reverse it or use scene.two_sided) or it is an outside surface (scene.exclude_surfaces)");
+                  "reverse it or use " + setting_name(Setting::two_sided) + ") or it is an outside surface (" +
+                  setting_name(Setting::exclude_surfaces) + ")");
     if (s.rays_received >= 20 && s.back_struck_share >= 0.25)
       w.push_back("'" + s.name + "': " + percent(s.back_struck_share) +
                   " of the probe rays reaching it strike its back (light there is absorbed): wound the wrong way, "
-                  "or one-sided where both sides are seen (scene.two_sided)");
+                  "or one-sided where both sides are seen (" + setting_name(Setting::two_sided) + ")");
   }
   if (out.escape_share >= 0.01 || out.open_edges > 0) {
     std::ostringstream os;

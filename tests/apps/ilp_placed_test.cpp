@@ -15,6 +15,7 @@
 
 #include "core/light/photometry.h"
 #include "job/config.h"
+#include "job/plan.h"
 #include "job/job_runner.h"
 #include "job/job_scene.h"
 #include "tests/apps/cli_runner.h"
@@ -211,18 +212,18 @@ TEST(IlpPlacedProducts, SolveGivesWhatTheVerificationGivesForTheSameLayout) {
                       kPlane + "goals:\n  - {grid: plane, average_lux: 100}\n"
                       "solver:\n  rays_per_patch: 16\nverification:\n  method: exact\n  rays_per_patch: 16\n");
   const ilp::JobConfig run_job = ilp::load_job_config(run);
-  const std::vector<ilp::VariantPlan> variants = ilp::plan_job(run_job);
+  const std::vector<ilp::VariantPlan> variants = ilp::plan_job(run_job).variants;
   ASSERT_EQ(variants.size(), 2u);  // iku at 0, spot at 30
   const ilp::VariantPlan& v = variants[1];
   ASSERT_EQ(v.product.product, "spot");
   ASSERT_EQ(v.search.luminaire.rotation_deg, 30.0);
-  const ilp::PreparedJob prepared = ilp::prepare_job(run_job, v);
+  const ilp::PreparedJob prepared = ilp::prepare_job(scene_spec(run_job), v);
   const double rated_lm = v.product.rated_flux_lm;
   const std::vector<ilp::PlacedLuminaire> layout{{{1.25, 1.25, kLuminaireZ_m}, rated_lm, 0.0, {}},
                                                  {{2.75, 2.75, kLuminaireZ_m}, 0.5 * rated_lm, 0.0, {}}};
 
   // The scenes: the solve job's placed luminaires, and the layout added to the run job's scene.
-  const ilp::JobScene placed = ilp::load_job_scene(ilp::load_job_config(solve));
+  const ilp::JobScene placed = ilp::load_job_scene(scene_spec(ilp::load_job_config(solve)));
   ilp::Scene laid = prepared.loaded.scene;
   ilp::add_layout(laid, v.search.luminaire, layout);
   ASSERT_EQ(placed.scene.luminaires.size(), 2u);

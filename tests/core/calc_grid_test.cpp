@@ -20,6 +20,7 @@
 #include "core/exact/point_illuminance.h"
 #include "core/scene/reference_scenes.h"
 #include "core/operator/sample_operator.h"
+#include "job/setting_keys.h"
 
 namespace ilp {
 namespace {
@@ -113,6 +114,7 @@ TEST(CalcGrid, WorkPlaneOverAFloorWithBandAndAPointInsideABoxDropped) {
 }
 
 TEST(CalcGrid, BadGridsAreConfigErrors) {
+  name_settings_by_key();  // as load_job_config and the ilp command do: messages name the job file's keys
   const Scene scene = room_with_box();
   const RayCaster caster(scene);
   CalcGridSetting s;
@@ -247,6 +249,7 @@ TEST(CalcGridBand, ABandReachingPastAWallIsClippedToTheRoom) {
 }
 
 TEST(CalcGridBand, ABandWiderThanTheRoomIsAConfigError) {
+  name_settings_by_key();  // as load_job_config and the ilp command do: messages name the job file's keys
   const Scene scene = reference::make_closed_box(V::Zero(), V(6, 4, 3), 0.5, 0.5);
   const RayCaster caster(scene);
   try {
@@ -432,7 +435,7 @@ TEST(PointIlluminance, LuminousCeilingOverAFloorApproachesTheInfiniteRoom) {
 TEST(PointIlluminance, CensusOperatorAtPointsEqualsTheExactSolve) {
   JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
   job.scene.max_patch_edge_m = 0.6;
-  const Scene scene = load_job_scene(job).scene;
+  const Scene scene = load_job_scene(scene_spec(job)).scene;
   const RayCaster caster(scene);
   std::vector<ReceiverPoint> points;
   for (double x : {0.7, 1.9, 3.1, 4.3, 5.5})
@@ -478,7 +481,7 @@ TEST(PointIlluminance, CensusOperatorAtPointsEqualsTheExactSolve) {
 TEST(PointIlluminance, TheGatherErrorEstimateBoundsTheSpreadOverSeeds) {
   JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
   job.scene.max_patch_edge_m = 0.6;
-  const Scene scene = load_job_scene(job).scene;
+  const Scene scene = load_job_scene(scene_spec(job)).scene;
   const RayCaster caster(scene);
   std::vector<ReceiverPoint> points;
   for (double x : {0.7, 1.9, 3.1, 4.3, 5.5})
@@ -519,7 +522,7 @@ TEST(PointIlluminance, TheGatherErrorEstimateBoundsTheSpreadOverSeeds) {
 // docs/accuracy.md quotes the figures this prints.
 TEST(PointIlluminance, OfficeWorkPlaneAtDefaultKAgreesWithTheExactPointwiseSolve) {
   const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
-  const Scene scene = load_job_scene(job).scene;
+  const Scene scene = load_job_scene(scene_spec(job)).scene;
   const RayCaster caster(scene);
   CalcGridSetting plane;
   plane.name = "work_plane";

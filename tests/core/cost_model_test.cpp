@@ -9,6 +9,7 @@
 
 #include "core/base/error.h"
 #include "tests/test_support.h"
+#include "job/setting_keys.h"
 
 namespace ilp {
 namespace {
@@ -147,6 +148,7 @@ TEST(CostModel, ALargeSampleIsRefusedBeyondTheBudgetNamingTheSetting) {
 }
 
 TEST(CostModel, ExactVerificationMemoryGrowsWithRaysAndIsNamed) {
+  name_settings_by_key();  // as load_job_config and the ilp command do: messages name the job file's keys
   CostCounts c = classroom();
   c.verify_rays = 1024;
   const CostEstimate e = estimate_job_cost(c);

@@ -20,6 +20,7 @@
 #include "job/config.h"
 #include "tests/core/config_room.h"
 #include "tests/test_support.h"
+#include "job/setting_keys.h"
 
 namespace ilp {
 namespace {
@@ -251,6 +252,7 @@ TEST(LimitsMemory, RefusalNamesTheBudgetThatApplied) {
 
 // A grid of 9.8e5 points was estimated at "52 MB, 0.1 s" (no point counted).
 TEST(LimitsCost, GridPointsCountInRowsMemoryAndLaying) {
+  name_settings_by_key();  // as load_job_config and the ilp command do: messages name the job file's keys
   CostCounts c;
   c.patches = c.population = 2000;
   c.goal_patches = 100;

@@ -230,7 +230,7 @@ TEST(ProductVariants, RotationsWattsAndFluxComeFromTheFileUnlessGiven) {
   job.search->mounting_surface = "ceiling";
   job.products = {iku, linear};
   job.goals.push_back(GoalSetting{});
-  const std::vector<VariantPlan> plans = plan_job(job);
+  const std::vector<VariantPlan> plans = plan_job(job).variants;
   ASSERT_EQ(plans.size(), 3u);
   const SearchLuminaire& l = plans[2].search.luminaire;
   EXPECT_TRUE(l.uniform_output);
@@ -256,7 +256,7 @@ TEST(ProductVariants, ThePlainPanelIsAProductWhoseLuminairesEachTakeTheirOwnFlux
   goal.surfaces = {"desk"};
   goal.target = 500.0;
   job.goals.push_back(goal);
-  const std::vector<VariantPlan> plans = plan_job(job);
+  const std::vector<VariantPlan> plans = plan_job(job).variants;
   ASSERT_EQ(plans.size(), 1u);
   EXPECT_FALSE(plans[0].listed);
   EXPECT_EQ(plans[0].product.product, "square Lambertian panel 0.6 m");
@@ -290,7 +290,7 @@ TEST(ProductVariants, AProductsMaintenanceFactorAndMountOffsetReplaceTheJobsOnly
   job.goals.push_back(goal);
   job.maintenance_factor = 0.8;
   job.search->mount_offset_m = 0.05;
-  const std::vector<VariantPlan> plans = plan_job(job);
+  const std::vector<VariantPlan> plans = plan_job(job).variants;
   ASSERT_EQ(plans.size(), 2u);
   EXPECT_EQ(plans[0].maintenance_factor, 0.8) << "no factor of its own: the job's";
   EXPECT_EQ(plans[1].maintenance_factor, 0.67) << "the product's own";

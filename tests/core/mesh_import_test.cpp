@@ -21,6 +21,7 @@
 #include "core/scene/mesh_message.h"
 #include "core/scene/scene.h"
 #include "job/config.h"
+#include "job/plan.h"
 #include "job/job_scene.h"
 #include "tests/test_support.h"
 
@@ -47,12 +48,12 @@ std::string office_job(const std::string& mesh, const std::string& frame) {
 }
 
 JobScene office_scene(const TempDir& dir, const std::string& mesh, const std::string& frame) {
-  return load_job_scene(load_job_config(dir.write("job.yaml", office_job(mesh, frame))));
+  return load_job_scene(scene_spec(load_job_config(dir.write("job.yaml", office_job(mesh, frame)))));
 }
 
 // The model alone (no luminaires, one reflectance), as the file states its frame.
 JobScene bare_scene(const TempDir& dir, const std::string& mesh) {
-  return load_job_scene(load_job_config(dir.write("bare.yaml", "scene:\n  mesh: " + mesh + "\n  default_reflectance: 0.5\n")));
+  return load_job_scene(scene_spec(load_job_config(dir.write("bare.yaml", "scene:\n  mesh: " + mesh + "\n  default_reflectance: 0.5\n"))));
 }
 
 // Area-weighted mean of the patches' total illuminance per surface name.
@@ -180,7 +181,7 @@ TEST(MeshImport, IfcHouseImportsWithWallsSlabsAndFurnitureInMetresZUp) {
   const std::string ifc = kScenes + "ifc-fzk-haus/AC14-FZK-Haus.ifc";
   ASSERT_TRUE(std::filesystem::exists(ifc)) << ifc;
   const JobScene house = load_job_scene(
-      load_job_config(dir.write("house.yaml", "scene:\n  mesh: " + ifc + "\n  default_reflectance: 0.5\n")));
+      scene_spec(load_job_config(dir.write("house.yaml", "scene:\n  mesh: " + ifc + "\n  default_reflectance: 0.5\n"))));
   int walls = 0, slabs = 0, furniture = 0;
   for (const Surface& s : house.scene.surfaces) {
     walls += s.name.rfind("IfcWallStandardCase_", 0) == 0;
@@ -259,15 +260,15 @@ TEST(MeshImport, ColladaArrayWithoutCountIsRefusedBeforeAssimpCrashesOnIt) {
 TEST(MeshImport, AUnitNeitherTheFileNorTheJobStatesIsAnError) {
   TempDir dir;
   const std::string job = dir.write("job.yaml", "scene:\n  mesh: " + kImport + "office.3ds\n  default_reflectance: 0.5\n");
-  const std::string what = test::error_of<ConfigError>([&] { (void)load_job_scene(load_job_config(job)); });
+  const std::string what = test::error_of<ConfigError>([&] { (void)load_job_scene(scene_spec(load_job_config(job))); });
   EXPECT_NE(what.find(job + ":2:"), std::string::npos) << what;
   EXPECT_NE(what.find("scene.mesh: " + kImport + "office.3ds: the file does not state its unit (3DS files carry none): "
                       "set scene.scale_to_m"),
             std::string::npos)
       << what;
   // The same job with the unit set loads, in the job's unit.
-  const JobScene mm = load_job_scene(load_job_config(
-      dir.write("mm.yaml", "scene:\n  mesh: " + kImport + "office.3ds\n  scale_to_m: 0.001\n  default_reflectance: 0.5\n")));
+  const JobScene mm = load_job_scene(scene_spec(load_job_config(
+      dir.write("mm.yaml", "scene:\n  mesh: " + kImport + "office.3ds\n  scale_to_m: 0.001\n  default_reflectance: 0.5\n"))));
   EXPECT_NEAR(mm.scene.bounds_m.max().x(), 0.006, 1e-9) << "the 6 m office read as 6 mm";
   // (An FBX always states one to ilp: assimp gives its UnitScaleFactor, 1 cm where the
   // file has none, FBX's default; COLLADA without <unit> is 1 m, its default.)
@@ -309,7 +310,7 @@ TEST(MeshImport, AFileThatCrashesAssimpIsAnErrorNamingTheFileAndTheSignal) {
                       "assimp 5.2.5 cannot read");
   // Through a job: the job's line in front.
   const std::string job = dir.write("job.yaml", "scene:\n  mesh: " + dae + "\n  default_reflectance: 0.5\n");
-  const std::string job_what = test::error_of<SceneError>([&] { (void)load_job_scene(load_job_config(job)); });
+  const std::string job_what = test::error_of<SceneError>([&] { (void)load_job_scene(scene_spec(load_job_config(job))); });
   EXPECT_NE(job_what.find(job + ":2:"), std::string::npos) << job_what;
   EXPECT_NE(job_what.find("scene.mesh: " + dae + ": assimp crashed reading it (signal 11, SIGSEGV)"), std::string::npos)
       << job_what;

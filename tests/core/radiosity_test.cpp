@@ -8,6 +8,7 @@
 #include "core/base/error.h"
 #include "core/exact/exact_solver.h"
 #include "job/config.h"
+#include "job/plan.h"
 #include "job/job_scene.h"
 #include "core/transport/direct_light.h"
 #include "core/transport/ray_caster.h"
@@ -98,7 +99,7 @@ TEST(Radiosity, IlluminanceUnderALuminaireMatchesClosedForm) {
 // closed room, so the area-weighted direct illuminance adds up to their flux.
 TEST(Radiosity, OfficeSurfacesReceiveAllLuminaireFluxWhenNothingReflects) {
   const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
-  Scene scene = load_job_scene(job).scene;
+  Scene scene = load_job_scene(scene_spec(job)).scene;
   double flux_lm = 0.0;
   for (Patch& p : scene.patches) {
     p.reflectance.setZero();
@@ -120,7 +121,7 @@ TEST(Radiosity, OfficeSurfacesReceiveAllLuminaireFluxWhenNothingReflects) {
 // 0.1 % off at 128 rays per patch, allowed 0.5 %.
 TEST(Radiosity, OfficeAbsorbsTheFluxItsLuminairesEmit) {
   const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
-  const Scene scene = load_job_scene(job).scene;
+  const Scene scene = load_job_scene(scene_spec(job)).scene;
   const RayCaster caster(scene);
   FormFactorOptions ff;
   ff.rays_per_patch = 128;
@@ -244,7 +245,7 @@ namespace {
 // bit, and their total moves by the noise of the cheaper estimate elsewhere.
 TEST(Radiosity, PreciseDirectLightOnlyWhereAsked) {
   const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
-  const Scene scene = load_job_scene(job).scene;
+  const Scene scene = load_job_scene(scene_spec(job)).scene;
   ExactSolveOptions full;
   full.form_factors.rays_per_patch = 64;
   ExactSolveOptions split = full;
@@ -273,7 +274,7 @@ TEST(Radiosity, PreciseDirectLightOnlyWhereAsked) {
 // patch cheap; the old code took an empty list for "every patch precise".
 TEST(Radiosity, NoPrecisePatchesMakesEveryPatchCheap) {
   const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
-  const Scene scene = load_job_scene(job).scene;
+  const Scene scene = load_job_scene(scene_spec(job)).scene;
   ExactSolveOptions cheap_everywhere;
   cheap_everywhere.form_factors.rays_per_patch = 32;
   cheap_everywhere.precise_patches = std::vector<int>{};
@@ -291,7 +292,7 @@ TEST(Radiosity, NoPrecisePatchesMakesEveryPatchCheap) {
 // full solve), and the desks' average moves only by the noise of the indirect light.
 TEST(Radiosity, FewerRaysWhereOnlyReflectionsAreRead) {
   const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
-  const Scene scene = load_job_scene(job).scene;
+  const Scene scene = load_job_scene(scene_spec(job)).scene;
   ExactSolveOptions full;
   full.form_factors.rays_per_patch = 256;
   const std::vector<int> desks = scene.patches_of({"desk_1", "desk_2"});

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "job/config.h"
+#include "job/plan.h"
 #include "core/base/error.h"
 #include "job/job_scene.h"
 #include "core/scene/mesh.h"
@@ -279,7 +280,7 @@ TEST(ReliabilityMesh, VertexFarFromTheOriginIsRefused) {
   dir.write("room.obj", std::string(kRoomObj) + "v 5e11 0 0\nv 5e11 1 0\nv 5e11 0 1\ng far\nf 9 10 11\n");
   const std::string path = dir.write("job.yaml", kScene + "  max_patch_edge_m: 0.5\n");
   const ilp::JobConfig job = ilp::load_job_config(path);
-  const std::string message = error_of<ilp::SceneError>([&] { (void)ilp::load_job_scene(job); }, "load_job_scene");
+  const std::string message = error_of<ilp::SceneError>([&] { (void)ilp::load_job_scene(scene_spec(job)); }, "load_job_scene");
   EXPECT_TRUE(Contains(message, path + ":2:"));  // scene.mesh
   EXPECT_TRUE(Contains(message, "vertex 9 lies at"));
   EXPECT_TRUE(Contains(message, "beyond the 1e+06 m"));
@@ -302,7 +303,7 @@ TEST(ReliabilityJob, ReportSurfaceLeftOutIsAnError) {
   const std::string path = dir.write(
       "job.yaml", kScene + "  exclude_surfaces: [floor]\n" + kPlaced + "report:\n  surfaces: [walls, floor]\n");
   const ilp::JobConfig job = ilp::load_job_config(path);
-  const std::string message = error_of<ilp::ConfigError>([&] { (void)ilp::load_job_scene(job); }, "load_job_scene");
+  const std::string message = error_of<ilp::ConfigError>([&] { (void)ilp::load_job_scene(scene_spec(job)); }, "load_job_scene");
   EXPECT_TRUE(Contains(message, path + ":10:"));
   EXPECT_TRUE(Contains(message, "report.surfaces: surface 'floor' has no patch left"));
 }
@@ -312,7 +313,7 @@ TEST(ReliabilityJob, GoalSurfaceLeftOutIsAnError) {
   dir.write("room.obj", kRoomObj);
   const std::string path = dir.write("job.yaml", kScene + "  exclude_surfaces: [floor]\n" + kSearch);
   const ilp::JobConfig job = ilp::load_job_config(path);
-  const std::string message = error_of<ilp::ConfigError>([&] { (void)ilp::load_job_scene(job); }, "load_job_scene");
+  const std::string message = error_of<ilp::ConfigError>([&] { (void)ilp::load_job_scene(scene_spec(job)); }, "load_job_scene");
   EXPECT_TRUE(Contains(message, "goals."));
   EXPECT_TRUE(Contains(message, "surface 'floor' has no patch left"));
 }

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "job/config.h"
+#include "job/plan.h"
 #include "core/base/error.h"
 #include "core/exact/exact_solver.h"
 #include "job/job_scene.h"
@@ -21,7 +22,7 @@ namespace {
 Scene coarse_office(double max_edge_m = 0.6) {
   JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
   job.scene.max_patch_edge_m = max_edge_m;
-  return load_job_scene(job).scene;
+  return load_job_scene(scene_spec(job)).scene;
 }
 
 SampleOperatorOptions options_with(int k, int rays = 256) {

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "job/config.h"
+#include "job/plan.h"
 #include "core/exact/exact_solver.h"
 #include "job/job_scene.h"
 #include "tests/test_support.h"
@@ -46,7 +47,7 @@ double centre_lux(const Scene& scene, const Eigen::VectorXd& lux, bool facing_up
 TEST(SceneOptions, OneSidedFloorWoundDownwardsStaysDark) {
   TempDir dir;
   dir.write("scene.obj", kObj);
-  const JobScene loaded = load_job_scene(load_job_config(dir.write("job.yaml", job_yaml(""))));
+  const JobScene loaded = load_job_scene(scene_spec(load_job_config(dir.write("job.yaml", job_yaml("")))));
   const ExactSolution s = solve_exact(loaded.scene, {});
   EXPECT_EQ(centre_lux(loaded.scene, s.radiosity.total_lux, false), 0.0) << "its front faces away from the light";
   EXPECT_EQ(centre_lux(loaded.scene, s.radiosity.total_lux, true), -1.0) << "no patch faces up";
@@ -55,8 +56,8 @@ TEST(SceneOptions, OneSidedFloorWoundDownwardsStaysDark) {
 TEST(SceneOptions, TwoSidedFloorIsLitOnItsUpperSide) {
   TempDir dir;
   dir.write("scene.obj", kObj);
-  const JobScene one = load_job_scene(load_job_config(dir.write("one.yaml", job_yaml(""))));
-  const JobScene two = load_job_scene(load_job_config(dir.write("two.yaml", job_yaml("  two_sided: [floor]\n"))));
+  const JobScene one = load_job_scene(scene_spec(load_job_config(dir.write("one.yaml", job_yaml("")))));
+  const JobScene two = load_job_scene(scene_spec(load_job_config(dir.write("two.yaml", job_yaml("  two_sided: [floor]\n")))));
   EXPECT_EQ(two.scene.patches_of({"floor"}).size(), 2 * one.scene.patches_of({"floor"}).size());
   EXPECT_EQ(two.scene.patches_of({"ground"}).size(), one.scene.patches_of({"ground"}).size());
   bool logged = false;
@@ -76,7 +77,7 @@ TEST(SceneOptions, AllSurfacesTwoSidedAndExcludedGroundPlane) {
   TempDir dir;
   dir.write("scene.obj", kObj);
   const JobScene loaded =
-      load_job_scene(load_job_config(dir.write("job.yaml", job_yaml("  two_sided: all\n  exclude_surfaces: [ground]\n"))));
+      load_job_scene(scene_spec(load_job_config(dir.write("job.yaml", job_yaml("  two_sided: all\n  exclude_surfaces: [ground]\n")))));
   EXPECT_TRUE(loaded.scene.patches_of({"ground"}).empty());
   EXPECT_EQ(loaded.scene.patches_of({"floor"}).size(), 4u);  // 2 triangles, doubled
   EXPECT_EQ(loaded.scene.patches_of({"post"}).size(), 4u);
@@ -92,7 +93,7 @@ TEST(SceneOptions, BadNamesAndValuesPointAtTheConfig) {
   TempDir dir;
   dir.write("scene.obj", kObj);
   const std::string unknown = dir.write("a.yaml", job_yaml("  exclude_surfaces: [grund]\n"));
-  EXPECT_TRUE(test::Contains(test::error_of<ConfigError>([&] { load_job_scene(load_job_config(unknown)); }),
+  EXPECT_TRUE(test::Contains(test::error_of<ConfigError>([&] { load_job_scene(scene_spec(load_job_config(unknown))); }),
                              unknown + ":4:22: scene.exclude_surfaces: unknown surface 'grund'"));
   const std::string bad = dir.write("b.yaml", job_yaml("  two_sided: some\n"));
   EXPECT_TRUE(test::Contains(test::error_of<ConfigError>([&] { load_job_config(bad); }),

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "job/config.h"
+#include "job/plan.h"
 #include "core/transport/form_factors.h"
 #include "job/job_scene.h"
 #include "core/transport/ray_caster.h"
@@ -146,7 +147,7 @@ TEST(Scene, RefusesMeshingBeyondThePatchLimit) {
 // leaves it), which its one-sided, inward-facing walls need to be lit correctly.
 TEST(Scene, ShippedCornellBoxIsColouredAndClosed) {
   const JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/cornell.yaml");
-  const Scene scene = load_job_scene(job).scene;
+  const Scene scene = load_job_scene(scene_spec(job)).scene;
   EXPECT_EQ(scene.channels, 3);
   const int left = scene.find_surface("left_wall");
   const int right = scene.find_surface("right_wall");

@@ -7,8 +7,10 @@
 #include <map>
 
 #include "job/config.h"
+#include "job/plan.h"
 #include "job/job_scene.h"
 #include "tests/test_support.h"
+#include "job/setting_keys.h"
 
 namespace ilp {
 namespace {
@@ -137,6 +139,7 @@ TEST(SurfaceSplit, WeldToleranceJoinsNearlySharedVertices) {
 }
 
 TEST(SurfaceSplit, ARuleNoPieceMatchesIsAConfigErrorAtTheRule) {
+  name_settings_by_key();  // as load_job_config and the ilp command do: messages name the job file's keys
   TriangleMesh mesh = empty_mesh();
   add_box(mesh, V(0, 0, 0), V(4, 3, 2.5), true);
   SurfaceSplitOptions options;
@@ -161,7 +164,7 @@ TEST(SurfaceSplit, ConfigKeysReachTheSceneAndBadValuesNameTheKey) {
                                      "  regions:\n    - {name: floor, facing: up, height_m: [-0.1, 0.1]}\n"
                                      "  reflectance:\n    floor: 0.2\n    everything.1: 0.7\n");
   const JobConfig job = load_job_config(yaml);
-  const JobScene loaded = load_job_scene(job);
+  const JobScene loaded = load_job_scene(scene_spec(job));
   const Scene& scene = loaded.scene;
   ASSERT_GE(scene.find_surface("floor"), 0);
   ASSERT_GE(scene.find_surface("everything.1"), 0);  // the walls, the largest piece left

@@ -15,6 +15,7 @@
 #include "core/transport/direct_light.h"
 #include "core/operator/sample_operator.h"
 #include "job/config.h"
+#include "job/plan.h"
 #include "job/job_scene.h"
 
 namespace ilp {
@@ -98,7 +99,7 @@ const Fixture& fixture() {
     auto* f = new Fixture;
     JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office_fixed.yaml");
     job.scene.max_patch_edge_m = 0.6;
-    f->scene = load_job_scene(job).scene;
+    f->scene = load_job_scene(scene_spec(job)).scene;
     f->caster = std::make_unique<RayCaster>(f->scene, 1);
     f->options.sample_size = 150;
     f->options.form_factors.rays_per_patch = 64;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "job/building.h"
+#include "job/plan.h"
 #include "job/config.h"
 #include "job/job_scene.h"
 #include "job/room_exchange.h"
@@ -128,7 +129,7 @@ TEST(BuildingScene, ARoomsSceneHoldsOnlyItsSurfaces) {
   const std::string text = two_rooms_job(two_rooms_room("a", 200) + two_rooms_room("b", 300));
   const ilp::JobConfig job = ilp::load_job_config(write_job(dir, text));
   for (std::size_t r = 0; r < 2; ++r) {
-    const ilp::JobScene loaded = ilp::load_job_scene(ilp::room_job(job, r));
+    const ilp::JobScene loaded = ilp::load_job_scene(scene_spec(ilp::room_job(job, r)));
     const std::string own = job.rooms[r].name + "_";
     std::size_t patches = 0;
     for (const ilp::Patch& p : loaded.scene.patches) {
@@ -146,7 +147,7 @@ TEST(BuildingScene, ASurfacePatternMatchingNothingIsAnErrorAtItsLine) {
   room_b.replace(room_b.find("[b_*]"), 5, "[b_*, c_*]");
   const std::string text = two_rooms_job(two_rooms_room("a", 200) + room_b);
   const ilp::JobConfig job = ilp::load_job_config(write_job(dir, text));
-  const std::string msg = error_of<ilp::ConfigError>([&] { (void)ilp::load_job_scene(ilp::room_job(job, 1)); });
+  const std::string msg = error_of<ilp::ConfigError>([&] { (void)ilp::load_job_scene(scene_spec(ilp::room_job(job, 1))); });
   expect_message(msg, dir.file("job.yaml") + ":" + std::to_string(line_of(text, "c_*")) + ":",
                  {"rooms[1].surfaces[1] = c_*", "no surface of the mesh matches it"});
 }

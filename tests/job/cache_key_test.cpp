@@ -11,6 +11,7 @@
 
 #include "core/base/key_hash.h"
 #include "job/config.h"
+#include "job/plan.h"
 #include "job/job_scene.h"
 #include "optimizer/lighting_model.h"
 #include "tests/key_coverage.h"
@@ -178,7 +179,7 @@ TEST(CacheKey, SceneSettingsCoverEveryField) {
 
 std::string scene_key(const JobConfig& job) {
   KeyWriter k;
-  hash_scene_inputs(k, job);
+  hash_scene_inputs(k, scene_spec(job));
   return k.text();
 }
 

@@ -39,7 +39,7 @@ std::string scene_error(const std::string& yaml) {
     ADD_FAILURE() << "config should load: " << e.what();
     return {};
   }
-  return error_of<E>([&] { (void)ilp::load_job_scene(job); });
+  return error_of<E>([&] { (void)ilp::load_job_scene(scene_spec(job)); });
 }
 
 // `msg` starts with "<file>:<line>:" (line 0: "<file>: ", no line) and contains each
@@ -96,7 +96,7 @@ void expect_room_error(const std::string& text, int line, const std::vector<std:
 // these reflectances, and the scene `channels` channels.
 void expect_room_reflectance(const std::string& yaml, const Eigen::Vector3d& floor_rho, const Eigen::Vector3d& wall_rho,
                              int channels) {
-  const ilp::JobScene loaded = ilp::load_job_scene(ilp::load_job_config(yaml));
+  const ilp::JobScene loaded = ilp::load_job_scene(scene_spec(ilp::load_job_config(yaml)));
   const auto floor = patches_of(loaded.scene, "floor");
   const auto wall = patches_of(loaded.scene, "wall");
   ASSERT_EQ(floor.size(), 2u);
@@ -195,7 +195,7 @@ TEST(JobConfig, EveryShippedConfigLoads) {
     ilp::JobConfig job;
     ASSERT_NO_THROW(job = ilp::load_job_config(file.string()));
     ilp::JobScene loaded;
-    ASSERT_NO_THROW(loaded = ilp::load_job_scene(job));
+    ASSERT_NO_THROW(loaded = ilp::load_job_scene(scene_spec(job)));
     EXPECT_GT(loaded.scene.patches.size(), 0u);
     for (const ilp::LuminaireSetting& l : job.luminaires) EXPECT_GE(loaded.scene.find_surface(l.name), 0) << l.name;
     for (const std::string& s : job.report_surfaces) EXPECT_GE(loaded.scene.find_surface(s), 0) << s;
@@ -1500,7 +1500,7 @@ TEST(ConfigInverseScene, OfficeNamesLoad) {
                                                             "  - {surface: [desk_1, desk_2], average_lux: 500}\n"
                                                             "  - {surface: floor, min_lux: 100}\n"));
   ilp::JobScene loaded;
-  ASSERT_NO_THROW(loaded = ilp::load_job_scene(ilp::load_job_config(yaml)));
+  ASSERT_NO_THROW(loaded = ilp::load_job_scene(scene_spec(ilp::load_job_config(yaml))));
   EXPECT_GE(loaded.scene.find_surface("desk_2"), 0);
 }
 
@@ -1758,10 +1758,14 @@ TEST(JobConfigGrids, GridGoalsPresetsAndMaintenanceFactor) {
   EXPECT_DOUBLE_EQ(ilp::initial_target(job.goals[0].metric, job.goals[0].target, job.maintenance_factor), 625.0);
   EXPECT_DOUBLE_EQ(ilp::initial_target(job.goals[1].metric, job.goals[1].target, job.maintenance_factor), 0.7);
   // A sweep point edits the plan's goal lines, checked as the file is.
-  ilp::JobGoals point = ilp::job_goals(job);
+  ilp::JobConfig inverse = job;  // the plan is an inverse job's: somewhere to mount
+  inverse.search = ilp::LuminaireSearch{};
+  inverse.search->mounting_surface = "ceiling";
+  const ilp::JobPlan plan = ilp::plan_job(inverse);
+  ilp::JobGoals point = plan.goals;
   ilp::set_goal_target(point, "goals.work.average_lux", 750);
   EXPECT_DOUBLE_EQ(point.lines[0].target, 750.0);
-  EXPECT_DOUBLE_EQ(ilp::initial_goals(point, job.maintenance_factor)[0].target, 937.5);
+  EXPECT_DOUBLE_EQ(ilp::search_at(plan.variants.front(), point).goals[0].target, 937.5);
   EXPECT_THROW(ilp::set_goal_target(point, "goals.nowhere.average_lux", 750), ilp::ConfigError);
   EXPECT_THROW(ilp::set_goal_target(point, "goals.work.uniformity", 1.5), ilp::ConfigError);
   ilp::JobConfig sweep = job;

@@ -94,14 +94,14 @@ void expect_same_operator(const LightingModel& a, const LightingModel& b, bool t
 }
 
 // The job's one variant (the plain panel): its stages' inputs.
-VariantPlan plan_of(const JobConfig& job, const RunOptions& run = {}) { return plan_job(job, run).front(); }
+VariantPlan plan_of(const JobConfig& job, const RunOptions& run = {}) { return plan_job(job, run).variants.front(); }
 
 std::string key_of(const JobConfig& job, const RunOptions& run = {}) {
-  return lighting_model_key(job, plan_of(job, run).model);
+  return lighting_model_key(scene_spec(job), plan_of(job, run).model);
 }
 
 PreparedJob prepare(const JobConfig& job, const std::string& cache_dir = "") {
-  return prepare_job(job, plan_of(job), {}, {}, cache_dir);
+  return prepare_job(scene_spec(job), plan_of(job), {}, {}, cache_dir);
 }
 
 // A model with only the geometry part, as prepare_job has it before the cache.
@@ -445,7 +445,7 @@ TEST(ModelCache, UnwritableCacheFolderStillCompletesTheJob) {
   EXPECT_TRUE(StartsWith(prepared.cache_status, "operator built; cache not used: ")) << prepared.cache_status;
   EXPECT_TRUE(Contains(prepared.cache_status, cache));
   expect_same_operator(prepare(job).model, prepared.model, false);
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals);
   EXPECT_EQ(outcome.luminaires.size(), 1u);
   EXPECT_TRUE(outcome.feasible);
 }
@@ -556,12 +556,12 @@ TEST(ModelCache, TheKeyTextNamesTheFields) {
   TempDir dir;
   const JobConfig job = cache_job(dir);
   const VariantPlan plan = plan_of(job);
-  const std::string text = lighting_model_key_text(job, plan.model);
+  const std::string text = lighting_model_key_text(scene_spec(job), plan.model);
   EXPECT_TRUE(StartsWith(text, "ilp_lighting_model_cache_format=u" + std::to_string(kLightingModelCacheVersion) + "\n"));
   EXPECT_TRUE(Contains(text, "\nmesh_bytes=s"));
   EXPECT_TRUE(Contains(text, "\nmodel={\ncandidates={\nmounting_surface=s7:ceiling\n"));
   EXPECT_TRUE(Contains(text, "\nrays_per_patch=i64\n"));
-  EXPECT_EQ(lighting_model_key(job, plan.model).size(), 32u);
+  EXPECT_EQ(lighting_model_key(scene_spec(job), plan.model).size(), 32u);
 }
 
 }  // namespace

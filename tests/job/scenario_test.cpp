@@ -42,11 +42,11 @@ TEST(Scenarios, HalfTheOfficesLuminairesAt30PercentDirectLightOnlyAreVerifiedOnT
       scenario("all at 30 %", LightCounted::direct, 0.3, {}, average_goal),
       scenario("all, total", LightCounted::total, 1.0, {}, average_goal),
   };
-  const VariantPlan plan = plan_job(job).front();
+  const VariantPlan plan = plan_job(job).variants.front();
   ASSERT_EQ(plan.scenarios.size(), 4u);
   EXPECT_NEAR(plan.scenarios[2].goals[0].target, 100.0 / 0.8, 1e-12);  // initial = maintained / MF
-  const PreparedJob prepared = prepare_job(job, plan);
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
+  const PreparedJob prepared = prepare_job(scene_spec(job), plan);
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals);
   ASSERT_EQ(outcome.verification.method, "exact");
   ASSERT_EQ(outcome.scenarios.size(), 4u);
   ASSERT_EQ(outcome.verification.state_lux.size(), 4u);
@@ -95,7 +95,7 @@ TEST(Scenarios, HalfTheOfficesLuminairesAt30PercentDirectLightOnlyAreVerifiedOnT
 TEST(Scenarios, AScenarioTheLayoutMissesIsAGoalNotMetOfTheWholeJob) {
   JobConfig job = load_job_config(ILP_SOURCE_DIR "/configs/office.yaml");
   job.scenarios = {scenario("dimmed to nothing", LightCounted::total, 0.0, {}, {{"work_plane", GoalMetric::average, 50.0}})};
-  const JobOutcome outcome = solve_prepared(prepare_job(job, plan_job(job).front()), job_goals(job));
+  const JobOutcome outcome = solve_prepared(prepare_job(scene_spec(job), plan_job(job).variants.front()), plan_job(job).goals);
   ASSERT_EQ(outcome.scenarios.size(), 1u);
   EXPECT_FALSE(outcome.scenarios[0].all_met);
   EXPECT_EQ(outcome.scenarios[0].lit, 0u);
@@ -168,8 +168,8 @@ TEST(Groups, AJobOfThreeLuminaireGroupsRunsAndMeetsItsGoals) {
   test::TempDir dir;
   const JobConfig job = load_job_config(dir.write("three.yaml", text));
   ASSERT_EQ(job.groups.size(), 3u);
-  const PreparedGroups groups = prepare_groups(job, {}, {}, "", {});
-  const VariantChoice choice = solve_groups(groups, job, {}, {});
+  const PreparedGroups groups = prepare_groups(plan_job(job), {}, {}, "", {});
+  const VariantChoice choice = solve_groups(groups, plan_job(job).goals, {}, {});
   const JobOutcome& out = choice.outcome;
   ASSERT_EQ(out.groups.size(), 3u);
   EXPECT_EQ(out.groups[2].name, "west wash");

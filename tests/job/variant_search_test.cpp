@@ -28,12 +28,13 @@ JobConfig small_job(const char* path) {
 
 TEST(PrepareVariants, TheVariantsShareOneSceneAndBvhAndEachOperatorIsItsOwnAlone) {
   const JobConfig job = small_job(ILP_SOURCE_DIR "/configs/office_products.yaml");
-  std::vector<VariantPlan> plans = plan_job(job);
+  JobPlan plan = plan_job(job);
+  std::vector<VariantPlan>& plans = plan.variants;
   ASSERT_GE(plans.size(), 2u);
   plans.resize(2);
   std::vector<std::string> log;
   const std::vector<PreparedJob> prepared =
-      prepare_variants(job, plans, {}, {}, "", [&](const std::string& line) { log.push_back(line); });
+      prepare_variants(plan, {}, {}, "", [&](const std::string& line) { log.push_back(line); });
   ASSERT_EQ(prepared.size(), 2u);
   // One BVH, one reading of the model (its lines logged once, its time on the first variant).
   EXPECT_EQ(prepared[0].caster.get(), prepared[1].caster.get());
@@ -44,7 +45,7 @@ TEST(PrepareVariants, TheVariantsShareOneSceneAndBvhAndEachOperatorIsItsOwnAlone
   for (const std::string& line : log) mesh_lines += line.starts_with("mesh ");
   EXPECT_EQ(mesh_lines, 1u);
   for (std::size_t v = 0; v < 2; ++v) {
-    const PreparedJob alone = prepare_job(job, plans[v]);
+    const PreparedJob alone = prepare_job(scene_spec(job), plans[v]);
     EXPECT_EQ(prepared[v].loaded.scene.patches.size(), alone.loaded.scene.patches.size());
     EXPECT_EQ(prepared[v].model.grid.size(), alone.model.grid.size());
     EXPECT_EQ(prepared[v].model.goal_points.size(), alone.model.goal_points.size());
@@ -60,7 +61,7 @@ TEST(PrepareVariants, TheGroupsShareOneSceneAndBvhAndTheWholeRunIsEstimatedFirst
   const JobConfig job = small_job(ILP_SOURCE_DIR "/configs/office_two_groups.yaml");
   ASSERT_EQ(job.groups.size(), 2u);
   std::vector<std::string> log;
-  const PreparedGroups groups = prepare_groups(job, {}, {}, "", [&](const std::string& line) { log.push_back(line); });
+  const PreparedGroups groups = prepare_groups(plan_job(job), {}, {}, "", [&](const std::string& line) { log.push_back(line); });
   ASSERT_GE(groups.prepared.size(), 2u);
   for (const PreparedJob& p : groups.prepared) EXPECT_EQ(p.caster.get(), groups.prepared.front().caster.get());
   std::size_t mesh_lines = 0, whole = 0, first_group = log.size();
@@ -80,7 +81,7 @@ TEST(PrepareVariants, AGroupsUnknownMountingSurfaceIsALocatedError) {
   ASSERT_EQ(job.groups.size(), 2u);
   job.groups[1].search.mounting_surface = "no_such_surface";
   job.groups[1].search.suspended_height_m.reset();
-  const std::string message = test::error_of<ConfigError>([&] { prepare_groups(job, {}, {}, "", {}); }, "prepare_groups");
+  const std::string message = test::error_of<ConfigError>([&] { prepare_groups(plan_job(job), {}, {}, "", {}); }, "prepare_groups");
   EXPECT_TRUE(test::Contains(message, "office_two_groups.yaml:"));
   EXPECT_TRUE(test::Contains(message, "luminaires.mounting_surface: unknown surface 'no_such_surface'"));
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "job/constraint_check.h"
+#include "job/plan.h"
 #include "job/job_runner.h"
 #include "job/result_mapping.h"
 #include "job/verification_margin.h"
@@ -144,7 +145,7 @@ TEST(VerificationMargin, TheBindingGoalIsKeptAboveItsTargetAndStaysMetWithOtherR
   const JobConfig job = load_job_config(margin_job(dir, 0.01));
   EXPECT_EQ(job.verification.margin, 0.01);
   PreparedJob prepared = test::prepare(job);
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals);
   ASSERT_TRUE(outcome.all_met);
   ASSERT_EQ(outcome.goals.size(), 3u);
   // Every average and minimum goal is scaled to: at least target x (1 + margin), and
@@ -169,7 +170,7 @@ TEST(VerificationMargin, TheBindingGoalIsKeptAboveItsTargetAndStaysMetWithOtherR
   prepared.plan.verification.sample.form_factors.seed += 1009;
   const Verification other = verify_layout(prepared, outcome.luminaires);
   SearchSpec real = prepared.plan.search;
-  real.goals = initial_goals(job_goals(job), prepared.plan.maintenance_factor);
+  real.goals = search_at(prepared.plan, plan_job(job).goals).goals;
   const std::vector<GoalJudgement> judged = judge_goals(prepared.model, real, verified_goal_lux(prepared.model, other));
   for (std::size_t g = 0; g < judged.size(); ++g) {
     EXPECT_NE(judged[g].value, outcome.goals[g].verified->value) << "other rays, another value";
@@ -182,7 +183,7 @@ TEST(VerificationMargin, TheBindingGoalIsKeptAboveItsTargetAndStaysMetWithOtherR
 TEST(VerificationMargin, WithoutAFloorTheMarginIsTheErrorEstimateAlone) {
   test::TempDir dir;
   const JobConfig job = load_job_config(margin_job(dir, 0.0));
-  const JobOutcome outcome = solve_prepared(test::prepare(job), job_goals(job));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), plan_job(job).goals);
   double binding = 0.0;
   for (const GoalOutcome& g : outcome.goals) {
     EXPECT_EQ(g.margin, kMarginStandardErrors * g.relative_error.value_or(0.0)) << g.predicted.name;
@@ -276,7 +277,7 @@ TEST(PowerDensity, ARectangleGridOverNoFloorGivesItsOwnAreaNamed) {
   test::TempDir dir;
   const JobConfig job = load_job_config(rectangle_grid_job(dir, ""));
   const PreparedJob prepared = test::prepare(job);
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals);
   ASSERT_EQ(prepared.model.grids.size(), 1u);
   EXPECT_NEAR(prepared.model.grids[0].area_m2, 6.0, 1e-9) << "2 x 3 m in 0.5 m cells";
   EXPECT_NEAR(outcome.mounting_area_m2, 16.0, 1e-9);
@@ -288,7 +289,7 @@ TEST(PowerDensity, ARectangleGridOverNoFloorGivesItsOwnAreaNamed) {
 TEST(PowerDensity, TheFloorTheJobNamesIsTheArea) {
   test::TempDir dir;
   const JobConfig job = load_job_config(rectangle_grid_job(dir, "  floor_surface: floor\n"));
-  const JobOutcome outcome = solve_prepared(test::prepare(job), job_goals(job));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), plan_job(job).goals);
   EXPECT_NEAR(outcome.floor_area_m2, 16.0, 1e-9);
   EXPECT_EQ(outcome.floor_area_source, "floor 'floor' (luminaires.floor_surface)");
 }
@@ -310,12 +311,12 @@ std::string task_job(const test::TempDir& dir, const std::string& surrounding, c
 TEST(Surrounding, TheBandsGoalBindsAndTheSearchMeetsIt) {
   test::TempDir dir;
   const JobConfig plain = load_job_config(task_job(dir, ""));
-  const JobOutcome without = solve_prepared(test::prepare(plain), job_goals(plain));
+  const JobOutcome without = solve_prepared(test::prepare(plain), plan_job(plain).goals);
   ASSERT_TRUE(without.all_met);
   const JobConfig banded = load_job_config(task_job(dir, "    surrounding: {width_m: 1.0, average_lux: 450}\n"));
   ASSERT_EQ(banded.goals.size(), 3u);
   const PreparedJob prepared = test::prepare(banded);
-  const JobOutcome with = solve_prepared(prepared, job_goals(banded));
+  const JobOutcome with = solve_prepared(prepared, plan_job(banded).goals);
   // The band's points: the 3 x 3 m grown square less the task, in cells of 1/3 m (p(3 m) = 0.431 m).
   ASSERT_EQ(prepared.model.grids.size(), 2u);
   EXPECT_EQ(prepared.model.grids[1].name, "task_surrounding");
@@ -334,14 +335,14 @@ TEST(PowerDensityCap, ALayoutOverTheCapIsInfeasibleAndItsLineSaysByHowMuch) {
   test::TempDir dir;
   const JobConfig plain = load_job_config(task_job(dir, ""));
   const PreparedJob prepared = test::prepare(plain);
-  const JobOutcome unlimited = solve_prepared(prepared, job_goals(plain));
+  const JobOutcome unlimited = solve_prepared(prepared, plan_job(plain).goals);
   ASSERT_TRUE(unlimited.all_met);
   EXPECT_EQ(unlimited.floor_area_source, "area of grid 'task' (no floor surface known)");
   const double density = unlimited.power_density_w_per_m2;
   // Half the density the goals need: every goal still met, the cap's line missed.
   JobConfig capped = plain;
   capped.constraints.max_power_density_w_per_m2 = 0.5 * density;
-  const JobOutcome over = solve_prepared(prepared, job_goals(capped));
+  const JobOutcome over = solve_prepared(prepared, plan_job(capped).goals);
   EXPECT_FALSE(over.all_met);
   EXPECT_FALSE(over.feasible);
   const auto line = std::find_if(over.constraints.begin(), over.constraints.end(),
@@ -355,12 +356,12 @@ TEST(PowerDensityCap, ALayoutOverTheCapIsInfeasibleAndItsLineSaysByHowMuch) {
   for (const GoalOutcome& g : over.goals) EXPECT_TRUE(g.met);
   // Above what the layout draws: met, and the same layout.
   capped.constraints.max_power_density_w_per_m2 = 2.0 * density;
-  const JobOutcome under = solve_prepared(prepared, job_goals(capped));
+  const JobOutcome under = solve_prepared(prepared, plan_job(capped).goals);
   EXPECT_TRUE(under.all_met);
   EXPECT_NEAR(under.power_w, unlimited.power_w, 1e-9 * unlimited.power_w);
   // The search: a layout above the cap is infeasible; closest_to_target holds the scale to it.
   SearchSpec spec = prepared.plan.search;
-  spec.goals = initial_goals(job_goals(plain), 1.0);
+  spec.goals = search_at(prepared.plan, plan_job(plain).goals).goals;  // MF 1
   spec.layout.max_power_w = 0.5 * unlimited.power_w;
   const std::vector<Eigen::Vector2d> xy{Eigen::Vector2d(2.0, 2.0)};
   const LayoutEvaluation capped_eval = evaluate_layout(prepared.model, spec, xy, {1.0});

@@ -29,9 +29,9 @@ TEST(Verification, IndirectRowsKeepEveryGoalWithinHalfAPercentOfTheFullSolve) {
   job.verification.rays_per_patch = 1024;
   job.verification.indirect_rays_per_patch = 128;
   job.sample.fraction = 0.02;  // the operator is not what is tested
-  const std::vector<VariantPlan> plans = plan_job(job);
+  const std::vector<VariantPlan> plans = plan_job(job).variants;
   ASSERT_EQ(plans.size(), 1u);
-  const PreparedJob prepared = prepare_job(job, plans[0]);
+  const PreparedJob prepared = prepare_job(scene_spec(job), plans[0]);
   std::vector<PlacedLuminaire> layout;
   for (double x : {1.0, 3.0, 5.0})
     for (double y : {1.25, 2.75}) layout.push_back({{x, y, 2.93}, 3000.0, 0.0, {}});
@@ -120,9 +120,9 @@ TEST(Verification, TheDecisivePointsKeepEveryMinimumWithinHalfAPercentOfAFineRef
   job.verification.method = VerificationMethod::exact;
   job.verification.rays_per_patch = 128;
   job.sample.fraction = 0.02;  // the operator is not what is tested
-  const std::vector<VariantPlan> plans = plan_job(job);
+  const std::vector<VariantPlan> plans = plan_job(job).variants;
   ASSERT_EQ(plans.size(), 1u);
-  PreparedJob prepared = prepare_job(job, plans[0]);
+  PreparedJob prepared = prepare_job(scene_spec(job), plans[0]);
   std::vector<PlacedLuminaire> layout;
   for (double x : {1.0, 3.0, 5.0})
     for (double y : {1.25, 2.75}) layout.push_back({{x, y, 2.93}, 3000.0, 0.0, {}});

@@ -10,6 +10,7 @@
 #include "core/glare/cylindrical.h"
 #include "core/glare/ugr.h"
 #include "job/config.h"
+#include "job/plan.h"
 #include "job/job_runner.h"
 #include "optimizer/goal_metrics.h"
 #include "tests/optimizer/optimizer_test_scenes.h"
@@ -111,7 +112,7 @@ TEST(GlareGoal, ATighterUgrLimitFindsAnotherLayoutThatMeetsIt) {
   const JobConfig loose = glare_job(dir, "    ugr_max: 30\n");
   const PreparedJob prepared = test::prepare(loose);
   ASSERT_EQ(prepared.model.observers.size(), 4u) << "the standard's four observers";
-  const JobOutcome first = solve_prepared(prepared, job_goals(loose));
+  const JobOutcome first = solve_prepared(prepared, plan_job(loose).goals);
   ASSERT_TRUE(first.all_met);
   const GoalOutcome& ugr_first = goal_of(first, GoalMetric::ugr);
   ASSERT_TRUE(ugr_first.verified);
@@ -127,7 +128,7 @@ TEST(GlareGoal, ATighterUgrLimitFindsAnotherLayoutThatMeetsIt) {
   const double limit = std::floor(unconstrained) - 1.0;
   for (GoalSetting& g : tight.goals)
     if (g.metric == GoalMetric::ugr) g.target = limit;
-  const JobOutcome second = solve_prepared(prepared, job_goals(tight));
+  const JobOutcome second = solve_prepared(prepared, plan_job(tight).goals);
   const GoalOutcome& ugr_second = goal_of(second, GoalMetric::ugr);
   std::cout << "ugr_max " << limit << ": " << second.luminaires.size() << " luminaires, UGR "
             << ugr_second.verified->value << "\n";

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "job/config.h"
+#include "job/plan.h"
 #include "job/job_scene.h"
 #include "job/job_runner.h"
 #include "job/model_cache.h"
@@ -43,7 +44,7 @@ TEST(LayoutSearch, OneLuminaireLandsOverTheTargetCentre) {
   const JobConfig job = mat_job(dir, 200.0);
   const PreparedJob prepared = test::prepare(job);
   ASSERT_EQ(prepared.model.sample_size, 0) << "a black room needs no sample";
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals);
   ASSERT_EQ(outcome.luminaires.size(), 1u);
   const Eigen::Vector3d p = outcome.luminaires[0].position_m;
   EXPECT_NEAR(p.x(), 1.3, 0.03);
@@ -100,7 +101,7 @@ TEST(LayoutSearch, CountsThatCannotDrawLessThanALayoutFoundAreNotSearched) {
   const SearchResult beaten = search_layout(prepared.model, test::spec(job), {}, {.power_to_beat_w = 29.9, .easier = {}});
   EXPECT_TRUE(beaten.beaten);
   EXPECT_EQ(beaten.evaluations, 0);
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job), {}, 29.9);
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals, {}, 29.9);
   EXPECT_TRUE(outcome.search.beaten);
   EXPECT_EQ(outcome.verification.method, "none") << "nothing searched, nothing verified";
 
@@ -201,7 +202,7 @@ TEST(LayoutSearch, DoublingTheTargetDoublesTheFlux) {
   const PreparedJob prepared = test::prepare(job);
   JobConfig doubled = job;
   set_goal_parameter(doubled, "goals.mat.average_lux", 400.0);
-  const JobOutcome once = solve_prepared(prepared, job_goals(job)), twice = solve_prepared(prepared, job_goals(doubled));
+  const JobOutcome once = solve_prepared(prepared, plan_job(job).goals), twice = solve_prepared(prepared, plan_job(doubled).goals);
   ASSERT_EQ(once.luminaires.size(), 1u);
   ASSERT_EQ(twice.luminaires.size(), 1u);
   EXPECT_NEAR(twice.luminaires[0].flux_lm / once.luminaires[0].flux_lm, 2.0, 1e-6);
@@ -219,7 +220,7 @@ TEST(LayoutSearch, UnreachableGoalIsReportedWithTheClosestLayout) {
   const std::string weak = std::string(kOneLuminaire).replace(std::string(kOneLuminaire).find("[10, 20000]"), 11,
                                                               "[10, 500]");
   const JobConfig job = mat_job(dir, 200.0, "0", weak);
-  const JobOutcome outcome = solve_prepared(test::prepare(job), job_goals(job));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), plan_job(job).goals);
   EXPECT_FALSE(outcome.feasible);
   EXPECT_FALSE(outcome.all_met);
   ASSERT_EQ(outcome.luminaires.size(), 1u);
@@ -239,7 +240,7 @@ TEST(LayoutSearch, ContradictoryGoalsAreInfeasible) {
       "job.yaml", room_job("0", kOneLuminaire,
                            "  - surface: mat\n    average_lux: 300\n  - name: mat_cap\n    surface: mat\n    max_lux: 100\n",
                            kOptimizer)));
-  const JobOutcome outcome = solve_prepared(test::prepare(job), job_goals(job));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), plan_job(job).goals);
   EXPECT_FALSE(outcome.feasible);
   EXPECT_FALSE(outcome.all_met);
   int missed = 0;
@@ -259,7 +260,7 @@ TEST(LayoutSearch, SameSeedSameLayoutWhateverTheThreads) {
     job.form_factors.threads = job.direct_light.threads = threads;
     job.optimizer.seed = static_cast<std::uint64_t>(seed);
     job.verification.method = VerificationMethod::none;
-    return solve_prepared(test::prepare(job), job_goals(job));
+    return solve_prepared(test::prepare(job), plan_job(job).goals);
   };
   const JobOutcome a = run(1, 4), b = run(2, 4), c = run(2, 5);
   ASSERT_EQ(a.luminaires.size(), b.luminaires.size());
@@ -286,7 +287,7 @@ TEST(LayoutSearch, MinimumDistanceKeepsLuminairesApart) {
   const std::string goals = "  - surface: left\n    average_lux: 300\n  - surface: right\n    average_lux: 300\n";
   const JobConfig job = load_job_config(dir.write(
       "job.yaml", room_job("0", luminaires, goals, std::string(kOptimizer) + "constraints:\n  min_distance_m: 2.5\n")));
-  const JobOutcome outcome = solve_prepared(test::prepare(job), job_goals(job));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), plan_job(job).goals);
   ASSERT_EQ(outcome.luminaires.size(), 2u);
   const double d = (outcome.luminaires[0].position_m - outcome.luminaires[1].position_m).head<2>().norm();
   EXPECT_GE(d, 2.5 * (1.0 - 1e-4));
@@ -309,7 +310,7 @@ TEST(LayoutSearch, OutlinesNeverOverlapWhateverMinDistanceSays) {
   const LayoutEvaluation touching = evaluate_layout(prepared.model, test::spec(job), {{1.5, 2.0}, {1.8, 2.0}}, w);
   EXPECT_EQ(touching.distance_violation, 0.0);
   // Both luminaires want to be right over the one mat: the search keeps them apart.
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals);
   ASSERT_EQ(outcome.luminaires.size(), 2u);
   const Eigen::Vector2d gap = (outcome.luminaires[0].position_m - outcome.luminaires[1].position_m).head<2>().cwiseAbs();
   EXPECT_TRUE(gap.x() >= 0.3 * (1.0 - 1e-3) || gap.y() >= 0.3 * (1.0 - 1e-3)) << gap.transpose();
@@ -323,7 +324,7 @@ TEST(LayoutSearch, FixedArrayIsPlacedAsConfigured) {
       "  candidate_spacing_m: 0.5\n  layout: array\n  array: {rows: 2, columns: 3, spacing_m: [1.2, 2.0], offset_m: [0.8, 1.0]}\n";
   const JobConfig job = load_job_config(
       dir.write("job.yaml", room_job("0", luminaires, "  - surface: mat\n    average_lux: 250\n", kOptimizer)));
-  const JobOutcome outcome = solve_prepared(test::prepare(job), job_goals(job));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), plan_job(job).goals);
   ASSERT_EQ(outcome.luminaires.size(), 6u);
   for (int r = 0; r < 2; ++r)
     for (int c = 0; c < 3; ++c) {
@@ -345,7 +346,7 @@ TEST(LayoutSearch, ArraySpacingIsSearched) {
       "  candidate_spacing_m: 0.5\n  layout: array\n  array: {rows: 2, columns: 2}\n";
   const JobConfig job = load_job_config(
       dir.write("job.yaml", room_job("0", luminaires, "  - surface: mat\n    average_lux: 250\n", kOptimizer)));
-  const JobOutcome outcome = solve_prepared(test::prepare(job), job_goals(job));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), plan_job(job).goals);
   ASSERT_EQ(outcome.luminaires.size(), 4u);
   // The least power over a central mat puts the array's centre over it.
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -370,7 +371,7 @@ TEST(LayoutSearch, ClosestToTargetHitsEachAverage) {
   const std::string goals = "  - surface: left\n    average_lux: 300\n  - surface: right\n    average_lux: 100\n";
   const JobConfig job = load_job_config(
       dir.write("job.yaml", room_job("0", luminaires, goals, std::string(kOptimizer) + "objective: closest_to_target\n")));
-  const JobOutcome outcome = solve_prepared(test::prepare(job), job_goals(job));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), plan_job(job).goals);
   ASSERT_EQ(outcome.goals.size(), 2u);
   // Two luminaires can serve two mats 2.6 m apart separately: both targets within 1 %
   // as predicted, and met (within the 5 % a target allows) on verification.
@@ -387,7 +388,7 @@ TEST(LayoutSearch, ClosestToTargetHitsEachAverage) {
 TEST(LayoutSearch, PlacedLuminairesAreFixedLightTheSearchBuildsOn) {
   TempDir dir;
   const JobConfig alone = mat_job(dir, 200.0);
-  const JobOutcome without = solve_prepared(test::prepare(alone), job_goals(alone));
+  const JobOutcome without = solve_prepared(test::prepare(alone), plan_job(alone).goals);
   // The same job with a fixed panel in a corner that already lights the mat a little.
   const std::string with_placed = std::string(kOneLuminaire) +
                                   "  placed:\n    - {name: old, position_m: [0.5, 0.5, 2.4], flux_lm: 2000}\n";
@@ -399,7 +400,7 @@ TEST(LayoutSearch, PlacedLuminairesAreFixedLightTheSearchBuildsOn) {
   ASSERT_GT(fixed, 5.0);
   ASSERT_LT(fixed, 100.0);
   EXPECT_NEAR(prepared.model.fixed_flux_lm, 2000.0, 1e-6);
-  const JobOutcome with = solve_prepared(prepared, job_goals(job));
+  const JobOutcome with = solve_prepared(prepared, plan_job(job).goals);
   ASSERT_EQ(with.luminaires.size(), 1u);
   // Direct light only: the new panel supplies what the fixed one does not.
   EXPECT_NEAR(with.luminaires[0].flux_lm / without.luminaires[0].flux_lm, (200.0 - fixed) / 200.0, 0.02);
@@ -414,12 +415,12 @@ TEST(LayoutSearch, FacingUpKeepsOnlyTheTopsOfAGoalSurface) {
   dir.write("room.obj", room_obj({{"mat", {1.3, 1.7}}}));
   const std::string goals_up = "  - surface: [floor, walls]\n    facing: up\n    average_lux: 100\n";
   const JobConfig job = load_job_config(dir.write("job.yaml", room_job("0", kOneLuminaire, goals_up, kOptimizer)));
-  const JobScene loaded = load_job_scene(job);
+  const JobScene loaded = load_job_scene(scene_spec(job));
   const LightingModel model = lighting_model_geometry(loaded.scene, test::model_spec(job));
   EXPECT_EQ(model.goal_patches, loaded.scene.patches_of({"floor"}));
   const std::string walls_up = "  - surface: walls\n    facing: up\n    average_lux: 100\n";
   const JobConfig bad = load_job_config(dir.write("bad.yaml", room_job("0", kOneLuminaire, walls_up, kOptimizer)));
-  EXPECT_THROW(lighting_model_geometry(load_job_scene(bad).scene, test::model_spec(bad)), std::invalid_argument);
+  EXPECT_THROW(lighting_model_geometry(load_job_scene(scene_spec(bad)).scene, test::model_spec(bad)), std::invalid_argument);
 }
 
 TEST(LayoutSearch, EvaluationIsBitForBitTheSameWhateverTheThreads) {
@@ -483,7 +484,7 @@ TEST(LayoutSearch, ReflectedLightIsPredictedAsVerified) {
   ASSERT_GT(prepared.model.sample_size, 0);
   JobConfig once = job;
   once.verification.rounds = 1;
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(once));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(once).goals);
   const double indirect_share = 1.0 - outcome.predicted_direct_lux.mean() / outcome.predicted_lux.mean();
   EXPECT_GT(indirect_share, 0.2);
   EXPECT_NEAR(outcome.flux_correction, 1.0, 0.04) << "predicted / verified of the mat's average";
@@ -504,14 +505,14 @@ TEST(LayoutSearch, PowerDensityIsPerFloorAreaNotPerTaskArea) {
       "job.yaml", "grids:\n  - {name: plane, over_surface: floor, height_m: 0.8}\n" +
                       room_job("0", kOneLuminaire, "  - {grid: plane, average_lux: 100}\n", kOptimizer)));
   base.verification.method = VerificationMethod::none;
-  const JobOutcome on_floor = solve_prepared(test::prepare(base), job_goals(base));
+  const JobOutcome on_floor = solve_prepared(test::prepare(base), plan_job(base).goals);
   EXPECT_NEAR(on_floor.floor_area_m2, 16.0, 1e-6);
   EXPECT_NE(on_floor.floor_area_source.find("floor 'floor'"), std::string::npos) << on_floor.floor_area_source;
   JobConfig table = base;
   table.grids[0].over_surface = "table";
   table.grids[0].height_m = 0.01;
   table.grids[0].border_m = 0.0;
-  const JobOutcome on_table = solve_prepared(test::prepare(table), job_goals(table));
+  const JobOutcome on_table = solve_prepared(test::prepare(table), plan_job(table).goals);
   EXPECT_NE(on_table.floor_area_source.find("mounting surface"), std::string::npos) << on_table.floor_area_source;
   EXPECT_GT(on_table.floor_area_m2, 10.0) << "not the 0.16 m2 table top";
 }
@@ -533,7 +534,7 @@ TEST(LayoutSearch, GridGoalIsSearchedAndVerifiedAtItsPoints) {
   EXPECT_EQ(prepared.model.goal_rows(), 25);
   JobConfig once = job;
   once.verification.rounds = 1;
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(once));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(once).goals);
   ASSERT_EQ(outcome.luminaires.size(), 1u);
   EXPECT_NEAR(outcome.luminaires[0].position_m.x(), 1.3, 0.05);
   EXPECT_NEAR(outcome.luminaires[0].position_m.y(), 1.7, 0.05);
@@ -639,7 +640,7 @@ TEST(RegularLayoutSearch, NoMountableArrangementIsRefusedWithThePosition) {
   EXPECT_TRUE(r.beaten);
   EXPECT_NE(r.refused.find("the member at (0.67, 2.00) m"), std::string::npos) << r.refused;
   try {
-    solve_variants(prepared, job_goals(job), {}, {});
+    solve_variants(prepared, plan_job(job).goals, {}, {});
     FAIL() << "a job whose only layout cannot be mounted is refused";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("luminaires.layout: no arrangement can be mounted or built"), std::string::npos) << e.what();
@@ -695,7 +696,7 @@ TEST(RegularLayoutSearch, CrowdedMembersMakeTheirArrangementInfeasible) {
     const JobConfig job = crowded_job(dir, "1.0", "4", 0.0, "1.0");
     prepared.push_back(test::prepare(job));
     try {
-      solve_variants(prepared, job_goals(job), {}, {});
+      solve_variants(prepared, plan_job(job).goals, {}, {});
       FAIL() << "a layout whose every arrangement overlaps is refused";
     } catch (const ConfigError& e) {
       EXPECT_NE(std::string(e.what()).find("no arrangement can be mounted or built; 4 x 1 field"), std::string::npos)
@@ -708,7 +709,7 @@ TEST(RegularLayoutSearch, CrowdedMembersMakeTheirArrangementInfeasible) {
 TEST(RegularLayoutSearch, AFieldIsCentredOnTheZoneAtOneOutputAndMeetsItsGoal) {
   TempDir dir;
   const JobConfig job = regular_job(dir, "  layout: field\n  field: {rows: [1, 3], columns: [1, 3]}\n");
-  const JobOutcome outcome = solve_prepared(test::prepare(job), job_goals(job));
+  const JobOutcome outcome = solve_prepared(test::prepare(job), plan_job(job).goals);
   ASSERT_TRUE(outcome.all_met);
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
   for (const PlacedLuminaire& l : outcome.luminaires) {
@@ -728,13 +729,13 @@ TEST(RegularLayoutSearch, ThePlainPanelDimsTogetherUnlessIndividualOutputIsAsked
   const std::string goals = "  - surface: left\n    average_lux: 100\n  - surface: right\n    average_lux: 400\n";
   const JobConfig equal = load_job_config(dir.write("equal.yaml", room_job("0", luminaires, goals, kOptimizer)));
   EXPECT_TRUE(test::spec(equal).luminaire.uniform_output);
-  const JobOutcome a = solve_prepared(test::prepare(equal), job_goals(equal));
+  const JobOutcome a = solve_prepared(test::prepare(equal), plan_job(equal).goals);
   ASSERT_EQ(a.luminaires.size(), 2u);
   EXPECT_EQ(a.luminaires[0].flux_lm, a.luminaires[1].flux_lm);
   const JobConfig own =
       load_job_config(dir.write("own.yaml", room_job("0", luminaires + "  output: individual\n", goals, kOptimizer)));
   EXPECT_FALSE(test::spec(own).luminaire.uniform_output);
-  const JobOutcome b = solve_prepared(test::prepare(own), job_goals(own));
+  const JobOutcome b = solve_prepared(test::prepare(own), plan_job(own).goals);
   ASSERT_EQ(b.luminaires.size(), 2u);
   EXPECT_GT(std::max(b.luminaires[0].flux_lm, b.luminaires[1].flux_lm),
             1.5 * std::min(b.luminaires[0].flux_lm, b.luminaires[1].flux_lm))
@@ -771,7 +772,7 @@ TEST(SuspendedLuminaires, AHighBayHangsAtItsHeightAboveTheFloorWithoutACeiling) 
   const PreparedJob prepared = test::prepare(job);
   ASSERT_TRUE(prepared.model.floor_z_m.has_value());
   EXPECT_NEAR(*prepared.model.floor_z_m, 0.0, 1e-12);
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals);
   ASSERT_EQ(outcome.luminaires.size(), 1u);
   const Eigen::Vector3d p = outcome.luminaires[0].position_m;
   EXPECT_NEAR(p.x(), 5.0, 1e-9);
@@ -837,7 +838,7 @@ TEST(TiltedProducts, CandidatesAndVerifiedLuminairesAreAimedAlike) {
       EXPECT_NEAR(p.normal.x(), std::sin(60.0 * std::numbers::pi / 180.0), 1e-9) << "aimed toward +x (C0)";
       EXPECT_NEAR(p.normal.z(), -0.5, 1e-9);
     }
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals);
   ASSERT_EQ(outcome.luminaires.size(), 1u);
   EXPECT_LT(outcome.luminaires[0].position_m.x(), 2.8) << "a spot aimed toward +x hangs on the mat's -x side";
   ASSERT_TRUE(outcome.goals[0].verified.has_value());
@@ -891,7 +892,7 @@ TEST(WallMountedLuminaires, ARowOnOneWallAimedAcrossLightsTheGridOnTheWallOpposi
   EXPECT_EQ(prepared.plan.search.layout.family, LayoutFamily::rows) << "a wall holds a row by default";
   EXPECT_EQ(prepared.plan.search.luminaire.rotation_deg, 0.0) << "C0 into the room (+x)";
   EXPECT_EQ(prepared.plan.search.luminaire.tilt_deg, 70.0);
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals);
   ASSERT_GE(outcome.luminaires.size(), 1u);
   const double half_across = LuminaireType::square_lambertian(0.2).half_footprint_m(0.0, 70.0).x();
   for (const PlacedLuminaire& l : outcome.luminaires) {
@@ -1064,7 +1065,7 @@ TEST(RegularLayoutSearch, TheRealCheckAgreesWithTheBlendInAnOpenRoom) {
   TempDir dir;
   const JobConfig job = field_on_grid_job(dir);
   const PreparedJob prepared = test::prepare(job);
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job));
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals);
   EXPECT_TRUE(outcome.all_met);
   EXPECT_GE(outcome.search.direct_checks, 1);
   const LayoutEvaluation& best = outcome.search.best;
@@ -1093,7 +1094,7 @@ TEST(RegularLayoutSearch, ALayoutPredictedToDrawNoLessThanThePowerToBeatIsNotVer
   EXPECT_TRUE(beaten.beaten);
   EXPECT_NE(beaten.beaten_note.find("no less than the"), std::string::npos) << beaten.beaten_note;
   // solve_prepared verifies nothing then.
-  const JobOutcome outcome = solve_prepared(prepared, job_goals(job), {}, below.power_to_beat_w);
+  const JobOutcome outcome = solve_prepared(prepared, plan_job(job).goals, {}, below.power_to_beat_w);
   EXPECT_TRUE(outcome.search.beaten);
   EXPECT_EQ(outcome.verification.method, "none");
 }

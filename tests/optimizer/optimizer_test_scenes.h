@@ -65,9 +65,9 @@ inline std::string room_job(const std::string& reflectance, const std::string& l
 // The job's first variant as the runner plans it: prepared (scene, model, operator),
 // its search spec, its model spec.
 inline PreparedJob prepare(const JobConfig& job, const std::string& cache_dir = "") {
-  return prepare_job(job, plan_job(job).front(), {}, {}, cache_dir);
+  return prepare_job(scene_spec(job), plan_job(job).variants.front(), {}, {}, cache_dir);
 }
-inline SearchSpec spec(const JobConfig& job) { return plan_job(job).front().search; }
-inline ModelSpec model_spec(const JobConfig& job) { return plan_job(job).front().model; }
+inline SearchSpec spec(const JobConfig& job) { return plan_job(job).variants.front().search; }
+inline ModelSpec model_spec(const JobConfig& job) { return plan_job(job).variants.front().model; }
 
 }  // namespace ilp::test

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "job/config.h"
+#include "job/plan.h"
 #include "job/job_runner.h"
 #include "job/job_scene.h"
 #include "optimizer/layout_search.h"
@@ -47,7 +48,7 @@ TEST(ReflectedBlend, ABlendedCandidateSitsWhereItsWeightsPutIt) {
   // candidate's own position: each is the mean of its two (or four) computed neighbours.
   TempDir dir;
   const JobConfig job = grey_room(dir, room_obj({}));
-  const JobScene loaded = load_job_scene(job);
+  const JobScene loaded = load_job_scene(scene_spec(job));
   const LightingModel model = lighting_model_geometry(loaded.scene, test::model_spec(job));
   const CandidateGrid& grid = model.grid;
   ASSERT_GE(grid.nodes_x(), 5);
@@ -95,7 +96,7 @@ TEST(ReflectedBlend, CandidatesBesideAHoleAreComputed) {
     strips += line + "f -1 -2 -3 -4\n";
   obj.replace(at, end - at, strips);
   const JobConfig job = grey_room(dir, obj);
-  const JobScene loaded = load_job_scene(job);
+  const JobScene loaded = load_job_scene(scene_spec(job));
   const LightingModel model = lighting_model_geometry(loaded.scene, test::model_spec(job));
   const CandidateGrid& grid = model.grid;
   int missing = 0;
@@ -116,7 +117,7 @@ TEST(ReflectedBlend, CandidatesBesideAHoleAreComputed) {
 TEST(ReflectedBlend, TheBlendedOperatorKeepsDirectLightAndComputedColumns) {
   TempDir dir;
   const JobConfig job = grey_room(dir, room_obj({}));
-  const JobScene loaded = load_job_scene(job);
+  const JobScene loaded = load_job_scene(scene_spec(job));
   const RayCaster caster(loaded.scene);
   const LightingModel every = model_with_stride(job, loaded, caster, 1);
   const LightingModel blended = model_with_stride(job, loaded, caster, 2);
@@ -180,7 +181,7 @@ TEST(ReflectedBlend, PredictionsAgainstTheExactSolveAreNoWorseThanComputingEvery
 TEST(ReflectedBlend, TheIdentityBlendIsThePlainOperator) {
   TempDir dir;
   const JobConfig job = grey_room(dir, room_obj({}));
-  const JobScene loaded = load_job_scene(job);
+  const JobScene loaded = load_job_scene(scene_spec(job));
   const RayCaster caster(loaded.scene);
   const ModelSpec spec = test::model_spec(job);
   LightingModel model = lighting_model_geometry(loaded.scene, spec, &caster);
