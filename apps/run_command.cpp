@@ -469,7 +469,8 @@ namespace {
 int run_split_room(const RunArgs& args, const JobConfig& job, const dist::Communicator& comm) {
   RunOptions run = run_options(args.threads, args.max_memory, true);
   share_node_memory(run, comm, true);
-  const JobPlan plan = plan_job(job, run);
+  JobPlan plan;  // a job that cannot be planned is one message (rank 0's), every rank exit 1
+  dist::on_every_rank(comm, [&] { plan = plan_job(job, run); });
   const auto build_start = Clock::now();
   std::vector<PreparedJob> prepared =
       prepare_split(plan, run, comm, run_hooks(make_progress(args.quiet)), cache_folder(args.cache_dir, args.no_cache));

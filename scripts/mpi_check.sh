@@ -13,7 +13,9 @@
 #     for 1 process, mpirun -np 2, -np 3 and -np 4 (one thread per rank) and -np 2 with
 #     2 threads per rank, and each rank's peak memory is printed;
 #  6. a rank out of memory in the split preparation (rank 1's address space capped: its
-#     BVH cannot be built): exit 1, one "error:" line, nothing written.
+#     BVH cannot be built): exit 1, one "error:" line, nothing written;
+#  7. a single-room job that cannot be planned (configs/office_fixed.yaml places no
+#     luminaire: a job for ilp solve) under mpirun: exit 1, one "error:" line.
 # Needs build/ilp and Open MPI (scripts/setup.sh installs libopenmpi-dev openmpi-bin).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -153,3 +155,15 @@ set -e
 [ "$(grep -c '^error:' "$tmp/split_oom.err")" -eq 1 ] || { cat "$tmp/split_oom.err"; fail "not exactly one error line"; }
 [ ! -e "$tmp/split_oom" ] || fail "a rank out of memory left an output folder"
 echo "mpi_check: ok, a rank out of memory in the split preparation: exit 1, $(grep '^error:' "$tmp/split_oom.err" | cut -c1-100)"
+
+# A job every rank fails to plan the same way: one message (rank 0's), exit 1 on every rank.
+set +e
+"${mpi[@]}" "$ilp" run configs/office_fixed.yaml --out "$tmp/unplanned" --no-cache -q > "$tmp/unplanned.log" \
+  2> "$tmp/unplanned.err"
+code=$?
+set -e
+[ "$code" -eq 1 ] || { cat "$tmp/unplanned.err"; fail "a job that cannot be planned gave exit $code, not 1"; }
+[ "$(grep -c '^error:' "$tmp/unplanned.err")" -eq 1 ] || { cat "$tmp/unplanned.err"; fail "not exactly one error line"; }
+grep -q 'ilp solve' "$tmp/unplanned.err" || { cat "$tmp/unplanned.err"; fail "the error does not say to use ilp solve"; }
+[ ! -e "$tmp/unplanned" ] || fail "a job that cannot be planned left an output folder"
+echo "mpi_check: ok, a job that cannot be planned under mpirun: exit 1, $(grep '^error:' "$tmp/unplanned.err" | cut -c1-100)"
