@@ -51,20 +51,21 @@ void random_layout(const LightingModel& model, int count, std::mt19937_64& rng, 
 
 int run_bench(const BenchArgs& args) {
   const auto start = Clock::now();
-  JobConfig job = load_job_config(args.config);
+  const JobConfig job = load_job_config(args.config);
   const RunOptions run = run_options(args.threads, args.max_memory, true);  // its estimate of this machine
-  if (args.patch_edge_m > 0.0) job.scene.max_patch_edge_m = args.patch_edge_m;
-  if (args.sample_fraction > 0.0) {
-    job.sample.size.reset();
-    job.sample.target_error.reset();
-    job.sample.fraction = args.sample_fraction;
-  }
   if (!job.search) throw ConfigError(job.path + ": ilp bench needs an inverse job (luminaires.mounting_surface, goals)");
-  job.search->layout = LayoutFamily::free;
-  job.search->count_min = job.search->count_max = args.luminaires;
-  job.constraints.max_luminaires.reset();
-  const JobPlan job_plan = plan_job(job, run);
-  const VariantPlan& plan = job_plan.variants.front();  // products: the first product at its first rotation
+  // The bench's own settings edit the plan, never the job: the patch size, the sample,
+  // a free layout of exactly --luminaires.
+  JobPlan job_plan = plan_job(job, run);
+  if (args.patch_edge_m > 0.0) job_plan.scene.scene.max_patch_edge_m = args.patch_edge_m;
+  VariantPlan& plan = job_plan.variants.front();  // products: the first product at its first rotation
+  if (args.sample_fraction > 0.0) {
+    plan.model.sample_size.size.reset();
+    plan.model.sample_size.target_error.reset();
+    plan.model.sample_size.fraction = args.sample_fraction;
+  }
+  plan.search.layout.family = LayoutFamily::free;
+  plan.search.layout.count_min = plan.search.layout.count_max = args.luminaires;
   const ProgressCallback progress = make_progress(args.quiet);
 
   // Build (no cache: the build is what is measured).
