@@ -22,6 +22,7 @@ CORE = {
     "core/exact": ["core/base", "core/light", "core/scene", "core/transport"],
     "core/operator": ["core/base", "core/light", "core/scene", "core/transport"],
     "core/glare": ["core/base", "core/light"],
+    "core/daylight": ["core/base"],
     "core/study": ["core/base", "core/light", "core/scene", "core/transport", "core/grid", "core/exact",
                    "core/operator"],
     "core/cost": ["core/base", "core/light", "core/scene", "core/transport", "core/grid", "core/exact",
